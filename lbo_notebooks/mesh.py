@@ -1,0 +1,351 @@
+"""The :class:`Mesh` value type and the checks that make a triangle mesh usable.
+
+A :class:`Mesh` is immutable: it copies the arrays it is given, marks its copies read-only and
+caches derived geometry (edges, areas, components) on first use. Every check that fails raises
+:class:`MeshError`, whose message names the defect and how to fix it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["Mesh", "MeshError", "validate_topology"]
+
+# A face is degenerate when its area is below this fraction of the squared bounding-box diagonal.
+DEGENERATE_AREA_TOL = 1e-14
+
+
+class MeshError(ValueError):
+    """A triangle mesh that cannot be used as given; the message says why and what to do."""
+
+
+def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
+    try:
+        v = np.array(vertices, dtype=np.float64, copy=True)
+    except (TypeError, ValueError) as exc:
+        raise MeshError(f"vertices must be numbers convertible to float64: {exc}") from None
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise MeshError(f"vertices must have shape (n, 3), got {v.shape}; pass one xyz row per vertex.")
+    if v.shape[0] < 3:
+        raise MeshError(f"a mesh needs at least 3 vertices, got {v.shape[0]}.")
+    bad = ~np.isfinite(v).all(axis=1)
+    if bad.any():
+        rows = np.flatnonzero(bad)
+        raise MeshError(
+            f"{rows.size} vertices have non-finite (NaN or inf) coordinates (first: vertex {rows[0]}); "
+            "fix or remove them before building the mesh."
+        )
+    return v
+
+
+def _as_faces(faces: ArrayLike, n_vertices: int) -> NDArray[np.int64]:
+    f = np.array(faces, copy=True)
+    if f.ndim != 2 or f.shape[1] != 3:
+        shape = f.shape if f.dtype != object else "ragged"
+        raise MeshError(
+            f"faces must have shape (m, 3) (triangles only), got {shape}; "
+            "triangulate polygons first (e.g. load with load_mesh, which splits quads)."
+        )
+    if f.shape[0] == 0:
+        raise MeshError("the mesh has no faces; an LBO needs at least one triangle.")
+    if not np.issubdtype(f.dtype, np.integer):
+        if not np.issubdtype(f.dtype, np.floating) or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
+            raise MeshError(f"faces must hold integer vertex indices, got dtype {f.dtype} with non-integer values.")
+    f = f.astype(np.int64)
+    if f.min() < 0 or f.max() >= n_vertices:
+        bad = np.flatnonzero(((f < 0) | (f >= n_vertices)).any(axis=1))
+        raise MeshError(
+            f"{bad.size} faces use vertex indices outside 0..{n_vertices - 1} (first: face {bad[0]} = "
+            f"{f[bad[0]].tolist()}); indices are 0-based and must refer to existing vertices."
+        )
+    return f
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
+class Mesh:
+    """An immutable triangle mesh: ``vertices`` (n, 3) float64 and ``faces`` (m, 3) int64.
+
+    Parameters
+    ----------
+    vertices : array_like, shape (n, 3)
+        Vertex positions. Copied; the caller's array is never modified.
+    faces : array_like, shape (m, 3)
+        Triangles as 0-based vertex indices. Copied.
+    check : bool, default True
+        Run the topology checks of :func:`validate_topology` (degenerate, duplicate faces,
+        unreferenced vertices, non-manifold edges, inconsistent orientation). Shapes, finiteness
+        and index ranges are always checked.
+
+    Raises
+    ------
+    MeshError
+        If the arrays do not describe a valid mesh; the message names the defect and the fix.
+
+    Examples
+    --------
+    >>> m = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> m.n_vertices, m.n_faces, m.area
+    (3, 1, 0.5)
+    """
+
+    __slots__ = ("_vertices", "_faces", "_cache")
+
+    def __init__(self, vertices: ArrayLike, faces: ArrayLike, *, check: bool = True) -> None:
+        v = _as_vertices(vertices)
+        f = _as_faces(faces, v.shape[0])
+        object.__setattr__(self, "_vertices", _readonly(v))
+        object.__setattr__(self, "_faces", _readonly(f))
+        object.__setattr__(self, "_cache", {})
+        if check:
+            validate_topology(self)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("Mesh is immutable; build a new one (see Mesh.with_vertices).")
+
+    # --- basic data -------------------------------------------------------------------------
+    @property
+    def vertices(self) -> NDArray[np.float64]:
+        """Vertex positions, shape (n, 3), read-only."""
+        return self._vertices
+
+    @property
+    def faces(self) -> NDArray[np.int64]:
+        """Triangles as vertex indices, shape (m, 3), read-only."""
+        return self._faces
+
+    @property
+    def n_vertices(self) -> int:
+        return int(self._vertices.shape[0])
+
+    @property
+    def n_faces(self) -> int:
+        return int(self._faces.shape[0])
+
+    def with_vertices(self, vertices: ArrayLike) -> "Mesh":
+        """A new mesh with the same faces and new vertex positions (e.g. a pose or a scaling)."""
+        v = _as_vertices(vertices)
+        if v.shape != self._vertices.shape:
+            raise MeshError(f"new vertices have shape {v.shape}, expected {self._vertices.shape}.")
+        new = Mesh.__new__(Mesh)
+        object.__setattr__(new, "_vertices", _readonly(v))
+        object.__setattr__(new, "_faces", self._faces)
+        object.__setattr__(new, "_cache", {})
+        _check_degenerate(new)
+        return new
+
+    def cached(self, key: str, compute: Any) -> Any:
+        """Return ``compute(self)`` computed once per mesh and stored under ``key``.
+
+        Derived quantities (operators, curvature, ...) are cached this way so that a mesh used
+        several times pays for them once. Callers must not modify what they get back.
+        """
+        cache = self._cache
+        if key not in cache:
+            cache[key] = compute(self)
+        return cache[key]
+
+    # --- derived geometry -------------------------------------------------------------------
+    @property
+    def edges(self) -> NDArray[np.int64]:
+        """Unique undirected edges, shape (e, 2), each row sorted ascending."""
+        return self.cached("edges", lambda m: _edge_table(m)[0])
+
+    @property
+    def edge_face_counts(self) -> NDArray[np.int64]:
+        """How many faces use each edge of :attr:`edges` (1 on the boundary, 2 inside)."""
+        return self.cached("edge_face_counts", lambda m: _edge_table(m)[1])
+
+    @property
+    def boundary_edges(self) -> NDArray[np.int64]:
+        """Edges used by exactly one face, shape (b, 2)."""
+        return self.edges[self.edge_face_counts == 1]
+
+    @property
+    def boundary_vertices(self) -> NDArray[np.int64]:
+        """Sorted indices of vertices on the boundary."""
+        return np.unique(self.boundary_edges)
+
+    @property
+    def face_areas(self) -> NDArray[np.float64]:
+        """Area of each triangle, shape (m,)."""
+        return self.cached("face_areas", lambda m: 0.5 * np.linalg.norm(_face_cross(m), axis=1))
+
+    @property
+    def face_normals(self) -> NDArray[np.float64]:
+        """Unit normal of each triangle (right-hand rule), shape (m, 3)."""
+        def compute(m: Mesh) -> NDArray[np.float64]:
+            c = _face_cross(m)
+            return c / np.linalg.norm(c, axis=1, keepdims=True)
+        return self.cached("face_normals", compute)
+
+    @property
+    def area(self) -> float:
+        """Total surface area."""
+        return float(self.face_areas.sum())
+
+    @property
+    def bounding_box(self) -> NDArray[np.float64]:
+        """Axis-aligned bounding box as a (2, 3) array: row 0 the minimum, row 1 the maximum."""
+        return np.stack([self._vertices.min(axis=0), self._vertices.max(axis=0)])
+
+    @property
+    def diagonal(self) -> float:
+        """Length of the bounding-box diagonal (a scale for tolerances)."""
+        lo, hi = self.bounding_box
+        return float(np.linalg.norm(hi - lo))
+
+    @property
+    def mean_edge_length(self) -> float:
+        """Mean length of the unique edges (the mesh size h)."""
+        e = self.edges
+        return float(np.linalg.norm(self._vertices[e[:, 0]] - self._vertices[e[:, 1]], axis=1).mean())
+
+    @property
+    def euler_characteristic(self) -> int:
+        """V - E + F (2 for a sphere, 0 for a torus, 1 for a disk)."""
+        return self.n_vertices - len(self.edges) + self.n_faces
+
+    @property
+    def component_labels(self) -> NDArray[np.int64]:
+        """Connected-component label of each vertex, 0-based, ordered by first vertex."""
+        return self.cached("component_labels", _component_labels)
+
+    @property
+    def n_components(self) -> int:
+        """Number of connected components."""
+        return int(self.component_labels.max()) + 1
+
+    @property
+    def is_closed(self) -> bool:
+        """True when the surface has no boundary edges."""
+        return bool(np.all(self.edge_face_counts == 2))
+
+    # --- value semantics --------------------------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Mesh):
+            return NotImplemented
+        return np.array_equal(self._vertices, other._vertices) and np.array_equal(self._faces, other._faces)
+
+    def __hash__(self) -> int:
+        def compute(m: Mesh) -> int:
+            h = hashlib.sha1(m._vertices.tobytes())
+            h.update(m._faces.tobytes())
+            return int.from_bytes(h.digest()[:8], "little")
+        return self.cached("hash", compute)
+
+    def __repr__(self) -> str:
+        return (
+            f"Mesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, "
+            f"components={self.n_components}, boundary_edges={len(self.boundary_edges)}, "
+            f"euler_characteristic={self.euler_characteristic})"
+        )
+
+    def summary(self) -> str:
+        """A one-paragraph human-readable description (size, topology, scale)."""
+        lo, hi = self.bounding_box
+        return (
+            f"{self.n_vertices} vertices, {self.n_faces} faces, {len(self.edges)} edges; "
+            f"{self.n_components} component(s), {len(self.boundary_edges)} boundary edge(s), "
+            f"Euler characteristic {self.euler_characteristic}; area {self.area:.6g}; "
+            f"bounding box {np.round(lo, 4).tolist()} .. {np.round(hi, 4).tolist()}"
+        )
+
+
+# --- helpers ------------------------------------------------------------------------------------
+def _face_cross(m: Mesh) -> NDArray[np.float64]:
+    v, f = m.vertices, m.faces
+    return np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+
+
+def _edge_table(m: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    f = m.faces
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    e.sort(axis=1)
+    edges, counts = np.unique(e, axis=0, return_counts=True)
+    return _readonly(edges.astype(np.int64)), _readonly(counts.astype(np.int64))
+
+
+def _component_labels(m: Mesh) -> NDArray[np.int64]:
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    e = m.edges
+    n = m.n_vertices
+    graph = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    # Relabel so that components are numbered in order of their first vertex.
+    _, first = np.unique(labels, return_index=True)
+    order = np.argsort(first)
+    relabel = np.empty_like(order)
+    relabel[order] = np.arange(order.size)
+    return _readonly(relabel[labels].astype(np.int64))
+
+
+def _check_degenerate(m: Mesh) -> None:
+    f = m.faces
+    repeated = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
+    tiny = m.face_areas <= DEGENERATE_AREA_TOL * max(m.diagonal, np.finfo(float).tiny) ** 2
+    bad = np.flatnonzero(repeated | tiny)
+    if bad.size:
+        raise MeshError(
+            f"{bad.size} degenerate (zero-area) faces (first: face {bad[0]} = {f[bad[0]].tolist()}); "
+            "their cotangent weights are undefined. Remove them, or load with "
+            "load_mesh(path, clean=True), which drops them."
+        )
+
+
+def validate_topology(mesh: Mesh) -> None:
+    """Raise :class:`MeshError` unless ``mesh`` is a clean, oriented, edge-manifold surface.
+
+    Checked: degenerate faces, duplicate faces, unreferenced vertices, edges shared by more than
+    two faces, and neighbouring faces with opposite orientation. Boundaries and several connected
+    components are legal.
+    """
+    _check_degenerate(mesh)
+    f, n = mesh.faces, mesh.n_vertices
+
+    key = np.sort(f, axis=1)
+    _, first, counts = np.unique(key, axis=0, return_index=True, return_counts=True)
+    if np.any(counts > 1):
+        dup = np.sort(first[counts > 1])
+        raise MeshError(
+            f"{int((counts - 1).sum())} duplicate faces (first repeated: face {dup[0]} = "
+            f"{f[dup[0]].tolist()}); each triangle must appear once. Load with clean=True to drop them."
+        )
+
+    used = np.zeros(n, dtype=bool)
+    used[f.ravel()] = True
+    if not used.all():
+        unused = np.flatnonzero(~used)
+        raise MeshError(
+            f"{unused.size} unreferenced vertices (first: vertex {unused[0]}) belong to no face; "
+            "they would get a zero row in the mass matrix. Load with clean=True to drop them."
+        )
+
+    counts = mesh.edge_face_counts
+    if np.any(counts > 2):
+        bad = mesh.edges[counts > 2]
+        raise MeshError(
+            f"{len(bad)} non-manifold edges are shared by more than two faces (first: edge "
+            f"{bad[0].tolist()}); the LBO needs an edge-manifold surface. Split the mesh at these "
+            "edges or repair it in a mesh editor."
+        )
+
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    if np.any(dcounts > 1):
+        d, _ = np.unique(directed, axis=0, return_counts=True)
+        bad = d[dcounts > 1]
+        raise MeshError(
+            f"inconsistent orientation: {len(bad)} edges are traversed in the same direction by both "
+            f"of their faces (first: edge {bad[0].tolist()}). Flip faces so that neighbours agree, "
+            "or load with clean=True, which re-orients each orientable component."
+        )

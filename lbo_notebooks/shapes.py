@@ -1,0 +1,212 @@
+"""Procedural surfaces generated in code: the package's embedded, network-free data.
+
+Every function here is deterministic and returns a validated :class:`~lbo_notebooks.Mesh`.
+The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures` and are
+re-exported here (``shapes.creature``, ``shapes.creature_poses``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .mesh import Mesh
+
+__all__ = ["icosphere", "ellipsoid", "torus", "rectangle", "disk", "bumpy_sphere", "creature", "creature_poses"]
+
+_CREATURE_NAMES = ("creature", "creature_poses", "SPECIES", "POSES")
+
+
+def __getattr__(name: str) -> Any:
+    # Creatures pull in heavier dependencies (marching cubes, remeshing): import them on demand.
+    if name in _CREATURE_NAMES:
+        from . import creatures
+
+        return getattr(creatures, name)
+    raise AttributeError(f"module 'lbo_notebooks.shapes' has no attribute {name!r}")
+
+
+def _check_int(name: str, value: Any, low: int, high: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low or (
+        high is not None and value > high
+    ):
+        rng = f">= {low}" if high is None else f"in {low}..{high}"
+        raise ValueError(f"{name} must be an integer {rng}, got {value!r}.")
+    return int(value)
+
+
+def _check_positive(name: str, value: Any) -> float:
+    if not (np.isscalar(value) and np.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}.")
+    return float(value)
+
+
+def _icosahedron() -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    t = (1.0 + 5.0**0.5) / 2.0
+    v = np.array(
+        [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t],
+         [0, -1, -t], [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]],
+        dtype=np.float64,
+    )
+    f = np.array(
+        [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4],
+         [11, 10, 2], [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8],
+         [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]],
+        dtype=np.int64,
+    )
+    return v / np.linalg.norm(v, axis=1, keepdims=True), f
+
+
+def _subdivide(v: NDArray[np.float64], f: NDArray[np.int64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """Split every triangle into four at its edge midpoints, projecting new points to the sphere."""
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    e.sort(axis=1)
+    edges, inverse = np.unique(e, axis=0, return_inverse=True)
+    mid = v[edges[:, 0]] + v[edges[:, 1]]
+    mid /= np.linalg.norm(mid, axis=1, keepdims=True)
+    m = len(f)
+    idx = len(v) + inverse.ravel()
+    a, b, c = idx[:m], idx[m : 2 * m], idx[2 * m :]  # midpoints of edges 01, 12, 20
+    new_faces = np.concatenate(
+        [np.stack([f[:, 0], a, c], 1), np.stack([f[:, 1], b, a], 1), np.stack([f[:, 2], c, b], 1), np.stack([a, b, c], 1)]
+    )
+    return np.vstack([v, mid]), new_faces
+
+
+def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
+    """A sphere made by subdividing an icosahedron: ``10 * 4**subdivisions + 2`` vertices.
+
+    Examples
+    --------
+    >>> icosphere(5).n_vertices
+    10242
+    """
+    s = _check_int("subdivisions", subdivisions, 0, 8)
+    radius = _check_positive("radius", radius)
+    v, f = _icosahedron()
+    for _ in range(s):
+        v, f = _subdivide(v, f)
+    return Mesh(radius * v, f)
+
+
+def ellipsoid(a: float = 1.0, b: float = 0.7, c: float = 0.5, subdivisions: int = 4) -> Mesh:
+    """An ellipsoid with semi-axes ``a, b, c``: an icosphere stretched along x, y, z.
+
+    Examples
+    --------
+    >>> ellipsoid(2, 1, 1, subdivisions=2).bounding_box[1].round(6).tolist()
+    [2.0, 1.0, 1.0]
+    """
+    axes = np.array([_check_positive(n, x) for n, x in (("a", a), ("b", b), ("c", c))])
+    sphere = icosphere(subdivisions)
+    return Mesh(sphere.vertices * axes, sphere.faces)
+
+
+def torus(major_radius: float = 1.0, minor_radius: float = 0.4, n_major: int = 64, n_minor: int = 24) -> Mesh:
+    """A ring torus (genus 1) sampled on an ``n_major x n_minor`` periodic grid.
+
+    Examples
+    --------
+    >>> torus(n_major=32, n_minor=12).euler_characteristic
+    0
+    """
+    R = _check_positive("major_radius", major_radius)
+    r = _check_positive("minor_radius", minor_radius)
+    if r >= R:
+        raise ValueError(f"minor_radius ({r}) must be smaller than major_radius ({R}) for a ring torus.")
+    nu = _check_int("n_major", n_major, 3)
+    nv = _check_int("n_minor", n_minor, 3)
+    u = 2 * np.pi * np.arange(nu) / nu
+    w = 2 * np.pi * np.arange(nv) / nv
+    U, V = np.meshgrid(u, w, indexing="ij")
+    verts = np.stack([(R + r * np.cos(V)) * np.cos(U), (R + r * np.cos(V)) * np.sin(U), r * np.sin(V)], -1).reshape(-1, 3)
+    i, j = np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij")
+    p00 = i * nv + j
+    p10 = ((i + 1) % nu) * nv + j
+    p01 = i * nv + (j + 1) % nv
+    p11 = ((i + 1) % nu) * nv + (j + 1) % nv
+    faces = np.concatenate([np.stack([p00, p10, p11], -1).reshape(-1, 3), np.stack([p00, p11, p01], -1).reshape(-1, 3)])
+    return Mesh(verts, faces)
+
+
+def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mesh:
+    """The flat rectangle ``[0, a] x [0, b]`` (z = 0) as ``nx x ny`` cells, each split by one diagonal.
+
+    Every cell is cut along the same diagonal, whose cotangent weight is then zero: ``W`` is the
+    5-point stencil and the Neumann eigenvalues are known exactly (MATH.md section 1).
+
+    Examples
+    --------
+    >>> m = rectangle(2.0, 1.0, 4, 2)
+    >>> m.n_vertices, m.n_faces, m.area
+    (15, 16, 2.0)
+    """
+    a, b = _check_positive("a", a), _check_positive("b", b)
+    nx, ny = _check_int("nx", nx, 1), _check_int("ny", ny, 1)
+    x = np.linspace(0.0, a, nx + 1)
+    y = np.linspace(0.0, b, ny + 1)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    verts = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], axis=1)
+    i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+    p00 = i * (ny + 1) + j
+    p10 = (i + 1) * (ny + 1) + j
+    p01 = i * (ny + 1) + j + 1
+    p11 = (i + 1) * (ny + 1) + j + 1
+    faces = np.concatenate([np.stack([p00, p10, p11], -1).reshape(-1, 3), np.stack([p00, p11, p01], -1).reshape(-1, 3)])
+    return Mesh(verts, faces)
+
+
+def disk(radius: float = 1.0, n_rings: int = 16) -> Mesh:
+    """A flat disk (z = 0) of near-equilateral triangles: ring ``i`` carries ``6 i`` vertices.
+
+    Examples
+    --------
+    >>> disk(n_rings=4).n_vertices
+    61
+    """
+    radius = _check_positive("radius", radius)
+    n_rings = _check_int("n_rings", n_rings, 1)
+    pts = [np.zeros((1, 2))]
+    for i in range(1, n_rings + 1):
+        t = 2 * np.pi * (np.arange(6 * i) / (6 * i)) + (0.5 * np.pi / (6 * i)) * (i % 2)
+        pts.append((radius * i / n_rings) * np.stack([np.cos(t), np.sin(t)], axis=1))
+    xy = np.concatenate(pts)
+    from scipy.spatial import Delaunay
+
+    faces = Delaunay(xy).simplices.astype(np.int64)
+    p = xy[faces]
+    cross = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0])
+    faces[cross < 0] = faces[cross < 0][:, [0, 2, 1]]
+    faces = faces[np.lexsort(faces.T[::-1])]
+    return Mesh(np.column_stack([xy, np.zeros(len(xy))]), faces)
+
+
+def bumpy_sphere(subdivisions: int = 4, n_bumps: int = 7, height: float = 0.35, seed: int = 0) -> Mesh:
+    """A closed, genus-0, non-symmetric blob: an icosphere pushed out by Gaussian bumps.
+
+    The bump centres, widths and heights come from ``numpy.random.default_rng(seed)``, so the
+    same arguments give the same surface.
+
+    Examples
+    --------
+    >>> m = bumpy_sphere(3)
+    >>> m.n_vertices, m.euler_characteristic
+    (642, 2)
+    """
+    n_bumps = _check_int("n_bumps", n_bumps, 0)
+    height = float(height)
+    if not np.isfinite(height) or not -0.9 < height < 2.0:
+        raise ValueError(f"height must be a number in (-0.9, 2), got {height!r}.")
+    rng = np.random.default_rng(seed)
+    sphere = icosphere(subdivisions)
+    u = sphere.vertices
+    centres = rng.normal(size=(n_bumps, 3))
+    centres /= np.linalg.norm(centres, axis=1, keepdims=True)
+    widths = rng.uniform(0.35, 0.7, n_bumps)
+    heights = height * rng.uniform(0.4, 1.0, n_bumps)
+    d2 = ((u[:, None, :] - centres[None, :, :]) ** 2).sum(-1)
+    radius = 1.0 + (heights * np.exp(-d2 / widths**2)).sum(axis=1)
+    # A mild anisotropic stretch removes the remaining symmetry of the sphere.
+    return Mesh(u * radius[:, None] * np.array([1.25, 1.0, 0.85]), sphere.faces)
