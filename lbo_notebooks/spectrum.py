@@ -25,7 +25,7 @@ __all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
 Operators = tuple[sp.spmatrix, sp.spmatrix]
 
 # Below this many vertices a dense generalized eigensolver is faster and exact.
-DENSE_LIMIT = 1500
+DENSE_LIMIT = 600
 
 
 @dataclass(frozen=True, eq=False)
@@ -165,6 +165,7 @@ def eigenbasis(
     mass: MassKind = "voronoi",
     alpha: float = 0.0,
     shift: float | None = None,
+    curvature_floor: float | None = None,
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
@@ -177,12 +178,18 @@ def eigenbasis(
     mass : {"voronoi", "barycentric", "consistent"}
         Mass matrix kind when ``mesh`` is a :class:`Mesh`.
     alpha : float in [0, 1]
-        Exponent of the metric ``|K|^alpha g`` (notebook 04). ``0`` is the regular metric.
+        Exponent of the metric ``|K|^alpha g`` (notebook 04). ``0`` is exactly the regular metric;
+        otherwise ``W`` is unchanged and the mass is
+        :func:`~lbo_notebooks.curvature.metric_mass_matrix` (``1``: scale-invariant spectrum).
     shift : float, optional
         Positive number ``s``; shift-invert Lanczos runs at ``sigma = -s``. The shift is
         *negative* because ``W`` is singular (constants are in its kernel), so ``sigma = 0`` would
         factorise a singular matrix, while ``W + s A`` is positive definite. The default scales
         with the surface area, so results do not depend on the mesh's units.
+    curvature_floor : float > 0, optional
+        Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
+        ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
+        :mod:`lbo_notebooks.curvature`). Default ``curvature.DEFAULT_FLOOR`` (1e-3).
 
     Returns
     -------
@@ -204,9 +211,10 @@ def eigenbasis(
         if float(alpha) == 0.0:
             A = mass_matrix(mesh, mass)
         else:
-            from .curvature import metric_mass_matrix
+            from .curvature import DEFAULT_FLOOR, metric_mass_matrix
 
-            A = metric_mass_matrix(mesh, float(alpha), kind=mass)
+            floor = DEFAULT_FLOOR if curvature_floor is None else curvature_floor
+            A = metric_mass_matrix(mesh, float(alpha), kind=mass, floor=floor)
     elif isinstance(mesh, tuple) and len(mesh) == 2:
         if alpha != 0.0:
             raise ValueError("alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.")
