@@ -1,0 +1,101 @@
+import numpy as np
+import pytest
+
+from lbo_notebooks import Mesh, MeshError, shapes
+
+TRI_V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]
+
+
+def test_basic_properties_of_a_square():
+    m = Mesh(TRI_V, [[0, 1, 3], [0, 3, 2]])
+    assert (m.n_vertices, m.n_faces) == (4, 2)
+    assert m.area == pytest.approx(1.0)
+    assert m.euler_characteristic == 1
+    assert len(m.edges) == 5 and len(m.boundary_edges) == 4
+    assert m.n_components == 1 and not m.is_closed
+    np.testing.assert_array_equal(m.bounding_box, [[0, 0, 0], [1, 1, 0]])
+    assert m.vertices.dtype == np.float64 and m.faces.dtype == np.int64
+
+
+def test_caller_arrays_are_copied_and_mesh_is_read_only():
+    v = np.array(TRI_V, dtype=float)
+    f = np.array([[0, 1, 3], [0, 3, 2]], dtype=np.int32)
+    m = Mesh(v, f)
+    v[0, 0] = 99.0
+    f[0, 0] = 2
+    assert m.vertices[0, 0] == 0.0 and m.faces[0, 0] == 0
+    with pytest.raises(ValueError):
+        m.vertices[0, 0] = 5.0
+    with pytest.raises(AttributeError):
+        m.vertices = v
+
+
+def test_topology_of_standard_shapes():
+    assert shapes.icosphere(2).euler_characteristic == 2
+    assert shapes.torus(n_major=20, n_minor=8).euler_characteristic == 0
+    assert shapes.disk(n_rings=5).euler_characteristic == 1
+    assert shapes.icosphere(2).is_closed
+
+
+def test_several_components_are_legal_and_reported():
+    a = shapes.icosphere(1)
+    v = np.vstack([a.vertices, a.vertices + 5.0])
+    f = np.vstack([a.faces, a.faces + a.n_vertices])
+    m = Mesh(v, f)
+    assert m.n_components == 2
+    assert m.component_labels[0] == 0 and m.component_labels[-1] == 1
+    assert m.euler_characteristic == 4
+
+
+def test_with_vertices_shares_faces_and_validates_shape():
+    m = shapes.icosphere(1)
+    big = m.with_vertices(2 * m.vertices)
+    assert big.area == pytest.approx(4 * m.area)
+    assert big.faces is m.faces
+    with pytest.raises(MeshError, match="shape"):
+        m.with_vertices(m.vertices[:-1])
+
+
+def test_equality_and_hash_are_by_value():
+    a, b = shapes.icosphere(1), shapes.icosphere(1)
+    assert a == b and hash(a) == hash(b)
+    assert a != a.with_vertices(a.vertices * 1.5)
+
+
+@pytest.mark.parametrize(
+    "vertices, faces, message",
+    [
+        ([[0, 0, 0], [1, 0, 0]], [[0, 1, 1]], "at least 3 vertices"),
+        ([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]], [[0, 1, 2]], "non-finite"),
+        ([[0, 0], [1, 0], [0, 1]], [[0, 1, 2]], r"shape \(n, 3\)"),
+        (TRI_V, [[0, 1, 2, 3]], "triangles only"),
+        (TRI_V, np.zeros((0, 3), int), "no faces"),
+        (TRI_V, [[0, 1, 4]], "outside 0..3"),
+        (TRI_V, [[0, 1, -1]], "outside 0..3"),
+        (TRI_V, [[0.5, 1, 2]], "integer"),
+        (TRI_V, [[0, 1, 2], [1, 1, 3]], "degenerate"),
+        ([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], [[0, 1, 2], [0, 1, 3]], "degenerate"),
+        (TRI_V, [[0, 1, 3], [3, 1, 0]], "duplicate"),
+        (TRI_V, [[0, 1, 2]], "unreferenced"),
+        (TRI_V + [[0, 0, 1], [0, 0, -1]], [[0, 1, 2], [1, 0, 4], [0, 1, 5], [1, 3, 2]], "non-manifold"),
+        (TRI_V, [[0, 1, 3], [0, 2, 3]], "orientation"),
+    ],
+)
+def test_defects_raise_mesh_error_naming_them(vertices, faces, message):
+    with pytest.raises(MeshError, match=message):
+        Mesh(vertices, faces)
+
+
+def test_mesh_error_is_a_value_error():
+    assert issubclass(MeshError, ValueError)
+
+
+def test_check_false_skips_topology_checks_only():
+    Mesh(TRI_V, [[0, 1, 2]], check=False)  # unreferenced vertex 3 tolerated
+    with pytest.raises(MeshError):
+        Mesh(TRI_V, [[0, 1, 7]], check=False)
+
+
+def test_summary_mentions_topology():
+    text = shapes.icosphere(1).summary()
+    assert "42 vertices" in text and "Euler characteristic 2" in text
