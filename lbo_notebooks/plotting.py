@@ -33,7 +33,7 @@ class _Display:
 
         o3d = import_open3d()
         m = o3d.geometry.TriangleMesh(
-            o3d.utility.Vector3dVector(mesh.vertices), o3d.utility.Vector3iVector(mesh.faces.astype(np.int32))
+            o3d.utility.Vector3dVector(np.array(mesh.vertices)), o3d.utility.Vector3iVector(mesh.faces.astype(np.int32))
         )
         small = m.simplify_quadric_decimation(target_number_of_triangles=int(max_faces))
         self.vertices = np.asarray(small.vertices)
