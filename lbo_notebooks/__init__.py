@@ -29,7 +29,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "spectrum": ("Spectrum", "eigenbasis"),
     "plotting": ("plot_mesh",),
     "optimality": ("representation_error", "error_bound", "worst_case_ratio"),
-    "curvature": ("gaussian_curvature", "metric_mass_matrix"),
+    "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling"),
     "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
     "rpca": ("regularized_pca",),
