@@ -1,0 +1,470 @@
+"""Multidimensional scaling: canonical forms of surfaces from their geodesic distances.
+
+A *canonical form* (Elad & Kimmel 2003) embeds a surface in R^m so that Euclidean distances
+between the embedded vertices approximate geodesic distances on the surface. Isometric poses of
+the same shape then get (nearly) the same canonical form, up to a rigid motion.
+
+* :func:`classical_mds` — the reference: double-centre the n x n squared distances and keep the
+  top ``dim`` eigenpairs (a partial Lanczos solve, not a full eigendecomposition). O(n^2) memory.
+* :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
+  vertex is placed by distance-based triangulation from its distances to the landmarks.
+* :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
+  span of the first ``n_eigs`` Laplace–Beltrami eigenfunctions from q sampled rows, and the
+  scaling is done in that k x k space. O(n k^2) time, O(n k) memory; never forms an n x n matrix.
+
+Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
+of the Gram matrices), and after an optimal rotation by :func:`procrustes_error`.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from .geodesics import (
+    GeodesicMethod,
+    _check_memory,
+    _check_method,
+    _solver,
+    check_connected,
+    distance_matrix_bytes,
+    farthest_point_sampling,
+)
+from .mesh import Mesh
+from .spectrum import Spectrum, eigenbasis
+
+__all__ = [
+    "classical_mds",
+    "landmark_mds",
+    "spectral_mds",
+    "gram_error",
+    "procrustes_error",
+    "scale_mu",
+    "SMDS_DEFAULTS",
+]
+
+#: Defaults of :func:`spectral_mds`. MATH.md section 4: on 3-5k-vertex meshes about 150
+#: eigenfunctions and 300 samples were needed for a Gram error under 2%; mu is dimensionless.
+SMDS_DEFAULTS: dict[str, float] = {"n_samples": 300, "n_eigs": 150, "mu": 0.05}
+
+
+# --- small helpers ----------------------------------------------------------------------------
+def _check_dim(dim: Any, limit: int, what: str) -> int:
+    if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
+        raise ValueError(f"dim must be a positive integer (the embedding dimension), got {dim!r}.")
+    if dim >= limit:
+        raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
+    return int(dim)
+
+
+def _fix_signs(X: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Make the entry of largest magnitude of each column positive (deterministic output)."""
+    if X.size == 0:
+        return X
+    peak = X[np.argmax(np.abs(X), axis=0), np.arange(X.shape[1])]
+    return X * np.where(peak < 0, -1.0, 1.0)
+
+
+def _as_embedding(Z: ArrayLike, name: str) -> NDArray[np.float64]:
+    arr = np.asarray(Z, dtype=np.float64)
+    if arr.ndim != 2:
+        raise ValueError(f"{name} must be an (n, dim) array of embedded points, got shape {arr.shape}.")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or inf.")
+    return arr
+
+
+def _pair(Z: ArrayLike, X: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    Zc, Xc = _as_embedding(Z, "Z"), _as_embedding(X, "X")
+    if Zc.shape[0] != Xc.shape[0]:
+        raise ValueError(f"Z has {Zc.shape[0]} points but X has {Xc.shape[0]}; compare embeddings of the same vertices.")
+    return Zc - Zc.mean(axis=0), Xc - Xc.mean(axis=0)
+
+
+# --- accuracy ---------------------------------------------------------------------------------
+def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
+    """Relative Gram-matrix error ``||Z Z.T - X X.T||_F / ||X X.T||_F`` of centred embeddings.
+
+    ``X`` is the reference. No alignment is needed: Gram matrices do not change under rotations
+    and reflections, and both point sets are centred first (so translations do not count either).
+    Computed in O(n dim^2) from ``Z.T Z``, ``X.T X`` and ``X.T Z`` without forming an n x n matrix;
+    the two embeddings may have different dimensions.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> X = rng.normal(size=(100, 3))
+    >>> Q = np.linalg.qr(rng.normal(size=(3, 3)))[0]
+    >>> bool(gram_error(X @ Q + 5.0, X) < 1e-12)
+    True
+    """
+    Zc, Xc = _pair(Z, X)
+    zz, xx, xz = Zc.T @ Zc, Xc.T @ Xc, Xc.T @ Zc
+    ref = np.sum(xx * xx)
+    if ref <= 0:
+        raise ValueError("the reference embedding X is a single point (its Gram matrix is zero).")
+    sq = np.sum(zz * zz) + ref - 2.0 * np.sum(xz * xz)
+    return float(np.sqrt(max(sq, 0.0) / ref))
+
+
+def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
+    """Relative error ``min_R ||Z R - X||_F / ||X||_F`` over orthogonal ``R``, after centring.
+
+    Reflections are allowed because MDS determines an embedding only up to an orthogonal map.
+    O(n dim^2): one SVD of the dim x dim matrix ``Z.T X``. Both embeddings must have the same
+    dimension.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> X = rng.normal(size=(50, 3))
+    >>> bool(procrustes_error(-X[:, ::-1] + 1.0, X) < 1e-12)  # a reflection and a shift
+    True
+    """
+    Zc, Xc = _pair(Z, X)
+    if Zc.shape[1] != Xc.shape[1]:
+        raise ValueError(f"Z and X must have the same dimension for Procrustes, got {Zc.shape[1]} and {Xc.shape[1]}.")
+    ref = np.sum(Xc * Xc)
+    if ref <= 0:
+        raise ValueError("the reference embedding X is a single point.")
+    sigma = np.linalg.svd(Zc.T @ Xc, compute_uv=False)
+    sq = np.sum(Zc * Zc) + ref - 2.0 * sigma.sum()
+    return float(np.sqrt(max(sq, 0.0) / ref))
+
+
+# --- classical MDS ----------------------------------------------------------------------------
+def _top_eigs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Largest ``dim`` eigenpairs of a symmetric matrix, descending."""
+    n = B.shape[0]
+    if n <= 400 or dim + 1 >= n // 2:
+        vals, vecs = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
+    else:
+        v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))  # deterministic Lanczos start
+        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=v0)
+    order = np.argsort(vals)[::-1]
+    return vals[order], vecs[:, order]
+
+
+def classical_mds(
+    distances: ArrayLike | Mesh,
+    dim: int = 3,
+    *,
+    method: GeodesicMethod = "heat",
+    memory_budget: float | None = None,
+    progress: bool | None = None,
+) -> NDArray[np.float64]:
+    """Classical (Torgerson) MDS: ``X = U_m Gamma_m^(1/2)`` of ``B = -1/2 J D2 J``.
+
+    ``D2`` holds squared distances and ``J = I - 1 1.T / n`` centres. Only the ``dim`` largest
+    eigenpairs of B are computed (Lanczos, ``eigsh(which="LA")``), in O(n^2) per iteration.
+    Eigenvalues below zero (non-Euclidean distances) contribute nothing.
+
+    Parameters
+    ----------
+    distances : (n, n) array or Mesh
+        A full distance matrix (symmetrised here), or a mesh, whose all-pairs geodesic distances
+        are computed with ``method`` — after the memory check, so an impossible size fails at once.
+    dim : int, default 3
+        Embedding dimension, ``dim < n``.
+    method : {"heat", "exact", "fmm"}
+        Geodesic method when ``distances`` is a mesh.
+    memory_budget : float, optional
+        Bytes this call may use. Classical MDS needs two n x n float64 matrices (the distances and
+        B); a size that would not fit raises ``MemoryError`` stating the memory it would need.
+        Default: half of the memory available now (psutil).
+    progress : bool, optional
+        Progress bar for the all-pairs distances (default: on for at least 500 vertices).
+
+    Returns
+    -------
+    ndarray, shape (n, dim)
+        Centred; column signs fixed (largest entry positive).
+
+    Examples
+    --------
+    >>> from scipy.spatial.distance import cdist
+    >>> P = np.random.default_rng(0).normal(size=(30, 3))
+    >>> X = classical_mds(cdist(P, P), dim=3)
+    >>> bool(np.allclose(cdist(X, X), cdist(P, P)))
+    True
+    """
+    if isinstance(distances, Mesh):
+        mesh = distances
+        check_connected(mesh, "classical MDS on geodesic distances")
+        n = mesh.n_vertices
+        _check_dim(dim, n, "the number of vertices")
+        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+                      f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)")
+        D2 = _solver(mesh, _check_method(method)).distances(
+            np.arange(n), progress=progress, memory_budget=float("inf")
+        )
+        np.square(D2, out=D2)  # our own buffer: square in place
+    else:
+        D = np.asarray(distances, dtype=np.float64)
+        if D.ndim != 2 or D.shape[0] != D.shape[1]:
+            raise ValueError(f"distances must be a square (n, n) matrix, got shape {D.shape}.")
+        n = D.shape[0]
+        _check_dim(dim, n, "the number of points")
+        if not np.all(np.isfinite(D)):
+            raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
+        if np.any(D < 0):
+            raise ValueError("distances must be non-negative.")
+        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+                      f"classical MDS on {n} points (two more {n} x {n} float64 matrices)")
+        D2 = np.square(D)  # a new buffer: the caller's matrix is never modified
+    dim = int(dim)
+    # B = -1/2 J D2 J with D2 symmetrised (heat distances are not exactly symmetric).
+    B = np.add(D2, D2.T)
+    del D2
+    B *= -0.25
+    row = B.mean(axis=1)
+    B -= row[:, None]
+    B -= row[None, :]
+    B += row.mean()
+    vals, vecs = _top_eigs(B, dim)
+    del B
+    X = vecs * np.sqrt(np.maximum(vals, 0.0))
+    return _fix_signs(X - X.mean(axis=0))
+
+
+# --- landmark MDS -----------------------------------------------------------------------------
+def _check_samples(count: Any, n: int, name: str = "n_samples") -> int:
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 2:
+        raise ValueError(f"{name} must be an integer >= 2, got {count!r}.")
+    if count > n:
+        raise ValueError(
+            f"{name}={count} is more than the mesh's {n} vertices; samples are distinct vertices, "
+            f"so use at most {n} (a few hundred are plenty)."
+        )
+    return int(count)
+
+
+def landmark_mds(
+    mesh_or_distances: Mesh | ArrayLike,
+    dim: int = 3,
+    n_samples: int = 300,
+    *,
+    landmarks: ArrayLike | None = None,
+    method: GeodesicMethod = "heat",
+    progress: bool | None = None,
+) -> NDArray[np.float64]:
+    """Landmark MDS (de Silva & Tenenbaum 2004).
+
+    1. q landmarks (farthest-point samples) and their distance fields ``Delta`` (q x n);
+    2. classical MDS of the q x q block of squared distances: ``L = U_m Gamma_m^(1/2)``;
+    3. every vertex a is placed by distance-based triangulation
+       ``x_a = -1/2 L^# (delta_a - delta_mean)``, with ``L^# = Gamma_m^(-1/2) U_m.T`` and
+       ``delta_mean`` the mean column of the landmarks' squared distances.
+    The result is then centred over all vertices. O(n q dim) time, O(n q) memory.
+
+    Parameters
+    ----------
+    mesh_or_distances : Mesh or (q, n) array
+        A connected mesh, or precomputed distances from q landmarks to all n vertices (then
+        ``landmarks`` must give each row's vertex).
+    dim : int, default 3
+        Embedding dimension, ``dim < q``.
+    n_samples : int, default 300
+        Number of landmarks q for a mesh, ``2 <= q <= n``.
+    landmarks : sequence of int, optional
+        With a distance array: the vertex of each row (not allowed with a mesh).
+    method : {"heat", "exact", "fmm"}
+        Geodesic method for a mesh.
+    progress : bool, optional
+        Progress bar for the sampling.
+
+    Returns
+    -------
+    ndarray, shape (n, dim)
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> X = landmark_mds(shapes.ellipsoid(subdivisions=3), n_samples=60)
+    >>> X.shape
+    (642, 3)
+    """
+    if isinstance(mesh_or_distances, Mesh):
+        if landmarks is not None:
+            raise ValueError("landmarks= goes with a precomputed (q, n) distance array, not with a mesh.")
+        mesh = mesh_or_distances
+        check_connected(mesh, "landmark MDS")
+        q = _check_samples(n_samples, mesh.n_vertices)
+        idx, delta = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress)
+    else:
+        delta = np.asarray(mesh_or_distances, dtype=np.float64)
+        if delta.ndim != 2:
+            raise ValueError(f"distances must be a (q, n) array (landmarks x vertices), got shape {delta.shape}.")
+        if landmarks is None:
+            raise ValueError("with a distance array, pass landmarks= (the vertex index of each row).")
+        idx = np.asarray(landmarks)
+        q, n = delta.shape
+        if idx.shape != (q,) or not np.issubdtype(idx.dtype, np.integer) or idx.min() < 0 or idx.max() >= n:
+            raise ValueError(f"landmarks must be {q} integer vertex indices in 0..{n - 1}, one per row of distances.")
+        if not np.all(np.isfinite(delta)):
+            raise ValueError("distances contain NaN or inf (a disconnected mesh?).")
+    q = delta.shape[0]
+    dim = _check_dim(dim, q, "the number of landmarks")
+    sq = delta**2  # (q, n) squared distances
+    block = sq[:, idx]
+    block = 0.5 * (block + block.T)
+    mean_col = block.mean(axis=1)
+    Bq = -0.5 * (block - mean_col[:, None] - mean_col[None, :] + mean_col.mean())
+    vals, vecs = _top_eigs(Bq, dim)
+    if np.any(vals <= 1e-12 * max(vals[0], 1e-300)):
+        raise ValueError(
+            f"the landmarks span fewer than dim={dim} positive directions; use more landmarks or a smaller dim."
+        )
+    pinv = vecs / np.sqrt(vals)  # (q, dim): columns of L^#.T
+    X = -0.5 * (sq - mean_col[:, None]).T @ pinv
+    return _fix_signs(X - X.mean(axis=0))
+
+
+# --- spectral MDS -----------------------------------------------------------------------------
+def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64]) -> float:
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (MATH.md section 4).
+
+    ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and ``lam`` with 1/length^2;
+    dividing them out makes ``mu`` dimensionless, so one default works for any shape, size,
+    resolution and sample count.
+    """
+    top = float(np.linalg.norm(phi_s, 2)) ** 2
+    return float(mu) * top / float(eigenvalues[-1])
+
+
+def spectral_mds(
+    mesh: Mesh,
+    dim: int = 3,
+    n_samples: int = 300,
+    n_eigs: int = 150,
+    mu: float = 0.05,
+    method: GeodesicMethod = "heat",
+    *,
+    spectrum: Spectrum | None = None,
+    sampling: tuple[ArrayLike, ArrayLike] | None = None,
+    progress: bool | None = None,
+    return_details: bool = False,
+) -> NDArray[np.float64] | tuple[NDArray[np.float64], dict[str, Any]]:
+    """Spectral MDS (Aflalo & Kimmel 2013): canonical form from q sampled distance rows.
+
+    1. ``Phi`` (n x k), ``Lam``: the first k = ``n_eigs`` LBO eigenpairs; q farthest-point samples;
+    2. ``D_s``: squared geodesic distances among the samples (q x q, symmetrised); ``Phi_s`` the
+       rows of Phi at the samples;
+    3. ``M = (Phi_s.T Phi_s + mu_abs Lam)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
+       ``D2 ~ Phi alpha Phi.T`` is the smoothest (least Dirichlet energy) interpolant of the
+       sampled squared distances;
+    4. reduced scaling: thin QR ``J Phi = Q R``; eigendecompose the k x k matrix
+       ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
+    Cost O(n k^2 + q n) plus q geodesic solves; memory O(n (k + q)). No n x n matrix is formed.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        A connected mesh.
+    dim : int, default 3
+        Embedding dimension, ``dim < n_eigs``.
+    n_samples : int, default 300
+        Number of farthest-point samples q, ``2 <= q <= n``.
+    n_eigs : int, default 150
+        Number of LBO eigenfunctions k. Accuracy depends on it far more than on mu.
+    mu : float, default 0.05
+        Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
+    method : {"heat", "exact", "fmm"}
+        Geodesic method for the sample distances (passed to the geodesic solver).
+    spectrum : Spectrum, optional
+        A precomputed eigenbasis of ``mesh`` with at least ``n_eigs`` pairs (its first ``n_eigs``
+        are used). Lets a parameter sweep pay for the eigenbasis once.
+    sampling : (samples, distances), optional
+        A precomputed ``farthest_point_sampling(mesh, count, method=..., return_distances=True)``
+        with ``count >= n_samples``; its first ``n_samples`` are used (sampling is nested).
+    progress : bool, optional
+        Progress bar for the sampling.
+    return_details : bool, default False
+        Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
+        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs`` and ``timings`` (seconds for
+        ``eigenbasis``, ``sampling`` (including the distances), ``embedding``, ``total``).
+
+    Returns
+    -------
+    ndarray, shape (n, dim)
+        Centred; column signs fixed. With ``return_details``, ``(X, details)``.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> m = shapes.ellipsoid(subdivisions=3)
+    >>> X = spectral_mds(m, n_samples=100, n_eigs=40)
+    >>> X.shape
+    (642, 3)
+    """
+    t0 = time.perf_counter()
+    check_connected(mesh, "spectral MDS")
+    n = mesh.n_vertices
+    method = _check_method(method)
+    if isinstance(n_eigs, bool) or not isinstance(n_eigs, (int, np.integer)) or not 2 <= n_eigs <= n:
+        raise ValueError(f"n_eigs must be an integer between 2 and the number of vertices ({n}), got {n_eigs!r}.")
+    n_eigs = int(n_eigs)
+    dim = _check_dim(dim, n_eigs, "n_eigs (the embedding lives in the span of the eigenfunctions)")
+    q = _check_samples(n_samples, n)
+    if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
+        raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
+
+    # 1. eigenbasis
+    if spectrum is None:
+        spectrum = eigenbasis(mesh, n_eigs)
+    elif not isinstance(spectrum, Spectrum):
+        raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
+    elif spectrum.n_vertices != n or spectrum.k < n_eigs:
+        raise ValueError(
+            f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
+            f"n_eigs={n_eigs} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {n_eigs})."
+        )
+    phi = spectrum.vectors[:, :n_eigs]
+    lam = np.maximum(spectrum.values[:n_eigs], 0.0)
+    t1 = time.perf_counter()
+
+    # 2. samples and their squared distances
+    if sampling is None:
+        samples, fields = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress)
+    else:
+        samples, fields = (np.asarray(a) for a in sampling)
+        if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
+            raise ValueError(
+                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
+                f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
+            )
+        samples, fields = samples[:q].astype(np.int64), fields[:q]
+    ds = fields[:, samples] ** 2
+    ds = 0.5 * (ds + ds.T)
+    t2 = time.perf_counter()
+
+    # 3. interpolation coefficients alpha (k x k)
+    phi_s = phi[samples]
+    mu_abs = scale_mu(mu, phi_s, lam)
+    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam), phi_s.T, assume_a="pos")
+    alpha = M @ ds @ M.T
+    alpha = 0.5 * (alpha + alpha.T)
+
+    # 4. reduced classical scaling in the k-dimensional space
+    Q, R = np.linalg.qr(phi - phi.mean(axis=0))
+    small = -0.5 * (R @ alpha @ R.T)
+    G, U = np.linalg.eigh(0.5 * (small + small.T))
+    G, U = G[::-1], U[:, ::-1]
+    X = Q @ (U[:, :dim] * np.sqrt(np.maximum(G[:dim], 0.0)))
+    X = _fix_signs(X - X.mean(axis=0))
+    t3 = time.perf_counter()
+    if not return_details:
+        return X
+    details = {
+        "samples": samples,
+        "eigenvalues": G[: dim + 1].copy(),
+        "eigengap": float(G[dim - 1] / G[dim]) if G[dim] > 0 else float("inf"),
+        "mu_abs": mu_abs,
+        "timings": {"eigenbasis": t1 - t0, "sampling": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
+    }
+    return X, details
