@@ -1,0 +1,328 @@
+"""Competitor bases for the optimality theorem: everything the eigenbasis is compared against.
+
+Every function takes a mesh and a size ``n`` and returns an array of shape ``(n_vertices, n)``
+whose columns are **A-orthonormal** (``B.T @ A @ B = I`` for the mesh's mass matrix of the given
+kind) with **the constant function first** (so :func:`~lbo_notebooks.optimality.worst_case_ratio`
+is finite). Columns are ordered, so the first ``m`` columns are that basis with ``m`` functions:
+one call at the largest ``n`` serves a whole curve over ``n``.
+
+The competitors:
+
+* :func:`eigen_basis` — the Laplace–Beltrami eigenbasis itself (the optimum);
+* :func:`random_smooth_basis` — heat-smoothed random noise;
+* :func:`pca_basis` — principal components of a set of sample functions;
+* :func:`umbrella_basis` — eigenvectors of the combinatorial (umbrella) graph Laplacian;
+* :func:`identity_mass_basis` — eigenvectors of ``W`` with the identity as mass (no areas);
+* :func:`polynomial_basis` — low-degree polynomials in the embedding coordinates;
+* :func:`metric_basis` — the eigenbasis of a *different* metric (pluggable).
+
+:func:`competitor_bases` builds all of them at once.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Union
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from .mesh import Mesh
+from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .optimality import a_orthonormalize
+from .spectrum import check_operators, eigenbasis
+
+__all__ = [
+    "eigen_basis",
+    "random_smooth_basis",
+    "pca_basis",
+    "umbrella_basis",
+    "identity_mass_basis",
+    "polynomial_basis",
+    "metric_basis",
+    "competitor_bases",
+    "Metric",
+]
+
+# A metric for metric_basis: a new mass matrix, a new (W, A) pair, or a function of the mesh
+# returning either (e.g. ``lambda m: curvature.metric_mass_matrix(m, 0.5)``).
+Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
+
+
+def _check(mesh: Mesh, n: int, mass: MassKind) -> tuple[int, sp.csr_matrix]:
+    if not isinstance(mesh, Mesh):
+        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
+    if mass not in MASS_KINDS:
+        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {mass!r}.")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n < mesh.n_vertices:
+        raise ValueError(f"n must be an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}, got {n!r}.")
+    return int(n), mass_matrix(mesh, mass)
+
+
+def _constant_first(mesh: Mesh, A: sp.csr_matrix, functions: NDArray[np.float64], n: int) -> NDArray[np.float64]:
+    """Constant, then ``functions`` A-orthonormalised in order; the first n columns."""
+    Q = a_orthonormalize(functions[:, : n - 1], A, prepend=np.ones(mesh.n_vertices))
+    return Q[:, :n]
+
+
+def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, n: int) -> NDArray[np.float64]:
+    """Eigenvectors 1..n-1 of ``W x = mu M x`` (the constant, eigenvector 0, is dropped)."""
+    return np.asarray(eigenbasis((W, M), n).vectors[:, 1:])
+
+
+def eigen_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+    """The first n Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> eigen_basis(shapes.icosphere(2), 9).shape
+    (162, 9)
+    """
+    n, _ = _check(mesh, n, mass)
+    return np.array(eigenbasis(mesh, n, mass=mass).vectors)
+
+
+def random_smooth_basis(
+    mesh: Mesh, n: int, *, mass: MassKind = "voronoi", seed: int = 0, width: float = 0.15
+) -> NDArray[np.float64]:
+    """Random smooth functions: white noise smoothed twice by an implicit heat step.
+
+    Each noise column ``g`` becomes ``(A + t W)^{-2} A^2 g`` with ``t = (width * sqrt(area))^2``, so
+    the smoothing length is a fixed fraction of the surface's size and does not depend on units.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.bumpy_sphere(2)
+    >>> B = random_smooth_basis(m, 6, seed=3)
+    >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)) and np.ptp(B[:, 0]) < 1e-12)
+    True
+    """
+    n, A = _check(mesh, n, mass)
+    if not (np.isfinite(width) and width > 0):
+        raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
+    W = stiffness_matrix(mesh)
+    t = (width * np.sqrt(mesh.area)) ** 2
+    lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
+    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, max(n - 1, 0)))
+    smooth = lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if n > 1 else g
+    return _constant_first(mesh, A, smooth, n)
+
+
+def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
+    """``count`` Gaussian bumps of the Euclidean distance at random vertices, random widths."""
+    rng = np.random.default_rng(seed)
+    centres = mesh.vertices[rng.choice(mesh.n_vertices, size=count, replace=count > mesh.n_vertices)]
+    widths = rng.uniform(0.1, 0.4, size=count) * np.sqrt(mesh.area)
+    out = np.empty((mesh.n_vertices, count))
+    for j in range(count):
+        d2 = ((mesh.vertices - centres[j]) ** 2).sum(axis=1)
+        out[:, j] = np.exp(-d2 / (2.0 * widths[j] ** 2))
+    return out
+
+
+def pca_basis(
+    mesh: Mesh,
+    n: int,
+    *,
+    mass: MassKind = "voronoi",
+    samples: ArrayLike | None = None,
+    seed: int = 0,
+) -> NDArray[np.float64]:
+    """Principal components (in the A inner product) of a set of sample functions.
+
+    The constant part of every sample is removed (the constant is the basis's first column), then
+    the leading ``n - 1`` eigenvectors of the A-weighted second-moment operator ``X X.T A`` are
+    taken: with ``K = X.T A X = U S U.T`` they are ``X U / sqrt(S)``.
+
+    Parameters
+    ----------
+    samples : array (n_vertices, m), optional
+        The sample functions, ``m >= n - 1`` of rank at least ``n - 1``. Default: ``4 n`` Gaussian
+        bumps (of the Euclidean distance, widths 0.1–0.4 sqrt(area)) centred at random vertices.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.icosphere(2)
+    >>> B = pca_basis(m, 5, samples=m.vertices)  # 3 samples: not enough for 4 components
+    Traceback (most recent call last):
+    ...
+    ValueError: pca_basis needs at least n - 1 = 4 independent samples; got 3 columns.
+    >>> bool(np.allclose(pca_basis(m, 4, samples=m.vertices).T @ mass_matrix(m) @ pca_basis(m, 4, samples=m.vertices), np.eye(4)))
+    True
+    """
+    n, A = _check(mesh, n, mass)
+    X = _gaussian_bumps(mesh, 4 * n, seed) if samples is None else np.array(samples, dtype=np.float64)
+    if X.ndim != 2 or X.shape[0] != mesh.n_vertices or not np.all(np.isfinite(X)):
+        raise ValueError(f"samples must be a finite array of shape ({mesh.n_vertices}, m), got {X.shape}.")
+    if X.shape[1] < n - 1:
+        raise ValueError(f"pca_basis needs at least n - 1 = {n - 1} independent samples; got {X.shape[1]} columns.")
+    a = np.asarray(A @ np.ones(mesh.n_vertices)).ravel()
+    X = X - np.outer(np.ones(mesh.n_vertices), (a @ X) / a.sum())  # remove each sample's A-mean
+    K = X.T @ (A @ X)
+    s, U = np.linalg.eigh(K)
+    s, U = s[::-1], U[:, ::-1]
+    if n > 1 and not s[n - 2] > 1e-12 * max(s[0], 1e-300):
+        raise ValueError(f"the samples span fewer than n - 1 = {n - 1} directions besides the constant; add samples.")
+    components = X @ (U[:, : n - 1] / np.sqrt(s[: n - 1]))
+    return _constant_first(mesh, A, components, n)
+
+
+def _umbrella_laplacian(mesh: Mesh) -> sp.csr_matrix:
+    e = mesh.edges
+    nv = mesh.n_vertices
+    adj = sp.coo_matrix((np.ones(2 * len(e)), (np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]])), shape=(nv, nv)).tocsr()
+    return (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
+
+
+def umbrella_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+    """Eigenvectors of the combinatorial graph Laplacian ``L = D - Adj`` (uniform "umbrella" weights).
+
+    The graph Laplacian ignores the geometry (edge lengths and angles): only connectivity counts.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.bumpy_sphere(2)
+    >>> B = umbrella_basis(m, 8)
+    >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
+    True
+    """
+    n, A = _check(mesh, n, mass)
+    L = _umbrella_laplacian(mesh)
+    return _constant_first(mesh, A, _smallest_eigenvectors(L, sp.identity(mesh.n_vertices, format="csr"), n), n)
+
+
+def identity_mass_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+    """Eigenvectors of the cotangent ``W`` with the identity as mass (``W x = mu x``, no area weights).
+
+    Right on a uniform mesh, wrong where triangle sizes vary: the missing ``A`` is exactly the
+    difference between a graph signal and a function on a surface.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.bumpy_sphere(2)
+    >>> B = identity_mass_basis(m, 8)
+    >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
+    True
+    """
+    n, A = _check(mesh, n, mass)
+    W = stiffness_matrix(mesh)
+    return _constant_first(mesh, A, _smallest_eigenvectors(W, sp.identity(mesh.n_vertices, format="csr"), n), n)
+
+
+def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
+    """Legendre polynomials P_0..P_degree at x, shape (len(x), degree + 1) (three-term recurrence)."""
+    out = np.empty((x.size, degree + 1))
+    out[:, 0] = 1.0
+    if degree >= 1:
+        out[:, 1] = x
+    for k in range(1, degree):
+        out[:, k + 1] = ((2 * k + 1) * x * out[:, k] - k * out[:, k - 1]) / (k + 1)
+    return out
+
+
+def polynomial_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi", max_degree: int = 30) -> NDArray[np.float64]:
+    """Polynomials in the embedding coordinates x, y, z, by increasing total degree.
+
+    Coordinates are mapped to [-1, 1] by the bounding box and the products
+    ``P_a(x) P_b(y) P_c(z)`` of Legendre polynomials are used (better conditioned than monomials),
+    in graded order ``a + b + c = 0, 1, 2, ...``. Products that are dependent on the surface (on a
+    sphere ``x^2 + y^2 + z^2 = 1``; on a flat mesh ``z`` is constant) are skipped.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> B = polynomial_basis(shapes.icosphere(3), 9)  # 1, x, y, z and 5 quadrics: x^2+y^2+z^2 = 1
+    >>> B.shape
+    (642, 9)
+    """
+    n, A = _check(mesh, n, mass)
+    lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
+    extent = np.where(hi - lo > 1e-12 * mesh.diagonal, hi - lo, np.inf)
+    x = 2.0 * (mesh.vertices - lo) / extent - 1.0  # a degenerate axis maps to -1: constant
+    found = np.zeros((mesh.n_vertices, 0))
+    for degree in range(max_degree + 1):
+        P = [_legendre(x[:, i], degree) for i in range(3)]
+        block = [
+            P[0][:, a] * P[1][:, b] * P[2][:, degree - a - b]
+            for a in range(degree, -1, -1)
+            for b in range(degree - a, -1, -1)
+        ]
+        candidates = np.column_stack([found] + block) if found.size else np.column_stack(block)
+        found = a_orthonormalize(candidates, A, drop_dependent=True, rtol=1e-6)
+        if found.shape[1] >= n:
+            return found[:, :n]
+    raise ValueError(
+        f"polynomials up to degree {max_degree} span only {found.shape[1]} functions on this mesh; "
+        f"ask for fewer than n = {n} or raise max_degree."
+    )
+
+
+def metric_basis(mesh: Mesh, n: int, metric: Metric, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+    """The eigenbasis of a different metric, A-orthonormalised for the *regular* mass.
+
+    Parameters
+    ----------
+    metric : sparse matrix, (W, A) tuple, or callable
+        The other metric's mass matrix (the stiffness stays the cotangent ``W``: in 2-D a conformal
+        change of metric only changes the mass), a full ``(W, A)`` pair, or a function
+        ``metric(mesh)`` returning either. Notebook 04's scale-invariant metric plugs in as
+        ``lambda m: curvature.metric_mass_matrix(m, alpha)``.
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.bumpy_sphere(2)
+    >>> heavy_top = lambda m: sp.diags(1.0 + (m.vertices[:, 2] > 0)) @ mass_matrix(m)
+    >>> B = metric_basis(m, 6, heavy_top)
+    >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)))
+    True
+    """
+    n, A = _check(mesh, n, mass)
+    value = metric(mesh) if callable(metric) else metric
+    if isinstance(value, tuple) and len(value) == 2:
+        W2, A2 = check_operators(*value)
+    elif sp.issparse(value):
+        W2, A2 = check_operators(stiffness_matrix(mesh), value)
+    else:
+        raise ValueError(
+            "metric must be a sparse mass matrix, a (stiffness, mass) tuple, or a function of the mesh "
+            f"returning one of those; got {type(value).__name__}."
+        )
+    if W2.shape[0] != mesh.n_vertices:
+        raise ValueError(f"the metric's operators have size {W2.shape[0]}, the mesh has {mesh.n_vertices} vertices.")
+    return _constant_first(mesh, A, _smallest_eigenvectors(W2, A2, n), n)
+
+
+def competitor_bases(
+    mesh: Mesh, n: int, *, mass: MassKind = "voronoi", seed: int = 0, metric: Metric | None = None
+) -> dict[str, NDArray[np.float64]]:
+    """All the bases at once, keyed by a display name (the eigenbasis first).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> sorted(competitor_bases(shapes.bumpy_sphere(2), 5))[:3]
+    ['LBO eigenbasis', 'PCA of samples', 'identity mass']
+    """
+    bases = {
+        "LBO eigenbasis": eigen_basis(mesh, n, mass=mass),
+        "random smooth": random_smooth_basis(mesh, n, mass=mass, seed=seed),
+        "PCA of samples": pca_basis(mesh, n, mass=mass, seed=seed),
+        "umbrella Laplacian": umbrella_basis(mesh, n, mass=mass),
+        "identity mass": identity_mass_basis(mesh, n, mass=mass),
+        "polynomials": polynomial_basis(mesh, n, mass=mass),
+    }
+    if metric is not None:
+        bases["other metric"] = metric_basis(mesh, n, metric, mass=mass)
+    return bases

@@ -1,0 +1,532 @@
+"""The optimality theorem of the spectral domain, checked numerically.
+
+Aflalo, Brezis and Kimmel prove that no n-dimensional basis represents functions of bounded
+Dirichlet energy better than the first n eigenfunctions of the Laplace–Beltrami operator:
+
+* **Bound.** For every ``f``, ``||f - Phi_n Phi_n.T A f||_A^2 <= (f @ W @ f) / lam[n]``
+  (:func:`representation_error`, :func:`error_bound`).
+* **Optimality.** For every subspace ``V`` of dimension ``n`` the *worst-case constant*
+  ``C(V) = sup_f ||f - P_V f||_A^2 / (f @ W @ f)`` is at least ``1 / lam[n]``, with equality for
+  the eigenbasis (:func:`worst_case_ratio`; ``worst_case_ratio * lam[n]`` is the normalised figure).
+
+The exact ``C(V)`` minimises the energy over the part of ``f`` that lies *in* ``V`` (a Schur
+complement). Using ``W`` itself on the A-orthogonal complement of ``V`` instead is a classic trap:
+it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See MATH.md
+section 2.
+"""
+
+from __future__ import annotations
+
+from typing import Literal, overload
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.csgraph as csgraph
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from .spectrum import Spectrum, check_operators
+
+__all__ = [
+    "representation_error",
+    "error_bound",
+    "dirichlet_energy",
+    "a_orthonormalize",
+    "kernel_basis",
+    "worst_case_ratio",
+    "complement_ratio",
+    "witness_function",
+]
+
+# Below this many vertices worst_case_ratio(method="auto") uses a dense generalized eigensolver.
+DENSE_LIMIT = 1200
+
+Method = Literal["auto", "dense", "sparse"]
+
+
+# --- input checks ----------------------------------------------------------------------------
+def _check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[np.float64]:
+    arr = np.asarray(f, dtype=np.float64)
+    if arr.ndim not in (1, 2) or arr.shape[0] != n_vertices:
+        raise ValueError(
+            f"{name} must have shape ({n_vertices},) or ({n_vertices}, c): one value per vertex; "
+            f"got {arr.shape}."
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or inf; replace them before measuring errors.")
+    return arr
+
+
+def _check_spectrum(spectrum: Spectrum) -> Spectrum:
+    if not isinstance(spectrum, Spectrum):
+        raise ValueError(
+            f"spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}."
+        )
+    return spectrum
+
+
+def _check_symmetric(M: sp.csr_matrix, name: str) -> None:
+    scale = abs(M).max() if M.nnz else 0.0
+    if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
+        raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
+
+
+def _check_basis(basis: ArrayLike, n_vertices: int) -> NDArray[np.float64]:
+    arr = np.asarray(basis, dtype=np.float64)
+    if arr.ndim != 2 or arr.shape[0] != n_vertices:
+        raise ValueError(
+            f"basis must be a 2-D array of shape ({n_vertices}, n): one column per basis function; "
+            f"got {arr.shape}. Use basis[:, None] for a single function."
+        )
+    if not 1 <= arr.shape[1] < n_vertices:
+        raise ValueError(
+            f"basis must have between 1 and n_vertices - 1 = {n_vertices - 1} columns, got {arr.shape[1]}."
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("basis contains NaN or inf.")
+    return arr
+
+
+# --- the bound ---------------------------------------------------------------------------------
+def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64] | float:
+    """Dirichlet energy ``f @ W @ f`` (the squared L2 norm of the gradient), per column.
+
+    Parameters
+    ----------
+    stiffness : sparse (n, n)
+        Cotangent stiffness matrix ``W``.
+    f : array (n,) or (n, c)
+        Function(s) with one value per vertex.
+
+    Returns
+    -------
+    float for 1-D ``f``, array (c,) for 2-D ``f``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, stiffness_matrix
+    >>> m = shapes.rectangle(2.0, 1.0, 8, 4)
+    >>> round(dirichlet_energy(stiffness_matrix(m), m.vertices[:, 0]), 12)  # |grad x|^2 * area
+    2.0
+    """
+    if not sp.issparse(stiffness) or stiffness.shape[0] != stiffness.shape[1]:
+        raise ValueError("stiffness must be a square scipy.sparse matrix (see operators.stiffness_matrix).")
+    arr = _check_functions(f, stiffness.shape[0])
+    out = np.einsum("i...,i...->...", arr, stiffness @ arr)
+    return float(out) if arr.ndim == 1 else np.asarray(out)
+
+
+def representation_error(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
+    """Squared A-norm error ``||f - Phi_n Phi_n.T A f||_A^2`` of the n-term eigen-expansion.
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        Eigenbasis with at least ``n`` eigenpairs.
+    f : array (n_vertices,) or (n_vertices, c)
+    n : int
+        Number of eigenfunctions kept, ``0 <= n <= spectrum.k``.
+
+    Returns
+    -------
+    float for 1-D ``f``, array (c,) for 2-D ``f``.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(3), 10)
+    >>> x = s.vectors[:, 3] + s.vectors[:, 7]
+    >>> representation_error(s, x, 8) < 1e-20, round(representation_error(s, x, 4), 10)
+    (True, 1.0)
+    """
+    err = _check_spectrum(spectrum).error(f, n)
+    return err**2 if isinstance(err, float) else np.asarray(err) ** 2
+
+
+def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
+    """The theorem's bound ``(f @ W @ f) / lam[n]`` on :func:`representation_error`.
+
+    ``lam[n]`` is the first eigenvalue *not* in the expansion (the paper's lambda_{n+1}), so the
+    spectrum must hold ``k > n`` eigenpairs. ``n = 0`` is excluded: ``lam[0] = 0``, and without the
+    constant function no finite bound exists.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(3), 20)
+    >>> z = shapes.icosphere(3).vertices[:, 2]
+    >>> bool(representation_error(s, z ** 3, 9) <= error_bound(s, z ** 3, 9))
+    True
+    """
+    spectrum = _check_spectrum(spectrum)
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+        raise ValueError(f"n must be an integer number of eigenfunctions, got {n!r}.")
+    if not 1 <= n < spectrum.k:
+        raise ValueError(
+            f"error_bound needs lam[n] with 1 <= n < k = {spectrum.k}; got n = {n}. "
+            "Compute the spectrum with k > n eigenpairs."
+        )
+    lam = float(spectrum.values[int(n)])
+    if not lam > 0:
+        raise ValueError(f"lam[{n}] = {lam:.3g} is not positive: the surface has more than {n} components.")
+    return dirichlet_energy(spectrum.stiffness, f) / lam
+
+
+# --- A-orthonormal bases -------------------------------------------------------------------------
+_BLOCK = 32
+
+
+def _a_norms(X: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
+    return np.sqrt(np.maximum(np.einsum("ij,ij->j", X, mass @ X), 0.0))
+
+
+def _project_out(
+    Q: NDArray[np.float64], X: NDArray[np.float64], mass: sp.spmatrix, norms: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """In place ``X -= Q Q.T A X``, repeated while a pass removes more than half of a column's
+    norm ("twice is enough", with a guard for nearly dependent columns). Returns the new norms."""
+    for _ in range(4):
+        X -= Q @ (Q.T @ (mass @ X))
+        new = _a_norms(X, mass)
+        if np.all((new > 0.5 * norms) | (new == 0.0)):
+            return new
+        norms = new
+    return norms
+def a_orthonormalize(
+    vectors: ArrayLike,
+    mass: sp.spmatrix,
+    *,
+    prepend: ArrayLike | None = None,
+    drop_dependent: bool = False,
+    rtol: float = 1e-8,
+) -> NDArray[np.float64]:
+    """A-orthonormal basis of the span of the columns, in column order (Gram–Schmidt in ``<.,.>_A``).
+
+    Each column is orthogonalised against the previous ones by classical Gram–Schmidt, repeated
+    while a pass removes more than half of its norm ("twice is enough", with a guard), so the
+    result satisfies ``Q.T @ A @ Q = I`` to round-off even for ill-conditioned input.
+
+    Parameters
+    ----------
+    vectors : array (n_vertices, m)
+    mass : sparse (n_vertices, n_vertices)
+        The mass matrix ``A`` defining the inner product.
+    prepend : array (n_vertices,) or (n_vertices, p), optional
+        Columns placed first (e.g. ``numpy.ones(n)`` for "the constant function first").
+    drop_dependent : bool
+        Skip columns that are numerically in the span of the previous ones instead of raising.
+    rtol : float
+        A column is dependent when less than ``rtol`` of its A-norm survives orthogonalisation.
+
+    Returns
+    -------
+    ndarray (n_vertices, r), a fresh array (the input is not modified).
+
+    Raises
+    ------
+    ValueError
+        If a column is (numerically) dependent and ``drop_dependent`` is False: the basis is
+        rank-deficient.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.icosphere(2)
+    >>> A = mass_matrix(m)
+    >>> Q = a_orthonormalize(m.vertices, A, prepend=np.ones(m.n_vertices))
+    >>> Q.shape, bool(np.allclose(Q.T @ A @ Q, np.eye(4)))
+    ((162, 4), True)
+    """
+    if not sp.issparse(mass) or mass.shape[0] != mass.shape[1]:
+        raise ValueError("mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
+    nv = mass.shape[0]
+    cols = np.asarray(vectors, dtype=np.float64)
+    if cols.ndim == 1:
+        cols = cols[:, None]
+    if prepend is not None:
+        pre = np.asarray(prepend, dtype=np.float64)
+        pre = pre[:, None] if pre.ndim == 1 else pre
+        if pre.ndim != 2 or pre.shape[0] != nv:
+            raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
+        cols = np.hstack([pre, cols]) if cols.size or cols.ndim == 2 else pre
+    if cols.ndim != 2 or cols.shape[0] != nv:
+        raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
+    if not np.all(np.isfinite(cols)):
+        raise ValueError("vectors contain NaN or inf.")
+    if not (np.isfinite(rtol) and 0 < rtol < 1):
+        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
+    Q = np.empty((nv, cols.shape[1]))
+    r = 0
+    for lo in range(0, cols.shape[1], _BLOCK):
+        # Block Gram-Schmidt against the columns accepted so far (BLAS-3), then column by column
+        # inside the block.
+        X = cols[:, lo : lo + _BLOCK].copy()
+        norm0 = _a_norms(X, mass)
+        if r:
+            _project_out(Q[:, :r], X, mass, norm0)
+        r_block = r
+        for j in range(X.shape[1]):
+            v = X[:, j : j + 1]
+            before = float(_a_norms(v, mass)[0])
+            norm = float(_project_out(Q[:, r_block:r], v, mass, np.array([before]))[0]) if r > r_block else before
+            if r and 0.0 < norm < 1e-3 * before:
+                # Heavy cancellation: refresh orthogonality against everything accepted so far.
+                norm = float(_project_out(Q[:, :r], v, mass, np.array([norm]))[0])
+            if norm0[j] == 0.0 or norm <= rtol * norm0[j]:
+                if drop_dependent:
+                    continue
+                raise ValueError(
+                    f"the basis is rank-deficient: column {lo + j} is (numerically) a combination of "
+                    "the previous columns; remove it or pass drop_dependent=True."
+                )
+            Q[:, r] = v[:, 0] / norm
+            r += 1
+    return Q[:, :r]
+
+
+def kernel_basis(stiffness: sp.spmatrix) -> NDArray[np.float64]:
+    """The kernel of ``W``: one indicator column per connected component (shape (n, p)).
+
+    Components are those of the graph of nonzero off-diagonal entries of ``W``; on a connected
+    mesh this is the single constant function ``ones(n)[:, None]``.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, stiffness_matrix
+    >>> kernel_basis(stiffness_matrix(shapes.icosphere(1))).shape
+    (42, 1)
+    """
+    W = sp.coo_matrix(stiffness)
+    keep = (W.row != W.col) & (W.data != 0)
+    pattern = sp.csr_matrix((np.ones(int(keep.sum()), dtype=np.int8), (W.row[keep], W.col[keep])), shape=W.shape)
+    p, labels = csgraph.connected_components(pattern, directed=False)
+    return np.eye(p)[labels]
+
+
+# --- the worst-case constant ---------------------------------------------------------------------
+class _RegularisedStiffnessSolver:
+    """Solves ``(W + sum_k a_k a_k.T / s_k) x = b`` without forming a dense matrix.
+
+    ``a_k = A 1_k`` for the indicator ``1_k`` of component k and ``s_k = 1_k A 1_k``. One vertex per
+    component is pinned, the rest of ``W`` (positive definite) is factorised once by sparse LU,
+    and the pinned solution is corrected by the constants: the right-hand side's component sums
+    fix the mean of x, the A-mean-zero part solves ``W y = b'``.
+    """
+
+    def __init__(self, W: sp.csr_matrix, A: sp.csr_matrix, kernel: NDArray[np.float64]) -> None:
+        n = W.shape[0]
+        # Everything per component via bincount on labels: no (n, 1) BLAS calls, which are slow
+        # under thread oversubscription.
+        self.labels = np.argmax(kernel, axis=1)
+        self.p = kernel.shape[1]
+        self.a = np.asarray(A @ np.ones(n)).ravel()  # A is block diagonal over components
+        self.s = self._sum(self.a)
+        pinned = np.argmax(kernel, axis=0)  # first vertex of each component
+        keep = np.ones(n, dtype=bool)
+        keep[pinned] = False
+        self.keep = keep
+        self.lu = spla.splu(W[keep][:, keep].tocsc(), permc_spec="MMD_AT_PLUS_A")
+        self.W = W
+
+    def _sum(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.bincount(self.labels, weights=x, minlength=self.p)
+
+    def matvec(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        x = np.ravel(x)
+        return self.W @ x + self.a * (self._sum(self.a * x) / self.s)[self.labels]
+
+    def solve(self, b: NDArray[np.float64]) -> NDArray[np.float64]:
+        b = np.asarray(b, dtype=np.float64).ravel()
+        sums = self._sum(b)  # = a_k . x for the solution x
+        rhs = b - self.a * (sums / self.s)[self.labels]  # consistent: orthogonal to every 1_k
+        y = np.zeros_like(b)
+        y[self.keep] = self.lu.solve(rhs[self.keep])
+        return y + ((sums - self._sum(self.a * y)) / self.s)[self.labels]
+
+
+def _worst_case_dense(
+    Q: NDArray[np.float64], W: sp.csr_matrix, A: sp.csr_matrix, kernel: NDArray[np.float64]
+) -> tuple[float, NDArray[np.float64]]:
+    AQ = A @ Q
+    a = np.asarray(A @ kernel)
+    s = np.einsum("ik,ik->k", kernel, a)
+    left = A.toarray() - AQ @ AQ.T
+    right = W.toarray() + (a / s) @ a.T
+    n = W.shape[0]
+    values, vectors = scipy.linalg.eigh(left, right, subset_by_index=[n - 1, n - 1])
+    return float(values[0]), vectors[:, 0]
+
+
+def _worst_case_sparse(
+    Q: NDArray[np.float64], W: sp.csr_matrix, A: sp.csr_matrix, kernel: NDArray[np.float64]
+) -> tuple[float, NDArray[np.float64]]:
+    n = W.shape[0]
+    AQ = np.asarray(A @ Q)
+    solver = _RegularisedStiffnessSolver(W, A, kernel)
+    left = spla.LinearOperator((n, n), matvec=lambda x: A @ np.ravel(x) - AQ @ (AQ.T @ np.ravel(x)), dtype=np.float64)
+    right = spla.LinearOperator((n, n), matvec=solver.matvec, dtype=np.float64)
+    right_inv = spla.LinearOperator((n, n), matvec=solver.solve, dtype=np.float64)
+    # A fixed start vector makes ARPACK deterministic; tol=0 asks for machine precision.
+    v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
+    values, vectors = spla.eigsh(
+        left, k=1, M=right, Minv=right_inv, which="LA", v0=v0, tol=0.0, ncv=min(n - 1, 24)
+    )
+    return float(values[0]), vectors[:, 0]
+
+
+@overload
+def worst_case_ratio(
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[False] = ...
+) -> float: ...
+@overload
+def worst_case_ratio(
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[True]
+) -> tuple[float, NDArray[np.float64]]: ...
+def worst_case_ratio(
+    basis: ArrayLike,
+    stiffness: sp.spmatrix,
+    mass: sp.spmatrix,
+    *,
+    method: Method = "auto",
+    return_function: bool = False,
+) -> float | tuple[float, NDArray[np.float64]]:
+    """Exact worst-case constant ``C(V) = sup_f ||f - P_V f||_A^2 / (f @ W @ f)`` of a basis.
+
+    ``V`` is the span of the columns of ``basis`` and ``P_V`` the A-orthogonal projection onto it.
+    The theorem says ``C(V) >= 1 / lam[n]`` for every n-dimensional V, with equality for the first
+    n eigenfunctions; ``worst_case_ratio(basis, W, A) * lam[n]`` is therefore exactly 1 for the
+    eigenbasis and above 1 for every other basis.
+
+    **C(V) is infinite when the constant function is not in V** (more generally, when the kernel
+    of ``W``, the constants on each connected component, is not contained in V): a constant has
+    zero energy but a nonzero representation error. This function then returns ``inf``. Put
+    ``numpy.ones(n)`` among the columns (e.g. ``a_orthonormalize(..., prepend=ones)``) to get a
+    finite constant.
+
+    How it is computed (MATH.md section 2): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
+    V, the error is ``||r||_A^2`` and the smallest energy over ``v`` is the Schur complement
+    ``r @ S @ r``, ``S = W - W Q (Q.T W Q)^+ Q.T W``. Equivalently ``C(V)`` is the largest eigenvalue
+    of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,
+    ``a = A 1``, ``s = 1 @ A @ 1``; the rank-one term makes the right side definite and does not
+    change the ratio. (Using ``W`` instead of ``S`` on the complement is the trap:
+    :func:`complement_ratio`.)
+
+    Parameters
+    ----------
+    basis : array (n_vertices, n)
+        Any full-rank basis of V (it is A-orthonormalised internally; the input is not modified).
+    stiffness, mass : sparse (n_vertices, n_vertices)
+        ``W`` and ``A``.
+    method : {"auto", "dense", "sparse"}
+        ``"dense"``: ``scipy.linalg.eigh`` of the pencil (O(n_vertices^3), small meshes);
+        ``"sparse"``: Lanczos (``eigsh``, ``k=1``, ``which="LA"``) with ``(W + a a.T/s)^{-1}``
+        applied by a sparse LU of ``W`` with one vertex pinned, corrected by the constant; no dense
+        n_vertices x n_vertices matrix is formed. ``"auto"`` picks dense below
+        ``DENSE_LIMIT`` vertices.
+    return_function : bool
+        Also return a worst-case function ``f`` (scaled so that ``||f - P_V f||_A = 1``).
+
+    Returns
+    -------
+    float, or (float, ndarray (n_vertices,)) with ``return_function``.
+
+    Raises
+    ------
+    ValueError
+        For a basis of the wrong shape, with NaN/inf, or rank-deficient; for invalid operators.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
+    >>> round(worst_case_ratio(s.vectors[:, :10], s.stiffness, s.mass) * float(s.values[10]), 8)
+    1.0
+    >>> worst_case_ratio(s.vectors[:, 1:10], s.stiffness, s.mass)  # no constant function
+    inf
+    """
+    W, A = check_operators(stiffness, mass)
+    _check_symmetric(W, "stiffness")
+    _check_symmetric(A, "mass")
+    n = W.shape[0]
+    arr = _check_basis(basis, n)
+    if method not in ("auto", "dense", "sparse"):
+        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+    Q = a_orthonormalize(arr, A)
+    kernel = kernel_basis(W)
+    # Is the kernel of W (the constants) inside V? Relative A-norm of what V misses.
+    residual = kernel - Q @ (Q.T @ (A @ kernel))
+    missed = np.einsum("ik,ik->k", residual, A @ residual) / np.einsum("ik,ik->k", kernel, A @ kernel)
+    if np.any(missed > 1e-16):  # a relative A-norm above 1e-8
+        if return_function:
+            f = residual[:, int(np.argmax(missed))]
+            return float("inf"), f / np.sqrt(float(f @ (A @ f)))
+        return float("inf")
+    use_dense = method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
+    value, f = (_worst_case_dense if use_dense else _worst_case_sparse)(Q, W, A, kernel)
+    if not return_function:
+        return value
+    r = f - Q @ (Q.T @ (A @ f))
+    f = f / np.sqrt(float(r @ (A @ r)))
+    peak = f[np.argmax(np.abs(f))]
+    return value, f * (1.0 if peak >= 0 else -1.0)
+
+
+def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
+    """The **trap**: ``sup over r A-orthogonal to V of ||r||_A^2 / (r @ W @ r)``.
+
+    This uses ``W`` itself on the complement of V instead of the Schur complement, i.e. it only
+    looks at functions with no component in V. It is ``1 / min_rayleigh_quotient(W, A,
+    orthogonal_to=basis)`` (Courant–Fischer's quantity), a *lower* bound on
+    :func:`worst_case_ratio`, and equal to it only when ``W`` maps V into ``A V`` (e.g. V spanned by
+    eigenvectors). Kept to show the difference; do not use it as the worst-case constant.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
+    >>> B = s.vectors[:, :10] + 0.05 * np.random.default_rng(0).normal(size=(162, 10))
+    >>> bool(complement_ratio(B, s.stiffness, s.mass) < worst_case_ratio(B, s.stiffness, s.mass))
+    True
+    """
+    from .minmax import min_rayleigh_quotient
+
+    return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
+
+
+def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
+    """The paper's direct argument: a nonzero ``f`` in span(phi_0..phi_n) A-orthogonal to V.
+
+    V (spanned by the n columns of ``basis``) imposes n linear conditions on the n+1 coefficients
+    of ``f = Phi_{n+1} c``, so such an ``f`` exists. Its error is all of it,
+    ``||f - P_V f||_A^2 = ||f||_A^2 = |c|^2``, while its energy is ``sum lam_i c_i^2 <= lam[n] |c|^2``:
+    hence ``C(V) >= 1 / lam[n]`` for every V.
+
+    Returns
+    -------
+    ndarray (n_vertices,), A-normalised (``f @ A @ f = 1``), sign fixed (largest entry positive).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(2), 12)
+    >>> B = np.random.default_rng(1).normal(size=(162, 8))
+    >>> f = witness_function(s, B)
+    >>> bool(np.abs(B.T @ s.mass @ f).max() < 1e-10 and f @ s.stiffness @ f <= s.values[8] + 1e-12)
+    True
+    """
+    spectrum = _check_spectrum(spectrum)
+    arr = _check_basis(basis, spectrum.n_vertices)
+    n = arr.shape[1]
+    if n + 1 > spectrum.k:
+        raise ValueError(f"the spectrum needs at least n + 1 = {n + 1} eigenpairs, it has {spectrum.k}.")
+    Q = a_orthonormalize(arr, spectrum.mass)
+    coupling = Q.T @ (spectrum.mass @ spectrum.vectors[:, : n + 1])  # (n, n + 1)
+    c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
+    f = spectrum.vectors[:, : n + 1] @ c
+    f /= np.sqrt(float(f @ (spectrum.mass @ f)))
+    return f if f[np.argmax(np.abs(f))] >= 0 else -f
