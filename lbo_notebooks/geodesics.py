@@ -56,9 +56,9 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
         raise MeshError(
             f"{what} need a connected mesh, but this one has {k} connected components (vertex counts "
             f"{sorted(sizes.tolist(), reverse=True)[:5]}{' ...' if k > 5 else ''}); distances between "
-            "components are infinite. Keep the largest component: keep = mesh.component_labels == "
-            "np.bincount(mesh.component_labels).argmax(), drop the faces that use other vertices, "
-            "re-index the rest and build a new Mesh (or load with clean=True if your loader offers it)."
+            "components are infinite. Keep the largest component: "
+            "mesh, _ = lbo_notebooks.io.clean_mesh(mesh, keep_largest_component=True) (or load it with "
+            "load_mesh(path, clean=True, keep_largest_component=True))."
         )
 
 
@@ -178,7 +178,7 @@ class GeodesicSolver:
                 f"the {self.method!r} geodesic solver returned invalid distances from vertex {s}; "
                 "check the mesh for degenerate or flipped triangles."
             )
-        # The heat method is exact only up to a constant shift; pin the source at zero.
+        # Pin the source at zero (the heat method recovers distance up to an additive constant).
         d = np.maximum(d - d[s], 0.0) if self.method == "heat" else np.maximum(d, 0.0)
         d[s] = 0.0
         return d
