@@ -1,0 +1,97 @@
+"""Every notebook is saved clean and follows the series' shape (reads the .ipynb JSON only; fast).
+
+Checked for each ``notebooks/*.ipynb``: valid nbformat; no outputs, execution counts or saved
+widget state; the first cell is a markdown title ``# NN · ...`` (NN = the file's number) followed
+by "What you will learn" and "What you need"; the last section is "Exercises"; the solutions come
+after it in code cells hidden with ``{"jupyter": {"source_hidden": true}}``; cells that display a
+slider widget start with ``# NBVAL_IGNORE_OUTPUT`` (a widget's repr changes from run to run).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import nbformat
+import pytest
+
+NOTEBOOKS = sorted((Path(__file__).resolve().parent.parent / "notebooks").glob("*.ipynb"))
+HEADING = re.compile(r"^(#{1,2})\s+(.*)$", re.MULTILINE)
+WIDGET_FACTORIES = ("mesh_slider(", "widgets.", "interactive(", "interact(")
+
+
+def _source(cell) -> str:
+    return cell.source if isinstance(cell.source, str) else "".join(cell.source)
+
+
+@pytest.fixture(params=NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def notebook(request):
+    return request.param, nbformat.read(request.param, as_version=4)
+
+
+def test_there_are_notebooks():
+    assert NOTEBOOKS, "no notebooks found in notebooks/"
+
+
+def test_valid_nbformat(notebook):
+    path, nb = notebook
+    nbformat.validate(nb)
+    assert nb.metadata.get("kernelspec", {}).get("name") == "python3", (
+        f"{path.name}: set the kernelspec to python3 so it runs in the project's kernel")
+
+
+def test_saved_without_outputs(notebook):
+    path, nb = notebook
+    dirty = [i for i, c in enumerate(nb.cells)
+             if c.cell_type == "code" and (c.outputs or c.execution_count is not None)]
+    assert not dirty, f"{path.name}: cells {dirty} have outputs or execution counts; clear them before saving"
+    assert "widgets" not in nb.metadata, f"{path.name}: saved widget state in the metadata; clear it before saving"
+
+
+def test_opens_with_what_you_will_learn_and_need(notebook):
+    path, nb = notebook
+    first = nb.cells[0]
+    assert first.cell_type == "markdown", f"{path.name}: the first cell must be markdown (title and aims)"
+    text = _source(first)
+    title = text.lstrip().splitlines()[0]
+    number = path.name.split("_", 1)[0]
+    assert re.match(rf"#\s+{re.escape(number)}\b", title), (
+        f"{path.name}: the first line should be a title '# {number} · ...', found {title!r}")
+    lower = text.lower()
+    assert "what you will learn" in lower, f"{path.name}: the first cell must say what you will learn"
+    assert "what you need" in lower, f"{path.name}: the first cell must say what you need"
+
+
+def test_ends_with_exercises_and_hidden_solutions(notebook):
+    path, nb = notebook
+    headings = [(i, m.group(2)) for i, c in enumerate(nb.cells) if c.cell_type == "markdown"
+                for m in HEADING.finditer(_source(c)) if not m.group(2).startswith("#")]
+    assert headings, f"{path.name}: no section headings"
+    last_index, last_heading = headings[-1]
+    assert "exercise" in last_heading.lower(), (
+        f"{path.name}: the last section should be 'Exercises', found {last_heading!r}")
+    after = nb.cells[last_index + 1:]
+    code_after = [c for c in after if c.cell_type == "code"]
+    solution_link = re.search(r"\]\(([^)]*solution[^)]*)\)", _source(nb.cells[last_index]), re.IGNORECASE)
+    if solution_link:  # solutions in a separate file: it must exist
+        assert (path.parent / solution_link.group(1)).exists(), f"{path.name}: {solution_link.group(1)} is missing"
+    else:
+        assert code_after, f"{path.name}: add the solutions after the exercises (a hidden code cell)"
+    shown = [nb.cells.index(c) for c in code_after if not c.metadata.get("jupyter", {}).get("source_hidden")]
+    assert not shown, (f"{path.name}: solution cells {shown} are not collapsed; set their metadata to "
+                       '{"jupyter": {"source_hidden": true}}')
+
+
+def test_widget_cells_ignore_their_output(notebook):
+    path, nb = notebook
+    bad = []
+    for i, c in enumerate(nb.cells):
+        if c.cell_type != "code":
+            continue
+        text = _source(c)
+        lines = [ln for ln in text.strip().splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+        displays_a_widget = (any(f in text for f in WIDGET_FACTORIES) and lines
+                             and re.fullmatch(r"[A-Za-z_][A-Za-z_0-9.]*", lines[-1].strip()))
+        if displays_a_widget and not text.lstrip().startswith("# NBVAL_IGNORE_OUTPUT"):
+            bad.append(i)
+    assert not bad, f"{path.name}: cells {bad} display a widget; start them with '# NBVAL_IGNORE_OUTPUT'"
