@@ -92,7 +92,8 @@ def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
 
     ``X`` is the reference. No alignment is needed: Gram matrices do not change under rotations
     and reflections, and both point sets are centred first (so translations do not count either).
-    Computed in O(n dim^2) from ``Z.T Z``, ``X.T X`` and ``X.T Z`` without forming an n x n matrix;
+    Computed in O(n dim^2) without forming an n x n matrix (a thin QR of ``[Z X]``, so that the
+    small errors of good embeddings do not drown in round-off);
     the two embeddings may have different dimensions.
 
     Examples
@@ -104,12 +105,15 @@ def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
     True
     """
     Zc, Xc = _pair(Z, X)
-    zz, xx, xz = Zc.T @ Zc, Xc.T @ Xc, Xc.T @ Zc
-    ref = np.sum(xx * xx)
+    # ZZ.T - XX.T = Y S Y.T with Y = [Z X], S = diag(I, -I). With the thin QR Y = Q R its Frobenius
+    # norm is that of the small matrix R S R.T: no cancellation between ||Z.T Z|| and ||X.T X||.
+    R = np.linalg.qr(np.hstack([Zc, Xc]), mode="r")
+    p = Zc.shape[1]
+    Rz, Rx = R[:, :p], R[:, p:]
+    ref = np.linalg.norm(Rx @ Rx.T)
     if ref <= 0:
         raise ValueError("the reference embedding X is a single point (its Gram matrix is zero).")
-    sq = np.sum(zz * zz) + ref - 2.0 * np.sum(xz * xz)
-    return float(np.sqrt(max(sq, 0.0) / ref))
+    return float(np.linalg.norm(Rz @ Rz.T - Rx @ Rx.T) / ref)
 
 
 def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
@@ -132,9 +136,8 @@ def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
     ref = np.sum(Xc * Xc)
     if ref <= 0:
         raise ValueError("the reference embedding X is a single point.")
-    sigma = np.linalg.svd(Zc.T @ Xc, compute_uv=False)
-    sq = np.sum(Zc * Zc) + ref - 2.0 * sigma.sum()
-    return float(np.sqrt(max(sq, 0.0) / ref))
+    U, _, Vt = np.linalg.svd(Zc.T @ Xc)
+    return float(np.linalg.norm(Zc @ (U @ Vt) - Xc) / np.sqrt(ref))
 
 
 # --- classical MDS ----------------------------------------------------------------------------

@@ -1,0 +1,221 @@
+"""Classical, landmark and spectral MDS: exact recovery, convergence to classical MDS, clear errors."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.distance import cdist
+
+from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
+from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
+from lbo_notebooks.mds import (
+    classical_mds,
+    gram_error,
+    landmark_mds,
+    procrustes_error,
+    scale_mu,
+    spectral_mds,
+)
+
+
+@pytest.fixture(scope="module")
+def blob():
+    """A 162-vertex non-symmetric blob with its full heat-distance matrix, eigenbasis and FPS."""
+    m = shapes.bumpy_sphere(2)
+    n = m.n_vertices
+    D = geodesic_distances(m, np.arange(n))
+    samples, fields = farthest_point_sampling(m, n, return_distances=True)
+    return m, D, classical_mds(D), eigenbasis(m, n), (samples, fields)
+
+
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
+    return np.linalg.qr(rng.normal(size=(3, 3)))[0]
+
+
+# --- accuracy metrics --------------------------------------------------------------------------
+def test_gram_error_matches_the_dense_definition():
+    rng = np.random.default_rng(0)
+    X, Z = rng.normal(size=(40, 3)), rng.normal(size=(40, 2))
+    Xc, Zc = X - X.mean(0), Z - Z.mean(0)
+    dense = np.linalg.norm(Zc @ Zc.T - Xc @ Xc.T) / np.linalg.norm(Xc @ Xc.T)
+    assert gram_error(Z, X) == pytest.approx(dense, rel=1e-12)
+
+
+def test_error_values_on_known_perturbations():
+    rng = np.random.default_rng(1)
+    X = rng.normal(size=(60, 3))
+    assert gram_error(2.0 * X, X) == pytest.approx(3.0)  # ||4G - G|| / ||G||
+    assert procrustes_error(1.1 * X, X) == pytest.approx(0.1)
+
+
+@settings(max_examples=10, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), reflect=st.booleans())
+def test_errors_ignore_rigid_motions(seed, reflect):
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(30, 3))
+    Q = random_rotation(rng) * (-1.0 if reflect else 1.0)
+    Z = X @ Q + rng.normal(size=3)
+    assert gram_error(Z, X) < 1e-10 and procrustes_error(Z, X) < 1e-10
+
+
+def test_metric_input_errors():
+    with pytest.raises(ValueError, match="same vertices"):
+        gram_error(np.ones((3, 2)), np.ones((4, 2)))
+    with pytest.raises(ValueError, match="same dimension"):
+        procrustes_error(np.ones((3, 2)), np.ones((3, 3)))
+    with pytest.raises(ValueError, match="NaN"):
+        gram_error(np.full((3, 2), np.nan), np.ones((3, 2)))
+
+
+# --- classical MDS -----------------------------------------------------------------------------
+@pytest.mark.parametrize("n", [50, 600])  # dense eigh and Lanczos paths
+def test_classical_mds_recovers_points_up_to_rigid_motion(n):
+    rng = np.random.default_rng(n)
+    P = rng.normal(size=(n, 3)) * [3.0, 2.0, 1.0]
+    D = cdist(P, P)
+    D_before = D.copy()
+    X = classical_mds(D, dim=3)
+    assert procrustes_error(X, P) < 1e-10
+    assert np.abs(cdist(X, X) - D).max() < 1e-9 * D.max()
+    assert np.array_equal(D, D_before)  # the caller's matrix is untouched
+    assert np.abs(X.mean(axis=0)).max() < 1e-10
+
+
+def test_classical_mds_of_a_plane_in_3d_gives_a_flat_third_axis():
+    rng = np.random.default_rng(2)
+    P = np.column_stack([rng.normal(size=(80, 2)), np.zeros(80)]) @ random_rotation(rng)
+    X = classical_mds(cdist(P, P), dim=3)
+    assert np.abs(X[:, 2]).max() < 1e-6 and procrustes_error(X, P) < 1e-6
+
+
+def test_classical_mds_from_a_mesh_equals_from_its_matrix(blob):
+    m, D, X, _, _ = blob
+    assert np.allclose(classical_mds(m), X)
+
+
+def test_classical_mds_refuses_sizes_that_do_not_fit(blob):
+    m, D, *_ = blob
+    with pytest.raises(MemoryError, match=r"needs \d+\.\d\d GiB"):
+        classical_mds(D, memory_budget=1e4)
+    with pytest.raises(MemoryError, match="spectral_mds"):
+        classical_mds(m, memory_budget=1e4)  # refused before any distance is computed
+
+
+@pytest.mark.parametrize(
+    "D, match",
+    [(np.ones((3, 4)), "square"), (-np.ones((4, 4)), "non-negative"), (np.full((4, 4), np.inf), "NaN or inf")],
+)
+def test_classical_mds_bad_matrices(D, match):
+    with pytest.raises(ValueError, match=match):
+        classical_mds(D, dim=2)
+
+
+def test_classical_mds_bad_dim():
+    with pytest.raises(ValueError, match="dim=5 must be smaller"):
+        classical_mds(np.zeros((5, 5)), dim=5)
+
+
+# --- landmark MDS ------------------------------------------------------------------------------
+def test_landmark_mds_with_every_vertex_is_classical_mds(blob):
+    # with symmetric distances (heat distances are not exactly symmetric) the two coincide
+    m, D, X, _, (samples, fields) = blob
+    S = 0.5 * (D + D.T)
+    assert gram_error(landmark_mds(S[samples], landmarks=samples), classical_mds(S)) < 1e-10
+
+
+def test_landmark_mds_converges_to_classical(blob):
+    m, D, X, _, (samples, fields) = blob
+    errs = [gram_error(landmark_mds(fields[:q], landmarks=samples[:q]), X) for q in (10, 20, 40, 162)]
+    # measured 0.12, 0.05, 0.034, 0.018 (not 0: heat distances are not exactly symmetric)
+    assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.03
+
+
+def test_landmark_mds_from_a_mesh(blob):
+    m, D, X, _, _ = blob
+    Z = landmark_mds(m, n_samples=40)
+    assert Z.shape == (m.n_vertices, 3) and gram_error(Z, X) < 0.06
+
+
+def test_landmark_mds_errors(blob):
+    m, *_ = blob
+    with pytest.raises(ValueError, match="more than the mesh's 162 vertices"):
+        landmark_mds(m, n_samples=163)
+    with pytest.raises(ValueError, match="landmarks="):
+        landmark_mds(np.ones((3, 10)))
+    with pytest.raises(ValueError, match="dim=3 must be smaller than the number of landmarks"):
+        landmark_mds(m, n_samples=3)
+
+
+# --- spectral MDS ------------------------------------------------------------------------------
+def test_spectral_mds_with_the_full_basis_and_all_samples_is_classical(blob):
+    # k = q = n and mu -> 0: Phi alpha Phi.T interpolates D2 exactly, so SMDS is classical MDS.
+    m, D, X, spec, sampling = blob
+    n = m.n_vertices
+    Z = spectral_mds(m, n_eigs=n, n_samples=n, mu=1e-10, spectrum=spec, sampling=sampling)
+    assert gram_error(Z, X) < 1e-6
+
+
+def test_spectral_mds_converges_with_eigenfunctions(blob):
+    m, D, X, spec, sampling = blob
+    errs = [gram_error(spectral_mds(m, n_eigs=k, n_samples=162, spectrum=spec, sampling=sampling), X)
+            for k in (10, 20, 40, 80)]
+    # measured (exact distances) 0.10, 0.033, 0.012, 0.0066
+    assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.015
+
+
+def test_spectral_mds_converges_with_samples(blob):
+    m, D, X, spec, sampling = blob
+    errs = [gram_error(spectral_mds(m, n_eigs=40, n_samples=q, spectrum=spec, sampling=sampling), X)
+            for q in (20, 40, 80, 162)]
+    assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.02
+
+
+def test_spectral_mds_is_rigid_and_scale_covariant(blob):
+    # mu is dimensionless: scaling the shape by s scales the canonical form by s, nothing else.
+    m, D, X, _, _ = blob
+    rng = np.random.default_rng(5)
+    moved = m.with_vertices(3.0 * m.vertices @ random_rotation(rng) + 1.0)
+    Z = spectral_mds(m, n_samples=60, n_eigs=40)
+    Zm = spectral_mds(moved, n_samples=60, n_eigs=40)
+    assert procrustes_error(Zm / 3.0, Z) < 1e-6
+
+
+def test_spectral_mds_details_and_determinism(blob):
+    m, *_ = blob
+    Z1, info = spectral_mds(m, n_samples=50, n_eigs=30, return_details=True)
+    Z2 = spectral_mds(m, n_samples=50, n_eigs=30)
+    assert np.array_equal(Z1, Z2)
+    assert info["eigengap"] > 1 and info["eigenvalues"].shape == (4,) and info["samples"].shape == (50,)
+    assert set(info["timings"]) == {"eigenbasis", "sampling", "embedding", "total"} and info["mu_abs"] > 0
+
+
+def test_scale_mu_is_dimensionless():
+    rng = np.random.default_rng(0)
+    phi_s, lam = rng.normal(size=(30, 10)), np.linspace(0, 9, 10)
+    assert scale_mu(0.05, 2 * phi_s, lam / 4) == pytest.approx(16 * scale_mu(0.05, phi_s, lam))
+
+
+def test_spectral_mds_errors(blob):
+    m, D, X, spec, sampling = blob
+    with pytest.raises(ValueError, match="more than the mesh's 162 vertices"):
+        spectral_mds(m, n_samples=200, n_eigs=20)
+    with pytest.raises(ValueError, match="dim=20 must be smaller than n_eigs"):
+        spectral_mds(m, dim=20, n_eigs=20, n_samples=50)
+    with pytest.raises(ValueError, match="mu must be a positive number"):
+        spectral_mds(m, n_eigs=20, n_samples=50, mu=0.0)
+    with pytest.raises(ValueError, match="spectrum has 10 eigenpairs"):
+        spectral_mds(m, n_eigs=20, n_samples=50, spectrum=eigenbasis(m, 10))
+    with pytest.raises(ValueError, match="count >= 50"):
+        spectral_mds(m, n_eigs=20, n_samples=50, sampling=(sampling[0][:10], sampling[1][:10]))
+
+
+def test_disconnected_mesh_is_refused():
+    a = shapes.icosphere(1)
+    two = Mesh(np.vstack([a.vertices, a.vertices + 3.0]), np.vstack([a.faces, a.faces + a.n_vertices]))
+    for call in (lambda: spectral_mds(two, n_eigs=10, n_samples=20),
+                 lambda: landmark_mds(two, n_samples=10),
+                 lambda: classical_mds(two)):
+        with pytest.raises(MeshError, match="keep_largest_component"):
+            call()
