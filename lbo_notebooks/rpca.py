@@ -1,0 +1,764 @@
+"""Regularized PCA: principal components married to the Dirichlet energy (paper, section 6).
+
+Given training functions ``X`` (n x c, e.g. the x, y, z coordinates of two poses that share a
+triangulation), regularized PCA looks for an A-orthonormal basis ``P`` (n x m) that represents the
+data well *and* is smooth:
+
+    minimise  sum_i ||P P.T A x_i - x_i||_A^2 + mu * sum_j P_j.T W P_j   subject to  P.T A P = I.
+
+The objective equals ``const - trace(P.T (A X X.T A - mu W) P)``, so the minimiser is the set of
+``m`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (MATH.md section 5).
+``mu -> infinity`` gives the first ``m`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
+PCA directions first, and then (the data have rank at most c) the smoothest functions A-orthogonal
+to the data.
+
+The closed form is computed exactly without ever forming an n x n matrix. The difficulty is a badly
+spread spectrum: the few data eigenvalues can be 1e6 times larger than the smoothness ones, so a
+single shift-invert Lanczos run cannot resolve both ends. :class:`RegularizedPCA` therefore
+
+1. factorises ``W + t0 A`` once (``t0`` a small area-scaled shift) and, with the Woodbury identity,
+   counts the eigenvalues above the split point ``tau = mu t0`` exactly from a c x c matrix;
+2. finds those few "data" eigenpairs by a rational Krylov / inverse-iteration Rayleigh–Ritz,
+   with one shift (one sparse factorisation) per data eigenvalue;
+3. finds the remaining ``m - k`` eigenpairs by shift-invert Lanczos at ``tau`` on the
+   A-orthogonal complement of the data eigenvectors (Woodbury solves with the step-1 factor);
+4. finishes with one Rayleigh–Ritz over both sets.
+
+The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
+``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
+
+A raw ``mu`` depends on the units of the data and of the mesh. The dimensionless weight
+``beta in [0, 1]`` balances the two terms, each normalised by its top eigenvalue::
+
+    maximise  (1 - beta) trace(P.T B P) / s_B  -  beta trace(P.T W P) / lam_ref,
+
+with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi m /
+area`` Weyl's estimate of the m-th Laplace–Beltrami eigenvalue, i.e.
+``mu = beta / (1 - beta) * s_B / lam_ref`` (:func:`mu_from_beta`). ``beta = 0`` is PCA,
+``beta = 1`` the eigenbasis, and the same ``beta`` means the same balance on every shape and scale.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal, Sequence
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from .spectrum import check_operators, eigenbasis, fix_signs
+
+__all__ = [
+    "RegularizedPCA",
+    "RPCAResult",
+    "regularized_pca",
+    "mu_from_beta",
+    "beta_from_mu",
+    "reconstruct",
+    "reconstruction_error",
+    "principal_angles",
+]
+
+Method = Literal["auto", "dense", "sparse"]
+
+# Below this many vertices method="auto" uses dense scipy.linalg.eigh (exact and fast enough).
+DENSE_LIMIT = 1500
+# Residual (relative backward error) at which a data eigenpair counts as converged.
+_DATA_TOL = 1e-12
+_MAX_ROUNDS = 8
+
+
+# --- small linear-algebra helpers --------------------------------------------------------------
+def _factor(M: sp.spmatrix) -> spla.SuperLU:
+    """Sparse LU of a symmetric positive definite matrix (no pivoting needed, symmetric ordering)."""
+    return spla.splu(
+        sp.csc_matrix(M), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+    )
+
+
+def _extend(S: NDArray[np.float64], V: NDArray[np.float64], A: sp.csr_matrix, drop: float = 1e-8) -> NDArray[np.float64]:
+    """Append to the A-orthonormal columns ``S`` an A-orthonormal basis of ``V``'s new directions.
+
+    Each column is scaled to unit A-norm; directions whose part A-orthogonal to ``S`` (and to the
+    other columns) is below ``drop`` are discarded: rank-deficient data, or directions already in
+    the subspace. Gram-eigenvector orthonormalisation is repeated so that round-off does not
+    accumulate (the first pass has condition number at most ``1 / drop``).
+    """
+    V = np.array(V, dtype=np.float64, copy=True)
+    if V.shape[1] == 0:
+        return S
+    norms = np.sqrt(np.maximum(np.einsum("ij,ij->j", V, A @ V), 0.0))
+    V = V[:, norms > 0] / norms[norms > 0]
+    for _ in range(3):
+        if V.shape[1] == 0:
+            return S
+        if S.shape[1]:
+            V -= S @ (S.T @ (A @ V))
+            V -= S @ (S.T @ (A @ V))
+        gram = V.T @ (A @ V)
+        w, E = np.linalg.eigh((gram + gram.T) / 2)
+        keep = w > (drop**2 if _ == 0 else 0.5)
+        V = (V @ E[:, keep]) / np.sqrt(w[keep])
+    return np.hstack([S, V])
+
+
+def _a_orthonormal(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
+    """An A-orthonormal basis of ``span V`` (columns rotated; rank-deficient input allowed)."""
+    return _extend(np.zeros((V.shape[0], 0)), V, A)
+
+
+def _a_orthonormal_ordered(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
+    """A-orthonormalise nearly A-orthonormal, full-rank columns *without* mixing them.
+
+    Cholesky QR twice: column j only combines with columns before it, so eigenvectors that are
+    already orthonormal up to round-off keep their order and meaning.
+    """
+    for _ in range(2):
+        gram = V.T @ (A @ V)
+        chol = np.linalg.cholesky((gram + gram.T) / 2)
+        V = scipy.linalg.solve_triangular(chol, V.T, lower=True).T
+    return V
+
+
+def _rayleigh_ritz(
+    S: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns ``S``."""
+    SU = S.T @ U
+    G = SU @ SU.T - mu * (S.T @ (W @ S))
+    w, E = np.linalg.eigh((G + G.T) / 2)
+    order = np.argsort(w)[::-1][:k]
+    return w[order], S @ E[:, order]
+
+
+# --- input checks ------------------------------------------------------------------------------
+def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
+    X = np.asarray(data, dtype=np.float64)
+    if X.ndim == 1:
+        X = X[:, None]
+    if X.ndim != 2 or X.shape[0] != n or X.shape[1] == 0:
+        raise ValueError(
+            f"data must have shape ({n}, c): one row per vertex of the operators and one column per "
+            f"training function (e.g. np.hstack of (n, 3) vertex arrays); got {np.shape(data)}."
+        )
+    if not np.all(np.isfinite(X)):
+        raise ValueError("data contains NaN or inf; regularized PCA of such data is meaningless. Clean it first.")
+    return np.array(X, copy=True)
+
+
+def _check_m(m: int, n: int) -> int:
+    if isinstance(m, bool) or not isinstance(m, (int, np.integer)):
+        raise ValueError(f"m must be an integer number of basis functions, got {m!r}.")
+    if not 1 <= m <= n:
+        raise ValueError(f"m must be between 1 and the number of vertices ({n}), got {m}.")
+    return int(m)
+
+
+def _check_mu(mu: float) -> float:
+    if isinstance(mu, bool) or not np.isscalar(mu) or np.isnan(mu):
+        raise ValueError(f"mu must be a number >= 0, got {mu!r}.")
+    if mu < 0:
+        raise ValueError(
+            f"mu must be >= 0, got {mu!r}: a negative weight would reward rough functions. "
+            "Use mu = 0 for PCA or a beta in [0, 1] (see mu_from_beta)."
+        )
+    return float(mu)
+
+
+def _check_beta(beta: float) -> float:
+    if isinstance(beta, bool) or not np.isscalar(beta) or not (0.0 <= float(beta) <= 1.0):
+        raise ValueError(f"beta must be a number in [0, 1] (0 = PCA, 1 = Laplace–Beltrami eigenbasis), got {beta!r}.")
+    return float(beta)
+
+
+def _area_weights(A: sp.csr_matrix) -> NDArray[np.float64]:
+    return np.asarray(A.sum(axis=1)).ravel()
+
+
+def _centred(X: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
+    a = _area_weights(A)
+    return X - (a @ X) / a.sum()
+
+
+# --- results -----------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class RPCAResult:
+    """A regularized PCA basis and its generalized eigenvalues.
+
+    Attributes
+    ----------
+    basis : ndarray, shape (n, m)
+        A-orthonormal columns, ordered by decreasing ``values``; signs fixed by
+        :func:`~lbo_notebooks.spectrum.fix_signs`.
+    values : ndarray, shape (m,)
+        Generalized eigenvalues ``sigma`` of ``(A X X.T A - mu W) p = sigma A p``, descending.
+        At ``mu = 0`` the directions beyond the rank of the data all have ``sigma = 0`` and are
+        ordered by smoothness (the ``mu -> 0`` limit). At ``mu = inf`` every direction with
+        positive Dirichlet energy has ``sigma = -inf``.
+    mu : float
+        The raw weight used (``inf`` for ``beta = 1``).
+    n_data : int
+        Number of eigenvalues above the split point: the "data" directions (at most c).
+    """
+
+    basis: NDArray[np.float64]
+    values: NDArray[np.float64]
+    mu: float
+    n_data: int
+
+    def __post_init__(self) -> None:
+        self.basis.setflags(write=False)
+        self.values.setflags(write=False)
+
+    @property
+    def m(self) -> int:
+        return int(self.basis.shape[1])
+
+    def __repr__(self) -> str:
+        return f"RPCAResult(m={self.m}, mu={self.mu:.4g}, n_data={self.n_data})"
+
+
+# --- the solver ----------------------------------------------------------------------------------
+class RegularizedPCA:
+    """Regularized PCA of fixed training data on a fixed mesh, solved for any weight ``mu``.
+
+    The expensive, weight-independent work (operator checks, the factorisation of ``W + t0 A``,
+    the data products) is done once, so sweeping ``mu`` or ``beta`` is cheap.
+
+    Parameters
+    ----------
+    data : array_like, shape (n, c) or (n,)
+        Training functions, one column each (e.g. ``np.hstack([pose1, pose2])``). Copied.
+    stiffness, mass : scipy.sparse matrix, shape (n, n)
+        Cotangent stiffness ``W`` and mass ``A`` (:mod:`lbo_notebooks.operators`).
+    center : bool
+        Subtract the A-weighted mean of every column first. With centred data the constant
+        function is always in the basis (for ``mu > 0``), which is what shape reconstruction wants.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    >>> X = np.hstack([mesh.vertices, mesh.vertices ** 2])
+    >>> solver = RegularizedPCA(X, W, A, center=True)
+    >>> result = solver.solve(20, beta=0.5)
+    >>> bool(np.allclose(result.basis.T @ A @ result.basis, np.eye(20), atol=1e-10))
+    True
+    """
+
+    def __init__(self, data: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, center: bool = False) -> None:
+        W, A = check_operators(stiffness, mass)
+        n = W.shape[0]
+        X = _check_data(data, n)
+        if center:
+            X = _centred(X, A)
+        X.setflags(write=False)
+        self.stiffness, self.mass, self.data, self.center = W, A, X, bool(center)
+        self.n_vertices = n
+        self.area = float(_area_weights(A).sum())
+        U = np.asarray(A @ X)
+        U.setflags(write=False)
+        self._U = U
+        gram = X.T @ U
+        self.data_values = np.sort(np.linalg.eigvalsh((gram + gram.T) / 2))[::-1]
+        self.data_values.setflags(write=False)
+        # The split-point shift: small against the smoothness eigenvalues at every scale
+        # (the first nonzero one is of order 4 pi / area), like spectrum.eigenbasis's shift.
+        self._t0 = 1e-2 * 4.0 * np.pi / self.area
+        self._base_factor: spla.SuperLU | None = None
+        self._base_solved: NDArray[np.float64] | None = None
+
+    def __repr__(self) -> str:
+        return f"RegularizedPCA(n_vertices={self.n_vertices}, n_data={self.data.shape[1]}, center={self.center})"
+
+    # ---- weights ----
+    @property
+    def top_data_value(self) -> float:
+        """``s_B``: the largest eigenvalue of ``(A X X.T A, A)``, i.e. of ``X.T A X``."""
+        return float(max(self.data_values[0], 0.0))
+
+    def reference_eigenvalue(self, m: int) -> float:
+        """Weyl's estimate ``4 pi m / area`` of the m-th Laplace–Beltrami eigenvalue."""
+        return 4.0 * np.pi * _check_m(m, self.n_vertices) / self.area
+
+    def mu_from_beta(self, beta: float, m: int) -> float:
+        """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
+        beta = _check_beta(beta)
+        if beta == 1.0:
+            return float("inf")
+        if self.top_data_value <= 0.0:
+            raise ValueError("the data are identically zero (after centring), so beta has no meaning; pass mu instead.")
+        return beta / (1.0 - beta) * self.top_data_value / self.reference_eigenvalue(m)
+
+    def beta_from_mu(self, mu: float, m: int) -> float:
+        """Inverse of :meth:`mu_from_beta`."""
+        mu = _check_mu(mu)
+        if np.isinf(mu):
+            return 1.0
+        if self.top_data_value <= 0.0:
+            raise ValueError("the data are identically zero (after centring), so beta has no meaning.")
+        r = mu * self.reference_eigenvalue(m) / self.top_data_value
+        return r / (1.0 + r)
+
+    # ---- solving ----
+    def solve(self, m: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
+        """The regularized PCA basis of size ``m`` for weight ``mu`` (or dimensionless ``beta``).
+
+        Parameters
+        ----------
+        m : int
+            Number of basis functions, ``1 <= m <= n``.
+        mu : float, optional
+            Raw weight ``>= 0`` (``inf`` allowed: the eigenbasis). Give exactly one of mu, beta.
+        beta : float in [0, 1], optional
+            Dimensionless weight (:meth:`mu_from_beta`).
+        method : {"auto", "dense", "sparse"}
+            ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
+            ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
+            ``"auto"`` picks dense below 1,500 vertices.
+
+        Returns
+        -------
+        RPCAResult
+        """
+        m = _check_m(m, self.n_vertices)
+        if (mu is None) == (beta is None):
+            raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
+        mu = self.mu_from_beta(beta, m) if beta is not None else _check_mu(mu)
+        if method not in ("auto", "dense", "sparse"):
+            raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+        n, c = self.data.shape
+        if method == "auto":
+            method = "dense" if n <= DENSE_LIMIT else "sparse"
+        if method == "sparse" and 2 * m + c + 2 > n:
+            method = "dense"  # Lanczos needs room: m close to n is a small-mesh problem anyway
+        if np.isinf(mu):
+            return self._solve_infinite(m)
+        if mu == 0.0:
+            return self._solve_pca_limit(m, method)
+        if method == "dense":
+            return self._solve_dense(m, mu)
+        return self._solve_sparse(m, mu)
+
+    # mu = inf: the Laplace–Beltrami eigenbasis
+    def _solve_infinite(self, m: int) -> RPCAResult:
+        spectrum = eigenbasis((self.stiffness, self.mass), m)
+        P = np.array(spectrum.vectors)
+        kernel = spectrum.values <= 1e-9 * max(float(spectrum.values[-1]), 1e-300)
+        PU = P.T @ self._U
+        data_term = np.einsum("ij,ij->i", PU, PU)
+        values = np.where(kernel, data_term, -np.inf)
+        return RPCAResult(basis=P, values=values, mu=float("inf"), n_data=0)
+
+    # mu = 0: PCA first, then the smoothest functions A-orthogonal to the data (the mu -> 0 limit)
+    def _solve_pca_limit(self, m: int, method: str) -> RPCAResult:
+        W, A, U = self.stiffness, self.mass, self._U
+        Q = _a_orthonormal(np.array(self.data), A)  # basis of span X (rank r)
+        QU = Q.T @ U
+        w, E = np.linalg.eigh(QU @ QU.T)
+        order = np.argsort(w)[::-1]
+        w, E = w[order], E[:, order]
+        positive = w > 1e-12 * max(float(w[0]) if w.size else 0.0, 1e-300)
+        r = int(positive.sum())
+        pca = Q @ E[:, :r]
+        if m <= r:
+            basis, values = pca[:, :m], w[:m]
+        else:
+            Q_all = Q  # deflate the whole span of the data, not only its top directions
+            if method == "dense":
+                Z = scipy.linalg.null_space((A @ Q_all).T)
+                Zw = Z.T @ (W @ Z)
+                Za = Z.T @ (A @ Z)
+                _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, m - r - 1])
+                rest = Z @ Y  # already A-orthonormal: Y.T (Z.T A Z) Y = I
+            else:
+                rest = self._complement_lanczos(m - r, Q_all, mu=None)
+            basis = np.hstack([pca, rest])
+            values = np.concatenate([w[:r], np.zeros(m - r)])
+        return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, m))
+
+    def _solve_dense(self, m: int, mu: float) -> RPCAResult:
+        n = self.n_vertices
+        U = self._U
+        L = U @ U.T - mu * self.stiffness.toarray()
+        Ad = self.mass.toarray()
+        values, vectors = scipy.linalg.eigh((L + L.T) / 2, (Ad + Ad.T) / 2, subset_by_index=[n - m, n - 1])
+        values, vectors = values[::-1], vectors[:, ::-1]
+        tau = mu * self._t0
+        return RPCAResult(
+            basis=fix_signs(vectors, self.mass), values=np.ascontiguousarray(values), mu=mu, n_data=int((values > tau).sum())
+        )
+
+    # ---- the sparse exact path ----
+    def _base(self) -> tuple[spla.SuperLU, NDArray[np.float64]]:
+        """Factor of ``W + t0 A`` and ``(W + t0 A)^-1 A X``: independent of mu, computed once."""
+        if self._base_factor is None:
+            self._base_factor = _factor(self.stiffness + self._t0 * self.mass)
+            self._base_solved = self._base_factor.solve(np.array(self._U))
+        assert self._base_solved is not None
+        return self._base_factor, self._base_solved
+
+    def _solve_sparse(self, m: int, mu: float) -> RPCAResult:
+        W, A, U, X = self.stiffness, self.mass, self._U, self.data
+        c = U.shape[1]
+        tau = mu * self._t0
+        F0, Z0 = self._base()
+        Y0 = Z0 / mu  # (mu W + tau A)^-1 U
+        H = U.T @ Y0
+        # Sylvester's law of inertia on [[-M, U], [U.T, -I]]: the number of eigenvalues of the
+        # pencil above tau equals the number of eigenvalues of U.T M^-1 U above 1.
+        k = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
+        kk = min(k, m)
+        data_vectors = np.zeros((self.n_vertices, 0))
+        if kk:
+            data_vectors = self._data_eigenpairs(kk, mu, tau, Y0)
+        rest = np.zeros((self.n_vertices, 0))
+        if m > kk:
+            rest = self._complement_lanczos(m - kk, data_vectors, mu=mu, Y0=Y0)
+        S = _a_orthonormal(np.hstack([data_vectors, rest]), A)
+        values, P = _rayleigh_ritz(S, U, W, mu, m)
+        if P.shape[1] < m:  # pragma: no cover - would mean a lost direction
+            raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
+        return RPCAResult(basis=fix_signs(P, A), values=values, mu=mu, n_data=kk)
+
+    def _data_eigenpairs(self, k: int, mu: float, tau: float, Y0: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
+        W, A, U, X = self.stiffness, self.mass, self._U, self.data
+        c = U.shape[1]
+        S = _a_orthonormal(np.hstack([X, Y0]), A)
+        theta, P = _rayleigh_ritz(S, U, W, mu, k)
+        # One factorisation per data eigenvalue, at its current Ritz estimate (Ritz values are lower
+        # bounds; below tau we keep the tau factor, whose block Y0 is already in the subspace).
+        solvers: list[tuple[float, spla.SuperLU, NDArray[np.float64], NDArray[np.float64]]] = []
+        blocks = []
+        for s in theta:
+            if s <= tau * (1 + 1e-8):
+                continue
+            F = _factor(mu * W + s * A)
+            Y = F.solve(np.array(U))
+            C = np.eye(c) - U.T @ Y
+            solvers.append((float(s), F, Y, C))
+            blocks.append(Y)
+        if blocks:
+            S = _extend(S, np.hstack(blocks), A)
+            theta, P = _rayleigh_ritz(S, U, W, mu, k)
+
+        def shifted_solve(j: int, b: NDArray[np.float64]) -> NDArray[np.float64]:
+            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor nearest to theta[j].
+            s, F, Y, C = min(solvers, key=lambda t: abs(np.log(t[0] / max(theta[j], tau))))
+            z = F.solve(b)
+            try:
+                return z + Y @ np.linalg.solve(C, U.T @ z)
+            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: Y already holds the vector
+                return z
+
+        scale = abs(theta[0]) + mu * abs(W).sum(axis=1).max() + 1.0
+        for _ in range(_MAX_ROUNDS):
+            R = U @ (U.T @ P) - mu * (W @ P) - (A @ P) * theta
+            res = np.linalg.norm(R, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", P, A @ P)) * max(1.0, np.abs(A).max()))
+            if np.all(res < _DATA_TOL) or not solvers:
+                break
+            new = np.column_stack([shifted_solve(j, A @ P[:, j]) for j in range(k)])
+            S = _extend(S, new, A)
+            theta, P = _rayleigh_ritz(S, U, W, mu, k)
+        return P
+
+    def _complement_lanczos(
+        self, count: int, deflate: NDArray[np.float64], *, mu: float | None, Y0: NDArray[np.float64] | None = None
+    ) -> NDArray[np.float64]:
+        """Top ``count`` eigenvectors of the pencil on the A-orthogonal complement of ``deflate``.
+
+        ``mu=None`` means the mu -> 0 limit: the smoothest functions (smallest ``W`` eigenvalues)
+        A-orthogonal to ``deflate``. Otherwise the pencil is ``(U U.T - mu W, A)`` and shift-invert
+        Lanczos runs at ``tau = mu t0``, using the mu-independent factor of ``W + t0 A``.
+        """
+        W, A, U = self.stiffness, self.mass, self._U
+        n = self.n_vertices
+        F0, _ = self._base()
+        D = deflate
+        AD = np.asarray(A @ D)
+
+        def project(x: NDArray[np.float64]) -> NDArray[np.float64]:  # A-orthogonal projector
+            return x - D @ (D.T @ (A @ x)) if D.shape[1] else x
+
+        def project_t(y: NDArray[np.float64]) -> NDArray[np.float64]:  # its transpose
+            return y - AD @ (D.T @ y) if D.shape[1] else y
+
+        if mu is None:
+            # Constrained problem: smallest W eigenpairs on {p : D.T A p = 0}. Span D is not
+            # W-invariant, so the shift-inverse of the *compressed* pencil is needed: the saddle
+            # point solve [[W + t0 A, A D], [D.T A, 0]] (Schur complement on the few columns of D).
+            sigma = -self._t0
+            KD = F0.solve(np.array(AD)) if D.shape[1] else np.zeros((n, 0))
+            schur = AD.T @ KD
+
+            def inner(y: NDArray[np.float64]) -> NDArray[np.float64]:
+                z = F0.solve(y)
+                return z - KD @ np.linalg.solve(schur, AD.T @ z) if D.shape[1] else z
+
+            L = spla.aslinearoperator(W)
+        else:
+            assert Y0 is not None
+            sigma = mu * self._t0
+            C = np.eye(U.shape[1]) - U.T @ Y0
+
+            def inner(y: NDArray[np.float64]) -> NDArray[np.float64]:
+                # (U U.T - mu W - tau A)^-1 y = -(M - U U.T)^-1 y, M = mu (W + t0 A); Woodbury.
+                z = F0.solve(y) / mu
+                return -(z + Y0 @ np.linalg.solve(C, U.T @ z))
+
+            L = spla.LinearOperator((n, n), matvec=lambda x: U @ (U.T @ x) - mu * (W @ x), dtype=np.float64)
+
+        def opinv(y: NDArray[np.float64]) -> NDArray[np.float64]:
+            y = np.asarray(y, dtype=np.float64).reshape(n)
+            return project(inner(project_t(y)))
+
+        op = spla.LinearOperator((n, n), matvec=opinv, dtype=np.float64)
+        v0 = project(1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64)))
+        values, vectors = spla.eigsh(L, k=count, M=A, sigma=sigma, which="LM", OPinv=op, v0=v0)
+        order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
+        return _a_orthonormal_ordered(project(vectors[:, order]), A)
+
+    def sweep(self, m: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
+        """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation."""
+        if (betas is None) == (mus is None):
+            raise ValueError("give exactly one of betas or mus.")
+        if betas is not None:
+            return [self.solve(m, beta=b) for b in betas]
+        return [self.solve(m, mu) for mu in mus]  # type: ignore[union-attr]
+
+
+# --- functional interface ----------------------------------------------------------------------
+def regularized_pca(
+    data: ArrayLike,
+    stiffness: sp.spmatrix,
+    mass: sp.spmatrix,
+    m: int,
+    mu: float | None = None,
+    *,
+    beta: float | None = None,
+    center: bool = False,
+    return_values: bool = False,
+    method: Method = "auto",
+) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A-orthonormal basis of the ``m`` top generalized eigenvectors of ``(A X X.T A - mu W, A)``.
+
+    This is the exact minimiser of ``sum_i ||P P.T A x_i - x_i||_A^2 + mu sum_j P_j.T W P_j``
+    over ``P.T A P = I``. No n x n matrix is formed unless ``method="dense"``.
+
+    Parameters
+    ----------
+    data : array_like, shape (n, c)
+        Training functions ``X``, one per column.
+    stiffness, mass : scipy.sparse matrix
+        ``W`` and ``A``.
+    m : int
+        Number of basis functions, ``1 <= m <= n``.
+    mu : float, optional
+        Raw weight, ``>= 0``; ``0`` is PCA (then the smoothest functions A-orthogonal to the data),
+        ``inf`` the Laplace–Beltrami eigenbasis.
+    beta : float in [0, 1], optional
+        Dimensionless weight instead of ``mu`` (see :func:`mu_from_beta`).
+    center : bool
+        Remove the A-weighted mean of each data column first.
+    return_values : bool
+        Also return the eigenvalues ``sigma`` (descending).
+    method : {"auto", "dense", "sparse"}
+
+    Returns
+    -------
+    basis : ndarray, shape (n, m)
+    values : ndarray, shape (m,), only if ``return_values``
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    >>> P = regularized_pca(mesh.vertices, W, A, 10, mu=1e-3, center=True)
+    >>> P.shape
+    (642, 10)
+    """
+    result = RegularizedPCA(data, stiffness, mass, center=center).solve(m, mu, beta=beta, method=method)
+    basis = np.array(result.basis)
+    return (basis, np.array(result.values)) if return_values else basis
+
+
+def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+    """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
+
+    ``mu = beta / (1 - beta) * s_B / lam_ref``: ``s_B`` is the largest eigenvalue of ``X.T A X``
+    (the top data eigenvalue) and ``lam_ref = 4 pi m / area`` is Weyl's estimate of the m-th
+    Laplace–Beltrami eigenvalue. Both scale with the shape, so ``beta`` does not. ``beta = 1``
+    gives ``inf``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> mesh = shapes.icosphere(2)
+    >>> A = mass_matrix(mesh)
+    >>> mu1 = mu_from_beta(0.5, mesh.vertices, A, 10)
+    >>> mu2 = mu_from_beta(0.5, 2 * mesh.vertices, 4 * A, 10)  # the same sphere, twice the size
+    >>> round(mu2 / mu1, 6)  # s_B grows 16x, lam_ref shrinks 4x
+    64.0
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    X = _check_data(data, A.shape[0])
+    if center:
+        X = _centred(X, A)
+    beta = _check_beta(beta)
+    if beta == 1.0:
+        return float("inf")
+    gram = X.T @ (A @ X)
+    s_B = float(np.linalg.eigvalsh((gram + gram.T) / 2)[-1])
+    if s_B <= 0:
+        raise ValueError("the data are identically zero, so beta has no meaning; pass mu instead.")
+    lam_ref = 4.0 * np.pi * _check_m(m, A.shape[0]) / float(A.sum())
+    return beta / (1.0 - beta) * s_B / lam_ref
+
+
+def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+    """Inverse of :func:`mu_from_beta`."""
+    mu = _check_mu(mu)
+    if np.isinf(mu):
+        return 1.0
+    unit = mu_from_beta(0.5, data, mass, m, center=center)  # = s_B / lam_ref
+    return (mu / unit) / (1.0 + mu / unit)
+
+
+# --- evaluation protocol -------------------------------------------------------------------------
+def _check_basis(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
+    P = np.asarray(basis, dtype=np.float64)
+    n = mass.shape[0]
+    if P.ndim != 2 or P.shape[0] != n:
+        raise ValueError(f"basis must have shape ({n}, m), one column per basis function; got {P.shape}.")
+    if not np.all(np.isfinite(P)):
+        raise ValueError("basis contains NaN or inf.")
+    gram = P.T @ (mass @ P)
+    if not np.allclose(gram, np.eye(P.shape[1]), atol=1e-8):
+        raise ValueError(
+            "basis is not A-orthonormal (basis.T @ mass @ basis != I); the projection P P.T A would "
+            "be wrong. A-orthonormalise it first (e.g. spectrum vectors or regularized_pca output)."
+        )
+    return P
+
+
+def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
+    """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
+
+    The A-weighted centroid of each column is removed, the rest projected with
+    ``P P.T A``, and the centroid added back, as in the protocol of MATH.md section 5.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> s = eigenbasis(mesh, 642)
+    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8)
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    P = _check_basis(basis, A)
+    Y = _check_data(target, A.shape[0])
+    a = _area_weights(A)
+    centroid = (a @ Y) / a.sum()
+    Yc = Y - centroid
+    out = P @ (P.T @ (A @ Yc)) + centroid
+    return out[:, 0] if np.ndim(target) == 1 else out
+
+
+def reconstruction_error(
+    basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
+) -> float | NDArray[np.float64]:
+    """Relative A-norm reconstruction error ``sqrt(sum_c ||x_c - x̂_c||_A^2 / sum_c ||x_c||_A^2)``.
+
+    A-weighted centroids are removed from each column first (MATH.md section 5), so a basis
+    without the constant function is not penalised for translation.
+
+    Parameters
+    ----------
+    basis : array_like, shape (n, m)
+        A-orthonormal basis.
+    mass : scipy.sparse matrix
+    targets : (n, d) array, or a sequence of them
+        One shape (e.g. vertex coordinates of a pose) or several.
+
+    Returns
+    -------
+    float for one target, ndarray of floats for a sequence.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> s = eigenbasis(mesh, 50)
+    >>> e = reconstruction_error(s.vectors, s.mass, mesh.vertices)
+    >>> bool(0 < e < 0.1)
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    P = _check_basis(basis, A)
+    many = not (isinstance(targets, np.ndarray) or (np.ndim(targets) in (1, 2) and not isinstance(targets, (list, tuple))))
+    if isinstance(targets, (list, tuple)) and len(targets) and np.ndim(targets[0]) == 1 and np.ndim(targets) == 2:
+        many = False  # a plain nested list of rows is one target
+    items = list(targets) if many else [targets]
+    a = _area_weights(A)
+    errors = []
+    for target in items:
+        Y = _check_data(target, A.shape[0])
+        Yc = Y - (a @ Y) / a.sum()
+        R = Yc - P @ (P.T @ (A @ Yc))
+        num = float(np.einsum("ij,ij->", R, A @ R))
+        den = float(np.einsum("ij,ij->", Yc, A @ Yc))
+        if den <= 0:
+            raise ValueError("a target is constant (zero after removing its centroid); its relative error is undefined.")
+        errors.append(np.sqrt(max(num, 0.0) / den))
+    return np.array(errors) if many else errors[0]
+
+
+def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
+    """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
+
+    Both are A-orthonormalised first. Equal spans give all angles ~0; the largest angle measures
+    how far two bases are from spanning the same space.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(2), 4)
+    >>> rotated = s.vectors @ np.linalg.qr(np.arange(16.0).reshape(4, 4) + np.eye(4))[0]
+    >>> bool(principal_angles(s.vectors, rotated, s.mass).max() < 1e-6)
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    n = A.shape[0]
+    Pa, Qa = (np.asarray(x, dtype=np.float64) for x in (P, Q))
+    for name, x in (("P", Pa), ("Q", Qa)):
+        if x.ndim != 2 or x.shape[0] != n:
+            raise ValueError(f"{name} must have shape ({n}, k); got {x.shape}.")
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} contains NaN or inf.")
+    Pa, Qa = _a_orthonormal(Pa, A), _a_orthonormal(Qa, A)
+    if Qa.shape[1] > Pa.shape[1]:
+        Pa, Qa = Qa, Pa  # angles are symmetric; let Q be the smaller space
+    k = Qa.shape[1]
+    cos = np.clip(np.linalg.svd(Pa.T @ (A @ Qa), compute_uv=False), 0.0, 1.0)  # descending
+    # arccos is inaccurate for small angles: take their sines from the residual of Q off span P.
+    R = Qa - Pa @ (Pa.T @ (A @ Qa))
+    diag = A.diagonal()
+    if abs(A - sp.diags(diag)).max() == 0:  # lumped mass: an exact square root
+        sin = np.linalg.svd(np.sqrt(diag)[:, None] * R, compute_uv=False)[::-1]
+    else:
+        g = R.T @ (A @ R)
+        sin = np.sqrt(np.clip(np.linalg.eigvalsh((g + g.T) / 2), 0.0, None))
+    sin = np.clip(np.sort(sin)[:k], 0.0, 1.0)  # ascending
+    angles = np.where(cos > np.sqrt(0.5), np.arcsin(sin), np.arccos(cos))
+    return np.sort(angles)
