@@ -324,8 +324,9 @@ def farthest_point_sampling(
     Examples
     --------
     >>> from lbo_notebooks import shapes
-    >>> s = farthest_point_sampling(shapes.icosphere(3), 2)
-    >>> s[0], bool(np.linalg.norm(shapes.icosphere(3).vertices[s].sum(axis=0)) < 1e-6)  # antipodes
+    >>> sphere = shapes.icosphere(3)
+    >>> s = farthest_point_sampling(sphere, 2, method="exact")
+    >>> int(s[0]), bool(np.linalg.norm(sphere.vertices[s].sum(axis=0)) < 1e-9)  # antipodes
     (0, True)
     """
     solver = _solver(mesh, method)
