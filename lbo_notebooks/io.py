@@ -6,10 +6,12 @@ the ones the file lists, in the file's order; :func:`save_mesh` writes one;
 
 How each format is handled, and why
 -----------------------------------
-open3d reads and writes the binary formats (PLY, binary STL), after this module has checked the
-header against the file size, so that a header announcing absurd counts fails at once instead
-of allocating gigabytes. The text formats are parsed and written here, because open3d's readers
-are not safe or faithful on them (measured with open3d 0.20):
+open3d reads PLY (ASCII and binary) and writes binary PLY and binary STL, after this module has
+checked the header against the file size, so that a header announcing absurd counts fails at
+once instead of allocating gigabytes, and after reading checks that open3d got everything the
+header announced (its PLY reader returns partial, uninitialised arrays instead of failing). The
+other formats are parsed and written here, because open3d's readers are not safe or faithful on
+them (measured with open3d 0.20):
 
 - OFF: open3d's reader crashes the interpreter (segmentation fault) on a file with fewer
   vertices than its header announces, and fills the vertex array with uninitialised memory when a
@@ -18,8 +20,9 @@ are not safe or faithful on them (measured with open3d 0.20):
   vertex wherever its texture or normal index changes (cutting the surface open at every seam)
   and skips faces with more than three corners. Here the ``v`` and ``f`` lines are read directly,
   so vertex ``k`` of the mesh is the ``k``-th ``v`` line and ``vt``/``vn`` seams do not exist.
-- ASCII STL goes through ASSIMP in open3d, at single precision. Here it is read at double
-  precision.
+- STL: open3d reads ASCII STL through ASSIMP at single precision, and its binary STL reader
+  took about 4 s for 200k triangles; a binary STL is a header and fixed 50-byte records, read
+  here with one ``numpy.fromfile`` call.
 - open3d writes text formats with six significant digits, which is lossy; here they are written
   with 17, so that saving and loading gives back the same float64 coordinates.
 
@@ -46,6 +49,7 @@ True
 from __future__ import annotations
 
 import os
+import re
 import struct
 import warnings
 from dataclasses import dataclass, field
@@ -221,14 +225,22 @@ def _check_counts(p: Path, nv: int, nf: int, min_bytes: int) -> None:
         )
 
 
+def _numbers(text: str, dtype: Any) -> NDArray[Any] | None:
+    """All whitespace-separated numbers of ``text`` (C speed), or None if one is not a number."""
+    import warnings as _w
+
+    with _w.catch_warnings():
+        _w.simplefilter("ignore")  # numpy < 2 warns (instead of raising) on unparsable text
+        try:
+            return np.fromstring(text, dtype=dtype, sep=" ")
+        except ValueError:
+            return None
+
+
 def _parse_vertex_lines(lines: list[str], first_line: int) -> NDArray[np.float64]:
-    try:
-        # Fast path: every line holds exactly three numbers.
-        arr = np.array(" ".join(lines).split(), dtype=np.float64)
-        if arr.size == 3 * len(lines):
-            return arr.reshape(-1, 3)
-    except ValueError:
-        pass
+    arr = _numbers("\n".join(lines), np.float64)
+    if arr is not None and arr.size == 3 * len(lines):  # fast path: three numbers per line
+        return arr.reshape(-1, 3)
     out = np.empty((len(lines), 3))
     for k, line in enumerate(lines):
         parts = line.split()
@@ -247,14 +259,11 @@ def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], 
     """Faces written as 'k i_1 ... i_k [colour...]' (OFF)."""
     if not lines:
         return np.zeros((0, 3), dtype=np.int64), 0
-    try:
-        arr = np.array(" ".join(lines).split(), dtype=np.int64)
-        if arr.size == 4 * len(lines):
-            arr = arr.reshape(-1, 4)
-            if np.all(arr[:, 0] == 3):
-                return arr[:, 1:].copy(), 0
-    except (ValueError, OverflowError):
-        pass
+    arr = _numbers("\n".join(lines), np.int64)
+    if arr is not None and arr.size == 4 * len(lines):  # fast path: all triangles, nothing else
+        arr = arr.reshape(-1, 4)
+        if np.all(arr[:, 0] == 3) and all(len(line.split()) == 4 for line in lines):
+            return arr[:, 1:].copy(), 0
     polygons = []
     for k, line in enumerate(lines):
         parts = line.split()
@@ -276,13 +285,31 @@ def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], 
 
 def _read_obj(p: Path) -> _Raw:
     text = _read_text(p, "OBJ")
-    vertex_lines: list[str] = []
+    lines = text.splitlines()
+    vertex_lines = [line[2:].split("#", 1)[0] for line in lines if line[:2] in ("v ", "v\t")]
+    face_lines = [line[2:] for line in lines if line[:2] in ("f ", "f\t")]
+    if not vertex_lines:
+        raise MeshError("no vertex ('v x y z') lines found; this is not an OBJ mesh.")
+    if not face_lines:
+        raise MeshError("no face ('f a b c') lines found: the file is a point cloud or line set, not a surface.")
+    vertices = _parse_vertex_lines(vertex_lines, 0)
+    block = "\n".join(face_lines)
+    if "-" not in block and "#" not in block:
+        # Fast path: positive indices only; keep the vertex index of each 'v/vt/vn' corner.
+        if "/" in block:
+            block = re.sub(r"/\S*", "", block)
+        idx = _numbers(block, np.int64)
+        if idx is not None and idx.size == 3 * len(face_lines) and all(len(x.split()) == 3 for x in block.split("\n")):
+            if idx.size and idx.min() == 0:
+                raise MeshError("a face uses vertex index 0; OBJ indices are 1-based. Fix the file's 'f' lines.")
+            return _Raw(vertices, idx.reshape(-1, 3) - 1, len(face_lines), 0)
+    # General path: polygons, negative (relative) indices, comments.
     polygons: list[list[int]] = []
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        if line.startswith("v ") or line.startswith("v\t"):
-            vertex_lines.append(line[2:])
-        elif line.startswith("f ") or line.startswith("f\t"):
-            nv = len(vertex_lines)
+    nv = 0
+    for lineno, line in enumerate(lines, start=1):
+        if line[:2] in ("v ", "v\t"):
+            nv += 1
+        elif line[:2] in ("f ", "f\t"):
             poly = []
             try:
                 for token in line[2:].split("#", 1)[0].split():
@@ -298,11 +325,6 @@ def _read_obj(p: Path) -> _Raw:
             if len(poly) < 3:
                 raise MeshError(f"line {lineno}: a face needs at least 3 corners, got {len(poly)}.")
             polygons.append(poly)
-    if not vertex_lines:
-        raise MeshError("no vertex ('v x y z') lines found; this is not an OBJ mesh.")
-    if not polygons:
-        raise MeshError("no face ('f a b c') lines found: the file is a point cloud or line set, not a surface.")
-    vertices = _parse_vertex_lines([line.split("#", 1)[0] for line in vertex_lines], 0)
     triangles, n_poly = _fan(polygons)
     return _Raw(vertices, triangles, len(polygons), n_poly)
 
@@ -394,14 +416,10 @@ def _read_stl(p: Path) -> _Raw:
     if n_binary >= 0 and 84 + 50 * n_binary == size:
         if n_binary == 0:
             raise MeshError("the binary STL file holds 0 triangles; no mesh.")
-        o3d = _open3d()
-        with o3d.utility.VerbosityContextManager(o3d.utility.VerbosityLevel.Error):
-            tm = o3d.io.read_triangle_mesh(str(p))
-        v = np.asarray(tm.vertices, dtype=np.float64)
-        f = np.asarray(tm.triangles, dtype=np.int64)
-        if len(f) != n_binary:
-            raise MeshError(f"the header announces {n_binary} triangles but {len(f)} could be read; the file is corrupt.")
-        corners = v[f.reshape(-1)]
+        # 50-byte records: normal (3 float32), three corners (9 float32), attribute (uint16).
+        record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+        data = np.fromfile(p, dtype=record, count=n_binary, offset=84)
+        corners = data["corners"].reshape(-1, 3).astype(np.float64)
     elif head.lstrip().startswith(b"solid"):
         corners = _stl_ascii_corners(p)
     else:
@@ -421,17 +439,12 @@ def _read_stl(p: Path) -> _Raw:
 
 def _stl_ascii_corners(p: Path) -> NDArray[np.float64]:
     text = _read_text(p, "ASCII STL")
-    tokens = text.split()
-    at = np.flatnonzero(np.array(tokens, dtype=object) == "vertex") if tokens else np.zeros(0, int)
-    if at.size == 0:
+    rows = re.findall(r"^[ \t]*vertex[ \t]+(.*)$", text, flags=re.MULTILINE)
+    if not rows:
         raise MeshError("the ASCII STL file holds no 'vertex x y z' lines; no mesh.")
-    if at.size % 3:
-        raise MeshError(f"the ASCII STL file has {at.size} vertex lines, not a multiple of 3: it is truncated or corrupt.")
-    try:
-        coords = np.array([tokens[i + k] for i in at for k in (1, 2, 3)], dtype=np.float64)
-    except (ValueError, IndexError):
-        raise MeshError("an ASCII STL 'vertex' line is not three numbers; the file is corrupt.") from None
-    return coords.reshape(-1, 3)
+    if len(rows) % 3:
+        raise MeshError(f"the ASCII STL file has {len(rows)} vertex lines, not a multiple of 3: it is truncated or corrupt.")
+    return _parse_vertex_lines(rows, 0)
 
 
 def _weld_corners(corners: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
@@ -439,12 +452,29 @@ def _weld_corners(corners: NDArray[np.float64]) -> tuple[NDArray[np.float64], ND
 
     Vertices are numbered in order of first appearance in the corner list.
     """
-    _, first, inverse = np.unique(corners, axis=0, return_index=True, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    order = np.argsort(first, kind="stable")  # unique rows sorted by first appearance
+    first, inverse = _unique_rows(corners)
+    order = np.argsort(first, kind="stable")  # groups sorted by first appearance
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
     return corners[first[order]].copy(), rank[inverse].reshape(-1, 3).astype(np.int64)
+
+
+def _unique_rows(a: NDArray[Any]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Group equal rows of a 2-D array.
+
+    Returns ``first`` (index of the first row of each group, groups in sorted order) and
+    ``inverse`` (group of each row). A stable lexicographic sort: much faster than
+    ``np.unique(a, axis=0)``, which sorts opaque row records.
+    """
+    if len(a) == 0:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    order = np.lexsort(a.T[::-1])
+    s = a[order]
+    new = np.ones(len(a), dtype=bool)
+    new[1:] = np.any(s[1:] != s[:-1], axis=1)
+    inverse = np.empty(len(a), dtype=np.int64)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new].astype(np.int64), inverse
 
 
 def _open3d() -> Any:
@@ -807,8 +837,8 @@ def _clean(v: NDArray[np.float64], f: NDArray[np.int64], keep_largest: bool, n_p
     # Weld used vertices with exactly equal coordinates onto the first of them.
     rep = np.arange(n_in)
     idx = np.flatnonzero(used)
-    _, first, inverse = np.unique(v[idx], axis=0, return_index=True, return_inverse=True)
-    rep[idx] = idx[first[inverse.reshape(-1)]]
+    first, inverse = _unique_rows(v[idx])
+    rep[idx] = idx[first[inverse]]
     welded = int(np.count_nonzero(rep[idx] != idx))
     f = rep[f]
 
@@ -825,7 +855,7 @@ def _clean(v: NDArray[np.float64], f: NDArray[np.int64], keep_largest: bool, n_p
         raise MeshError("every face is degenerate (zero area); there is no surface left.")
 
     # Duplicate faces: same vertex set; keep the first occurrence.
-    _, first_face = np.unique(np.sort(f, axis=1), axis=0, return_index=True)
+    first_face, _ = _unique_rows(np.sort(f, axis=1))
     keep = np.zeros(len(f), dtype=bool)
     keep[first_face] = True
     n_duplicate = int(len(f) - keep.sum())
@@ -833,15 +863,15 @@ def _clean(v: NDArray[np.float64], f: NDArray[np.int64], keep_largest: bool, n_p
 
     # Edge-manifoldness cannot be repaired: let the Mesh checks name the defect.
     v_c, f_c, vmap = _compact(v, f)
-    probe = Mesh(v_c, f_c, check=False)
-    if np.any(probe.edge_face_counts > 2):
-        validate_topology(probe)  # raises the non-manifold-edge MeshError
+    def nonmanifold() -> None:
+        validate_topology(Mesh(v_c, f_c, check=False))  # names the non-manifold edges
+        raise MeshError("some edges are shared by more than two faces; the mesh is not edge-manifold.")
 
-    f_c, flipped = _orient(f_c)
+    f_c, flipped = _orient(f_c, nonmanifold)
 
     removed_components = 0
     if keep_largest:
-        labels = probe.component_labels[f_c[:, 0]]
+        labels = _vertex_components(f_c, len(v_c))[f_c[:, 0]]
         sizes = np.bincount(labels)
         removed_components = int(np.count_nonzero(sizes)) - 1
         f_c = f_c[labels == int(np.argmax(sizes))]
@@ -870,12 +900,24 @@ def _compact(v: NDArray[np.float64], f: NDArray[np.int64]) -> tuple[NDArray[np.f
     return v[used], new[f], new
 
 
-def _orient(f: NDArray[np.int64]) -> tuple[NDArray[np.int64], int]:
+def _vertex_components(f: NDArray[np.int64], n: int) -> NDArray[np.int64]:
+    """Connected-component label of each vertex (vertices joined by face edges)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rows = np.concatenate([f[:, 0], f[:, 1]])
+    cols = np.concatenate([f[:, 1], f[:, 2]])
+    graph = coo_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
+    return connected_components(graph, directed=False)[1]
+
+
+def _orient(f: NDArray[np.int64], on_nonmanifold: Any) -> tuple[NDArray[np.int64], int]:
     """Flip faces so that every interior edge is traversed in opposite directions by its faces.
 
     Breadth-first over the faces of each edge-connected component (all components at once,
-    level by level); per component the orientation needing fewer flips wins. Assumes each edge
-    has at most two faces. Raises MeshError for a non-orientable component.
+    level by level); per component the orientation needing fewer flips wins. Calls
+    ``on_nonmanifold()`` (which must raise) if an edge has more than two faces. Raises
+    MeshError for a non-orientable component.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
@@ -883,9 +925,9 @@ def _orient(f: NDArray[np.int64]) -> tuple[NDArray[np.int64], int]:
     m = len(f)
     half = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     face_of = np.tile(np.arange(m), 3)
-    key = np.sort(half, axis=1)
-    _, edge_id = np.unique(key, axis=0, return_inverse=True)
-    edge_id = edge_id.reshape(-1)
+    _, edge_id = _unique_rows(np.sort(half, axis=1))
+    if np.any(np.bincount(edge_id) > 2):
+        on_nonmanifold()
     order = np.argsort(edge_id, kind="stable")
     e_sorted = edge_id[order]
     pair = np.flatnonzero(e_sorted[1:] == e_sorted[:-1])  # interior edges: two consecutive half-edges

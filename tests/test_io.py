@@ -1,0 +1,508 @@
+"""Tests for lbo_notebooks.io: file formats, welding, validation of broken files, cleaning."""
+
+from __future__ import annotations
+
+import struct
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lbo_notebooks import Mesh, MeshError, shapes
+from lbo_notebooks import _open3d
+from lbo_notebooks.io import (
+    FORMATS,
+    CleanReport,
+    MeshRepairWarning,
+    clean_mesh,
+    load_mesh,
+    read_mesh_arrays,
+    save_mesh,
+)
+
+# (extension, binary) for every way save_mesh can write a file.
+WRITE_MODES = [(".off", None), (".obj", None), (".ply", True), (".ply", False), (".stl", True), (".stl", False)]
+
+
+# --- helpers ------------------------------------------------------------------------------------
+def first_appearance_order(mesh: Mesh) -> Mesh:
+    """The same mesh with vertices renumbered in order of first use by the faces (STL's order)."""
+    _, first = np.unique(mesh.faces.ravel(), return_index=True)
+    order = mesh.faces.ravel()[np.sort(first)]
+    new = np.empty(mesh.n_vertices, dtype=np.int64)
+    new[order] = np.arange(mesh.n_vertices)
+    return Mesh(mesh.vertices[order], new[mesh.faces])
+
+
+def two_pieces_with_boundary() -> Mesh:
+    """A bumpy sphere plus a disk beside it: two components, one boundary loop."""
+    blob = shapes.bumpy_sphere(2)
+    disk = shapes.disk(n_rings=3)
+    v = np.concatenate([blob.vertices, disk.vertices + [3.0, 0.0, 0.0]])
+    f = np.concatenate([blob.faces, disk.faces + blob.n_vertices])
+    return Mesh(v, f)
+
+
+def moebius(n: int = 12) -> tuple[np.ndarray, np.ndarray]:
+    """A Moebius strip: non-orientable, so no choice of face orientations is consistent."""
+    t = 2 * np.pi * np.arange(n) / n
+    radial = np.stack([np.cos(t), np.sin(t), np.zeros(n)], 1)
+    width = 0.3 * (np.cos(t / 2)[:, None] * radial + np.sin(t / 2)[:, None] * [0, 0, 1])
+    v = np.concatenate([radial + width, radial - width])  # top i -> i, bottom i -> n + i
+    faces = []
+    for i in range(n):
+        a, b = i, n + i
+        c, d = (i + 1, n + i + 1) if i < n - 1 else (n, 0)  # the half twist swaps top and bottom
+        faces += [[a, b, d], [a, d, c]]
+    return v, np.array(faces)
+
+
+def write(path: Path, content: str | bytes) -> Path:
+    if isinstance(content, str):
+        path.write_text(content)
+    else:
+        path.write_bytes(content)
+    return path
+
+
+def off_text(v, f) -> str:
+    lines = ["OFF", f"{len(v)} {len(f)} 0"]
+    lines += [" ".join(repr(float(x)) for x in row) for row in v]
+    lines += [f"{len(face)} " + " ".join(str(int(i)) for i in face) for face in f]
+    return "\n".join(lines) + "\n"
+
+
+SQUARE_V = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+SQUARE_F = [[0, 1, 2], [0, 2, 3]]
+
+
+# --- round trips --------------------------------------------------------------------------------
+@pytest.mark.parametrize("ext,binary", WRITE_MODES)
+@pytest.mark.parametrize("make", [lambda: shapes.bumpy_sphere(2), two_pieces_with_boundary], ids=["closed", "open"])
+def test_round_trip_keeps_vertex_order_count_and_faces(tmp_path, ext, binary, make):
+    mesh = first_appearance_order(make())  # STL can only keep this order; the others keep any
+    path = save_mesh(mesh, tmp_path / f"m{ext}", binary=binary)
+    back = load_mesh(path)
+    assert back.n_vertices == mesh.n_vertices and back.n_faces == mesh.n_faces
+    np.testing.assert_array_equal(back.faces, mesh.faces)
+    if ext == ".stl" and binary:
+        # Binary STL stores float32 by definition of the format.
+        np.testing.assert_array_equal(back.vertices, mesh.vertices.astype(np.float32).astype(np.float64))
+    else:
+        np.testing.assert_array_equal(back.vertices, mesh.vertices)  # text at 17 digits, PLY double
+    assert back.n_components == mesh.n_components
+    assert back.euler_characteristic == mesh.euler_characteristic
+
+
+@pytest.mark.parametrize("ext", [".off", ".obj", ".ply"])
+def test_vertex_order_is_the_files_even_when_faces_use_them_out_of_order(tmp_path, ext):
+    rng = np.random.default_rng(1)
+    mesh = shapes.icosphere(1)
+    perm = rng.permutation(mesh.n_vertices)
+    inv = np.argsort(perm)
+    shuffled = Mesh(mesh.vertices[perm], inv[mesh.faces])
+    back = load_mesh(save_mesh(shuffled, tmp_path / f"s{ext}"))
+    assert back == shuffled
+
+
+def test_extension_is_case_insensitive_and_save_returns_the_path(tmp_path):
+    mesh = shapes.icosphere(1)
+    path = save_mesh(mesh, str(tmp_path / "UPPER.OFF"))
+    assert isinstance(path, Path) and load_mesh(path) == mesh
+
+
+# --- OBJ seams and STL welding ------------------------------------------------------------------
+CUBE_V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+CUBE_QUADS = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [0, 4, 7, 3], [1, 2, 6, 5]]  # outward
+
+
+def cube_obj_with_seams(perm: np.ndarray) -> str:
+    """A cube whose every face has its own normal and texture coordinates: open3d splits it."""
+    where = np.argsort(perm)  # file position of cube vertex k
+    lines = ["# cube with uv and normal seams", "mtllib none.mtl", "o cube"]
+    lines += [f"v {x:g} {y:g} {z:g}" for x, y, z in CUBE_V[perm]]
+    lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
+    normals = [(0, 0, -1), (0, 0, 1), (0, -1, 0), (0, 1, 0), (-1, 0, 0), (1, 0, 0)]
+    lines += [f"vn {a} {b} {c}" for a, b, c in normals]
+    lines += ["g box", "usemtl grey", "s off"]
+    for k, q in enumerate(CUBE_QUADS):
+        c = [f"{where[q[i]] + 1}/{i + 1}/{k + 1}" for i in range(4)]
+        lines += [f"f {c[0]} {c[1]} {c[2]}", f"f {c[0]} {c[2]} {c[3]}"]
+    return "\n".join(lines) + "\n"
+
+
+def test_obj_with_texture_and_normal_seams_comes_back_welded(tmp_path):
+    perm = np.random.default_rng(0).permutation(8)
+    path = write(tmp_path / "cube.obj", cube_obj_with_seams(perm))
+    mesh = load_mesh(path)
+    assert mesh.n_vertices == 8 and mesh.n_faces == 12
+    np.testing.assert_array_equal(mesh.vertices, CUBE_V[perm])  # the file's v lines, in order
+    assert mesh.is_closed and mesh.euler_characteristic == 2
+    # Oracle: outward orientation gives a positive enclosed volume of exactly 1.
+    p = mesh.vertices[mesh.faces]
+    assert np.einsum("ij,ij->", p[:, 0], np.cross(p[:, 1], p[:, 2])) / 6 == pytest.approx(1.0)
+    # The premise: open3d on its own cuts the cube open at the seams.
+    o3d = _open3d.import_open3d()
+    with o3d.utility.VerbosityContextManager(o3d.utility.VerbosityLevel.Error):
+        split = o3d.io.read_triangle_mesh(str(path))
+    assert len(split.vertices) > 8
+
+
+def test_obj_accepts_slash_forms_negative_indices_and_comments(tmp_path):
+    text = (
+        "v 0 0 0\nv 1 0 0  # a comment\nv 1 1 0\nv 0 1 0 1.0\nvn 0 0 1\n"
+        "f 1//1 2//1 3//1\nf -4 -2 -1  # relative indices\n"
+    )
+    mesh = load_mesh(write(tmp_path / "sq.obj", text))
+    np.testing.assert_array_equal(mesh.vertices, SQUARE_V)
+    np.testing.assert_array_equal(mesh.faces, SQUARE_F)
+
+
+@pytest.mark.parametrize("binary", [True, False])
+def test_stl_is_welded_so_a_closed_sphere_stays_closed(tmp_path, binary):
+    sphere = shapes.icosphere(2)
+    path = save_mesh(sphere, tmp_path / "s.stl", binary=binary)
+    mesh = load_mesh(path)
+    assert mesh.n_vertices == sphere.n_vertices == 162 and mesh.n_faces == 320
+    assert mesh.is_closed and mesh.euler_characteristic == 2 and mesh.n_components == 1
+    assert mesh.area == pytest.approx(sphere.area, rel=1e-6)
+
+
+def test_stl_corners_are_welded_in_order_of_first_appearance(tmp_path):
+    text = "solid t\n"
+    for tri in [[(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(1, 0, 0), (1, 1, 0), (0, 1, 0)]]:
+        text += "facet normal 0 0 1\n outer loop\n" + "".join(f"  vertex {x} {y} {z}\n" for x, y, z in tri)
+        text += " endloop\nendfacet\n"
+    mesh = load_mesh(write(tmp_path / "sq.stl", text + "endsolid t\n"))
+    np.testing.assert_array_equal(mesh.vertices, [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    np.testing.assert_array_equal(mesh.faces, [[0, 1, 2], [1, 3, 2]])
+
+
+# --- broken files -------------------------------------------------------------------------------
+def _binary_ply(n_vertex: int, vertices: list[tuple[float, float, float]], faces: list[tuple[int, ...]]) -> bytes:
+    head = (
+        "ply\nformat binary_little_endian 1.0\n"
+        f"element vertex {n_vertex}\nproperty float x\nproperty float y\nproperty float z\n"
+        f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n"
+    ).encode()
+    body = b"".join(struct.pack("<3f", *p) for p in vertices)
+    body += b"".join(struct.pack("<B", len(f)) + struct.pack(f"<{len(f)}i", *f) for f in faces)
+    return head + body
+
+
+def _ascii_ply(n_vertex: int, n_face: int, body: str) -> str:
+    return (
+        f"ply\nformat ascii 1.0\nelement vertex {n_vertex}\nproperty float x\nproperty float y\n"
+        f"property float z\nelement face {n_face}\nproperty list uchar int vertex_indices\nend_header\n{body}"
+    )
+
+
+_TRI = "0 0 0\n1 0 0\n0 1 0\n"
+_JUNK = bytes(np.random.default_rng(7).integers(0, 256, 4096, dtype=np.uint8))
+_MOEBIUS = off_text(*moebius())
+_NONMANIFOLD = off_text([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], [[0, 1, 2], [1, 0, 3], [0, 1, 4]])
+
+# (case id, file name, content, words the MeshError message must contain)
+BROKEN = [
+    ("empty", "e.off", "", "empty"),
+    ("comments-only", "c.off", "# nothing here\n\n", "only comments"),
+    ("junk-off", "j.off", _JUNK, "binary data"),
+    ("junk-obj", "j.obj", _JUNK, "binary data"),
+    ("junk-ply", "j.ply", _JUNK, "not a PLY"),
+    ("junk-stl", "j.stl", _JUNK, "neither a binary STL"),
+    ("text-not-off", "t.off", "hello world\n1 2 3\n", "not an OFF"),
+    ("text-not-obj", "t.obj", "hello world\n", "no vertex"),
+    ("off-bad-counts", "b.off", "OFF\nthree one zero\n", "integers"),
+    ("off-absurd-counts", "a.off", "OFF\n999999999 999999999 0\n" + _TRI + "3 0 1 2\n", "announces 999999999"),
+    ("off-truncated", "tr.off", "OFF\n4 2 0\n" + _TRI + "1 1 0\n3 0 1 2\n", "truncated"),
+    ("off-non-numeric", "nn.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", "not three numbers"),
+    ("off-nan", "nan.off", "OFF\n3 1 0\n0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n", "non-finite"),
+    ("off-index-out-of-range", "oor.off", "OFF\n3 1 0\n" + _TRI + "3 0 1 7\n", "outside 0..2"),
+    ("off-negative-index", "neg.off", "OFF\n3 1 0\n" + _TRI + "3 0 1 -1\n", "outside 0..2"),
+    ("off-two-corners", "two.off", "OFF\n3 1 0\n" + _TRI + "2 0 1\n", "at least 3"),
+    ("off-quad", "q.off", off_text(SQUARE_V, [[0, 1, 2, 3]]), "more than three corners"),
+    ("off-degenerate", "dg.off", off_text([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], [[0, 1, 2], [0, 1, 3]]), "degenerate"),
+    ("off-repeated-corner", "rc.off", off_text(SQUARE_V, [[0, 1, 2], [0, 2, 2]]), "degenerate"),
+    ("off-duplicate-faces", "du.off", off_text(SQUARE_V, [[0, 1, 2], [0, 2, 3], [2, 0, 1]]), "duplicate faces"),
+    ("off-unreferenced", "ur.off", off_text(SQUARE_V + [[5, 5, 5]], SQUARE_F), "unreferenced"),
+    ("off-non-manifold", "nm.off", _NONMANIFOLD, "non-manifold"),
+    ("off-inconsistent-orientation", "io.off", off_text(SQUARE_V, [[0, 1, 2], [0, 3, 2]]), "orientation"),
+    ("off-moebius", "mo.off", _MOEBIUS, "orientation"),
+    ("obj-inf", "inf.obj", "v 0 0 inf\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "non-finite"),
+    ("obj-index-zero", "z.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "1-based"),
+    ("obj-index-out-of-range", "oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "outside 0..2"),
+    ("obj-bad-face", "bf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "not a face"),
+    ("obj-point-cloud", "pc.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "point cloud"),
+    ("obj-quad", "q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "more than three corners"),
+    ("ply-no-end-header", "h.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + _TRI, "end_header"),
+    ("ply-bad-format", "bf.ply", _ascii_ply(3, 1, _TRI + "3 0 1 2\n").replace("ascii", "utf8"), "unknown PLY format"),
+    ("ply-absurd-vertex-count", "a.ply", _ascii_ply(4000000000, 1, _TRI + "3 0 1 2\n"), "announces 4000000000"),
+    ("ply-binary-absurd", "ab.ply", _binary_ply(4000000000, [(0, 0, 0)] * 3, [(0, 1, 2)]), "announces 4000000000"),
+    ("ply-binary-truncated", "bt.ply", _binary_ply(3, [(0, 0, 0)] * 3, [(0, 1, 2)])[:-6], "truncated"),
+    ("ply-point-cloud", "pc.ply", _ascii_ply(3, 0, _TRI), "point cloud"),
+    ("ply-ascii-nan", "nan.ply", _ascii_ply(3, 1, "0 0 nan\n1 0 0\n0 1 inf\n3 0 1 2\n"), "non-numeric"),
+    ("ply-binary-nan", "bnan.ply", _binary_ply(3, [(0, 0, np.nan), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]), "non-finite"),
+    ("ply-index-out-of-range", "oor.ply", _ascii_ply(3, 1, _TRI + "3 0 1 9\n"), "outside 0..2"),
+    ("ply-quad", "q.ply", _ascii_ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"), "more than three corners"),
+    ("stl-binary-absurd", "ab.stl", b"\0" * 80 + struct.pack("<I", 4000000000) + b"\0" * 100, "neither a binary STL"),
+    ("stl-binary-zero", "z.stl", b"\0" * 80 + struct.pack("<I", 0), "0 triangles"),
+    ("stl-ascii-truncated", "t.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n", "multiple of 3"),
+    ("stl-ascii-nan", "n.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\n", "non-finite"),
+    ("stl-degenerate", "d.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\n", "degenerate"),
+]
+
+
+@pytest.mark.parametrize("name,content,words", [c[1:] for c in BROKEN], ids=[c[0] for c in BROKEN])
+def test_broken_file_raises_mesh_error_quickly(tmp_path, name, content, words):
+    path = write(tmp_path / name, content)
+    start = time.perf_counter()
+    with pytest.raises(MeshError) as info:
+        load_mesh(path)
+    elapsed = time.perf_counter() - start
+    assert elapsed < 5.0, f"took {elapsed:.1f} s: a broken file must fail fast, not hang"
+    message = str(info.value)
+    assert words.lower() in message.lower(), message
+    assert name in message  # the message names the file
+    assert isinstance(info.value, ValueError)
+
+
+def test_absurd_header_fails_before_any_large_allocation(tmp_path):
+    import tracemalloc
+
+    path = write(tmp_path / "huge.ply", _binary_ply(4000000000, [(0, 0, 0)] * 3, [(0, 1, 2)]))
+    tracemalloc.start()
+    with pytest.raises(MeshError):
+        load_mesh(path)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak < 10_000_000
+
+
+def test_missing_path_and_unknown_extension(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no such mesh file"):
+        load_mesh(tmp_path / "nothing.off")
+    write(tmp_path / "mesh.xyz", "1 2 3\n")
+    with pytest.raises(ValueError, match=r"\.off, \.obj, \.ply, \.stl") as info:
+        load_mesh(tmp_path / "mesh.xyz")
+    assert not isinstance(info.value, MeshError)
+    with pytest.raises(ValueError, match=r"\.off, \.obj, \.ply, \.stl"):
+        save_mesh(shapes.icosphere(0), tmp_path / "mesh.gltf")
+    assert FORMATS == (".off", ".obj", ".ply", ".stl")
+
+
+def test_save_mesh_argument_errors(tmp_path):
+    with pytest.raises(ValueError, match="text only"):
+        save_mesh(shapes.icosphere(0), tmp_path / "m.off", binary=True)
+    with pytest.raises(TypeError, match="needs a Mesh"):
+        save_mesh((SQUARE_V, SQUARE_F), tmp_path / "m.off")
+    with pytest.raises(ValueError, match="clean=True"):
+        load_mesh(save_mesh(shapes.icosphere(0), tmp_path / "m.off"), keep_largest_component=True)
+
+
+# --- cleaning -----------------------------------------------------------------------------------
+def _load_clean(path: Path, **kw) -> tuple[Mesh, str]:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mesh = load_mesh(path, clean=True, **kw)
+    messages = [str(w.message) for w in caught if issubclass(w.category, MeshRepairWarning)]
+    assert len(messages) <= 1
+    return mesh, messages[0] if messages else ""
+
+
+REPAIRABLE = [
+    # (case id from BROKEN, expected report words, expected (n_vertices, n_faces) after cleaning)
+    ("off-quad", "1 polygons split", (4, 2)),
+    ("obj-quad", "1 polygons split", (4, 2)),
+    ("ply-quad", "polygons split", (4, 2)),
+    ("off-degenerate", "1 degenerate faces removed", (3, 1)),
+    ("off-repeated-corner", "1 degenerate faces removed", (3, 1)),
+    ("off-duplicate-faces", "1 duplicate faces removed", (4, 2)),
+    ("off-unreferenced", "1 unreferenced vertices removed", (4, 2)),
+    ("off-inconsistent-orientation", "1 faces flipped", (4, 2)),
+]
+
+
+@pytest.mark.parametrize("case,words,size", REPAIRABLE, ids=[r[0] for r in REPAIRABLE])
+def test_clean_repairs_the_repairable_defects_and_says_so(tmp_path, case, words, size):
+    _, name, content, _ = next(c for c in BROKEN if c[0] == case)
+    mesh, message = _load_clean(write(tmp_path / name, content))
+    assert (mesh.n_vertices, mesh.n_faces) == size
+    assert words in message and name in message
+
+
+@pytest.mark.parametrize("case", ["off-non-manifold", "off-moebius", "off-nan", "off-index-out-of-range", "off-absurd-counts"])
+def test_clean_still_refuses_what_cannot_be_repaired(tmp_path, case):
+    _, name, content, _ = next(c for c in BROKEN if c[0] == case)
+    with pytest.raises(MeshError):
+        load_mesh(write(tmp_path / name, content), clean=True)
+
+
+def test_moebius_strip_is_reported_non_orientable():
+    with pytest.raises(MeshError, match="non-orientable"):
+        clean_mesh(moebius())
+
+
+def test_non_manifold_edge_is_named_by_clean():
+    v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]]
+    with pytest.raises(MeshError, match="non-manifold"):
+        clean_mesh((v, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]))
+
+
+def test_clean_restores_the_orientation_of_randomly_flipped_faces():
+    sphere = shapes.icosphere(3)
+    rng = np.random.default_rng(3)
+    flip = rng.random(sphere.n_faces) < 0.3
+    faces = sphere.faces.copy()
+    faces[flip] = faces[flip][:, [0, 2, 1]]
+    with pytest.raises(MeshError, match="orientation"):
+        Mesh(sphere.vertices, faces)
+    mesh, report = clean_mesh((sphere.vertices, faces))
+    assert mesh == sphere  # fewer than half flipped: the majority orientation wins
+    assert report.faces_flipped == int(flip.sum())
+
+
+def test_clean_welds_stl_style_corner_soup_back_into_the_sphere():
+    sphere = first_appearance_order(shapes.icosphere(2))
+    corners = sphere.vertices[sphere.faces.ravel()]
+    soup = np.arange(len(corners)).reshape(-1, 3)
+    mesh, report = clean_mesh((corners, soup))
+    assert mesh == sphere
+    assert report.vertices_welded == len(corners) - sphere.n_vertices
+    assert report.unreferenced_vertices == 0
+
+
+def test_clean_keeps_the_largest_component_and_maps_vertices(tmp_path):
+    small, big = shapes.icosphere(1), shapes.icosphere(2)
+    v = np.concatenate([small.vertices, big.vertices + 5.0])
+    f = np.concatenate([small.faces, big.faces + small.n_vertices])
+    path = save_mesh(Mesh(v, f), tmp_path / "two.ply")
+    assert load_mesh(path).n_components == 2  # several components are legal
+    mesh, message = _load_clean(path, keep_largest_component=True)
+    assert mesh.n_components == 1 and mesh.n_vertices == big.n_vertices
+    np.testing.assert_array_equal(mesh.vertices, big.vertices + 5.0)
+    assert "1 smaller components removed" in message
+    _, report = clean_mesh((v, f), keep_largest_component=True)
+    kept = report.vertex_map >= 0
+    np.testing.assert_array_equal(mesh.vertices[report.vertex_map[kept]], v[kept])
+    assert kept.sum() == big.n_vertices and not kept[: small.n_vertices].any()
+
+
+def test_clean_mesh_never_modifies_caller_arrays():
+    v = np.array(SQUARE_V + [[1, 0, 0]], dtype=float)
+    f = np.array([[0, 4, 2], [0, 3, 2], [0, 1, 2]])
+    v0, f0 = v.copy(), f.copy()
+    mesh, report = clean_mesh((v, f))
+    np.testing.assert_array_equal(v, v0)
+    np.testing.assert_array_equal(f, f0)
+    assert v.flags.writeable and f.flags.writeable
+    assert report.vertices_welded == 1 and report.duplicate_faces == 1
+    assert mesh.n_faces == 2 and mesh.n_vertices == 4
+
+
+def test_clean_accepts_polygon_lists_and_meshes_and_reports_nothing_for_a_clean_mesh(tmp_path):
+    mesh, report = clean_mesh((SQUARE_V, [[0, 1, 2, 3]]))
+    assert mesh.faces.tolist() == [[0, 1, 2], [0, 2, 3]] and report.polygons_split == 1
+    sphere = shapes.icosphere(2)
+    same, report = clean_mesh(sphere)
+    assert same == sphere and not report.changed and "nothing to repair" in str(report)
+    assert isinstance(report, CleanReport)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a clean file loads with clean=True without any warning
+        assert load_mesh(save_mesh(sphere, tmp_path / "s.obj"), clean=True) == sphere
+
+
+def test_read_mesh_arrays_gives_the_raw_data_for_clean_mesh(tmp_path):
+    _, name, content, _ = next(c for c in BROKEN if c[0] == "off-duplicate-faces")
+    v, f = read_mesh_arrays(write(tmp_path / name, content))
+    assert f.shape == (3, 3) and v.shape == (4, 3)
+    mesh, report = clean_mesh((v, f))
+    assert report.duplicate_faces == 1 and mesh.n_faces == 2
+
+
+# --- a scan-sized mesh --------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def scan_like(tmp_path_factory) -> tuple[Path, np.ndarray, np.ndarray]:
+    """About 100k vertices: two perforated icospheres and a torus, saved as binary PLY."""
+    rng = np.random.default_rng(0)
+    sphere, torus = shapes.icosphere(6), shapes.torus(1.0, 0.3, n_major=160, n_minor=128)
+    vs, fs, offset = [], [], 0
+    for shift in ([0.0, 0.0, 0.0], [3.0, 0.0, 0.0]):
+        centres = rng.normal(size=(12, 3))
+        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
+        c = sphere.vertices[sphere.faces].mean(axis=1)
+        hole = (np.linalg.norm(c[:, None, :] - centres[None], axis=2) < 0.12).any(axis=1)
+        vs.append(sphere.vertices + shift)
+        fs.append(sphere.faces[~hole] + offset)
+        offset += sphere.n_vertices
+    vs.append(torus.vertices + [0.0, 3.0, 0.0])
+    fs.append(torus.faces + offset)
+    v, f = np.concatenate(vs), np.concatenate(fs)
+    used = np.zeros(len(v), bool)
+    used[f.ravel()] = True
+    new = np.cumsum(used) - 1
+    v, f = v[used], new[f]
+    folder = tmp_path_factory.mktemp("scan")
+    raw = Mesh(v, f, check=False)
+    save_mesh(raw, folder / "scan.ply")
+    return folder, v, f
+
+
+@pytest.mark.parametrize("fmt", ["ply"])
+def test_a_100k_vertex_mesh_with_holes_and_components_loads(scan_like, fmt):
+    folder, v, f = scan_like
+    assert 95_000 < len(v) < 105_000
+    mesh = load_mesh(folder / f"scan.{fmt}")
+    np.testing.assert_array_equal(mesh.vertices, v)
+    np.testing.assert_array_equal(mesh.faces, f)
+    assert mesh.n_components == 3
+    assert len(mesh.boundary_edges) > 0  # the holes
+
+
+# --- open3d import errors -----------------------------------------------------------------------
+def _failing(exc: BaseException):
+    def load():
+        raise exc
+
+    return load
+
+
+@pytest.mark.parametrize(
+    "exc,library,package",
+    [
+        (OSError("libusb-1.0.so.0: cannot open shared object file: No such file or directory"), "libusb-1.0.so.0", "libusb-1.0-0"),
+        (ImportError("libusb-1.0.so.0: cannot open shared object file: No such file or directory"), "libusb-1.0.so.0", "libusb-1.0-0"),
+        (ImportError("libGL.so.1: cannot open shared object file: No such file or directory"), "libGL.so.1", "libgl1"),
+        (ImportError("libEGL.so.1: cannot open shared object file"), "libEGL.so.1", "libegl1"),
+    ],
+)
+def test_missing_system_library_is_named_with_the_fix(monkeypatch, exc, library, package):
+    monkeypatch.setattr(_open3d, "_load", _failing(exc))
+    with pytest.raises(ImportError) as info:
+        _open3d.import_open3d()
+    message = str(info.value)
+    assert f"system library {library} is missing" in message
+    assert f"apt-get install {package}" in message
+    assert "apt-get install libusb-1.0-0 libgl1 libegl1" in message
+
+
+def test_unknown_library_and_missing_open3d_messages(monkeypatch, tmp_path):
+    monkeypatch.setattr(_open3d, "_load", _failing(ImportError("libfoo.so.3: cannot open shared object file")))
+    with pytest.raises(ImportError, match="libfoo.so.3.*apt-get install libusb-1.0-0 libgl1 libegl1"):
+        _open3d.import_open3d()
+    monkeypatch.setattr(_open3d, "_load", _failing(ModuleNotFoundError("No module named 'open3d'", name="open3d")))
+    with pytest.raises(ImportError, match="pip install open3d"):
+        _open3d.import_open3d()
+    # load_mesh passes the explanation on for formats read through open3d.
+    path = save_mesh(shapes.icosphere(0), tmp_path / "s.ply", binary=False)
+    monkeypatch.setattr(_open3d, "_load", _failing(OSError("libusb-1.0.so.0: cannot open shared object file")))
+    with pytest.raises(ImportError, match="apt-get install libusb-1.0-0"):
+        load_mesh(path)
+
+
+def test_importing_the_io_module_does_not_import_open3d():
+    code = "import sys, lbo_notebooks.io, lbo_notebooks._open3d; assert 'open3d' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True)
