@@ -1,0 +1,216 @@
+"""Spectral MDS against classical MDS: accuracy at 3-5k vertices, time and memory up to 50k.
+
+Run from the repository root::
+
+    .venv/bin/python benchmarks/mds.py                    # full run (several minutes)
+    .venv/bin/python benchmarks/mds.py --quick            # small sizes only, for a smoke test
+    .venv/bin/python benchmarks/mds.py --json benchmarks/results/mds.json   # also record results
+
+Part 1 (accuracy): on several shapes of 3,000-5,000 vertices, SMDS with its *default* parameters
+against classical MDS computed from the same (heat-method) geodesic distances; the Gram error must
+be at most 2%. Landmark MDS with as many samples is shown beside it.
+
+Part 2 (scaling): a family of deformed tori from 2k to 51k vertices. Every measurement runs in a
+fresh subprocess so that its peak resident memory (above the process's baseline after imports and
+mesh construction) is its own. Classical MDS is computed the efficient way: all-pairs distances
+with one factorisation, then Lanczos for the top three eigenpairs of B only. The speed ratio is
+classical time / SMDS time from this one run; the machine is shared, so absolute times are noisy
+and the ratios are what to read.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+# BLAS threads must be fixed before numpy is imported; children inherit the environment. On a
+# shared, oversubscribed machine multi-threaded OpenBLAS spins and can be 50x slower than one thread.
+if "--blas-threads" in sys.argv:
+    _threads = sys.argv[sys.argv.index("--blas-threads") + 1]
+    for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[_var] = _threads
+
+import argparse
+import json
+import resource
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+
+from lbo_notebooks import Mesh, shapes
+from lbo_notebooks.mds import SMDS_DEFAULTS, classical_mds, gram_error, landmark_mds, procrustes_error, spectral_mds
+
+
+# --- shapes ------------------------------------------------------------------------------------
+def deformed_torus(n_vertices: int) -> Mesh:
+    """A torus whose tube thickness varies around the ring, stretched: no symmetry left.
+
+    The grid has ``n_major ~ 2.5 n_minor`` so that triangles are near-equilateral.
+    """
+    nv = max(8, int(round(np.sqrt(n_vertices / 2.5))))
+    nu = max(8, int(round(n_vertices / nv)))
+    base = shapes.torus(1.0, 0.4, nu, nv)
+    u = 2 * np.pi * np.repeat(np.arange(nu), nv) / nu
+    w = 2 * np.pi * np.tile(np.arange(nv), nu) / nv
+    r = 0.4 * (1.0 + 0.35 * np.cos(u) + 0.1 * np.sin(2 * u))
+    verts = np.column_stack([(1.0 + r * np.cos(w)) * np.cos(u), (1.0 + r * np.cos(w)) * np.sin(u), r * np.sin(w)])
+    return Mesh(verts * [1.3, 1.0, 0.9], base.faces)
+
+
+def remeshed(mesh: Mesh, n_vertices: int) -> Mesh:
+    """``mesh`` remeshed isotropically (gpytoolbox.remesh_botsch) to about ``n_vertices``."""
+    import gpytoolbox as gpy
+
+    # An equilateral closed mesh has about 2 faces per vertex of area sqrt(3)/4 h^2 each.
+    h = np.sqrt(mesh.area / (2 * n_vertices) * 4 / np.sqrt(3))
+    V, F = gpy.remesh_botsch(np.array(mesh.vertices), np.array(mesh.faces), i=10, h=h, project=True)
+    return Mesh(V, F)
+
+
+def accuracy_shapes(quick: bool) -> dict[str, Mesh]:
+    n = 1500 if quick else 4000
+    out = {
+        "bumpy sphere": remeshed(shapes.bumpy_sphere(5), n),
+        "ellipsoid 1.6:1:0.6": remeshed(shapes.ellipsoid(1.6, 1.0, 0.6, subdivisions=5), n),
+        "deformed torus": deformed_torus(n),
+    }
+    try:  # the four-legged creatures, where that module exists
+        from lbo_notebooks.creatures import creature
+
+        for species in ("dog", "horse"):
+            out[species] = creature(species, n_vertices=n)
+    except Exception as exc:  # noqa: BLE001 - report and go on with the other shapes
+        print(f"(creatures skipped: {type(exc).__name__}: {exc})")
+    return out
+
+
+# --- one measurement in this process -----------------------------------------------------------
+def _peak_mib() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: KiB
+
+
+def _current_mib() -> float:
+    import psutil
+
+    return psutil.Process().memory_info().rss / 2**20
+
+
+def measure(kind: str, n: int) -> dict:
+    mesh = deformed_torus(n)
+    _ = mesh.edges, mesh.face_areas  # mesh set-up is not part of either algorithm
+    base = _current_mib()
+    t0 = time.perf_counter()
+    out: dict = {"kind": kind, "n": mesh.n_vertices}
+    if kind == "smds":
+        X, info = spectral_mds(mesh, return_details=True, progress=False)
+        out["timings"] = info["timings"]
+        out["eigengap"] = info["eigengap"]
+    else:
+        X = classical_mds(mesh, progress=False)
+    out["seconds"] = time.perf_counter() - t0
+    out["peak_mib"] = _peak_mib() - base
+    np.save(f"/tmp/mds_bench_{kind}_{n}.npy", X)
+    return out
+
+
+def run_child(kind: str, n: int) -> dict:
+    res = subprocess.run(
+        [sys.executable, __file__, "--measure", kind, str(n)], capture_output=True, text=True, check=False
+    )
+    if res.returncode != 0:
+        return {"kind": kind, "n": n, "error": res.stderr.strip().splitlines()[-1] if res.stderr else "failed"}
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+# --- the two parts ------------------------------------------------------------------------------
+def part_accuracy(quick: bool) -> list[dict]:
+    print(f"\nPart 1: SMDS defaults {SMDS_DEFAULTS} vs classical MDS, same heat-method distances")
+    print(f"{'shape':22s} {'n':>6s} {'Gram err':>9s} {'Procr.':>8s} {'gap':>6s} {'LMDS(300)':>10s} "
+          f"{'SMDS s':>7s} {'class. s':>8s}  verdict")
+    rows = []
+    for name, mesh in accuracy_shapes(quick).items():
+        t = time.perf_counter()
+        X = classical_mds(mesh, progress=False)
+        tc = time.perf_counter() - t
+        t = time.perf_counter()
+        Z, info = spectral_mds(mesh, return_details=True, progress=False)
+        ts = time.perf_counter() - t
+        L = landmark_mds(mesh, n_samples=min(300, mesh.n_vertices), progress=False)
+        row = {
+            "shape": name, "n": mesh.n_vertices, "gram_error": gram_error(Z, X),
+            "procrustes_error": procrustes_error(Z, X), "eigengap": info["eigengap"],
+            "landmark_gram_error": gram_error(L, X), "smds_seconds": ts, "classical_seconds": tc,
+        }
+        row["pass"] = row["gram_error"] <= 0.02
+        rows.append(row)
+        print(f"{name:22s} {row['n']:6d} {row['gram_error']:9.4f} {row['procrustes_error']:8.4f} "
+              f"{row['eigengap']:6.2f} {row['landmark_gram_error']:10.4f} {ts:7.2f} {tc:8.2f}  "
+              f"{'PASS' if row['pass'] else 'FAIL'} (<= 0.02)")
+    return rows
+
+
+def part_scaling(quick: bool, classical_max: int) -> list[dict]:
+    sizes = [1000, 2000, 4000] if quick else [2000, 4000, 8000, 16000, 32000, 51200]
+    print("\nPart 2: time and peak memory (fresh subprocess per run) on deformed tori")
+    print(f"{'n':>6s} {'SMDS s':>7s} {'eig s':>6s} {'samp s':>7s} {'emb s':>6s} {'SMDS MiB':>9s} "
+          f"{'class. s':>8s} {'class. MiB':>10s} {'ratio':>6s} {'Gram err':>9s}")
+    rows = []
+    for n in sizes:
+        s = run_child("smds", n)
+        c = run_child("classical", n) if n <= classical_max else {"skipped": True}
+        row = {"n": s.get("n", n), "smds": s, "classical": c}
+        ratio = c["seconds"] / s["seconds"] if "seconds" in c and "seconds" in s else float("nan")
+        row["ratio"] = ratio
+        err = float("nan")
+        if "seconds" in c and "seconds" in s:
+            err = gram_error(np.load(f"/tmp/mds_bench_smds_{n}.npy"), np.load(f"/tmp/mds_bench_classical_{n}.npy"))
+        row["gram_error"] = err
+        rows.append(row)
+        tm = s.get("timings", {})
+        cs = f"{c['seconds']:8.2f} {c['peak_mib']:10.0f}" if "seconds" in c else f"{'-':>8s} {'-':>10s}"
+        print(f"{row['n']:6d} {s.get('seconds', float('nan')):7.2f} {tm.get('eigenbasis', float('nan')):6.2f} "
+              f"{tm.get('sampling', float('nan')):7.2f} {tm.get('embedding', float('nan')):6.2f} "
+              f"{s.get('peak_mib', float('nan')):9.0f} {cs} {ratio:6.1f} {err:9.4f}"
+              + (f"   ({s['error']})" if "error" in s else "") + (f"   ({c['error']})" if "error" in c else ""))
+    big = [r for r in rows if r["n"] >= 50000 and "seconds" in r["smds"]]
+    if big:
+        print(f"SMDS end to end at {big[0]['n']} vertices: {big[0]['smds']['seconds']:.1f} s (target <= 25 s on 2 idle cores)")
+    at8k = [r for r in rows if 7000 <= r["n"] <= 9000 and np.isfinite(r["ratio"])]
+    if at8k:
+        print(f"speed ratio classical / SMDS at {at8k[0]['n']} vertices: {at8k[0]['ratio']:.1f}x (target >= 10x)")
+    return rows
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="small sizes only")
+    ap.add_argument("--json", type=Path, help="write the results to this JSON file")
+    ap.add_argument("--classical-max", type=int, default=8000, help="largest n for classical MDS")
+    ap.add_argument("--skip-accuracy", action="store_true")
+    ap.add_argument("--blas-threads", type=int, help="BLAS/OpenMP threads for this run and its children")
+    ap.add_argument("--measure", nargs=2, metavar=("KIND", "N"), help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.measure:
+        print(json.dumps(measure(args.measure[0], int(args.measure[1]))))
+        return
+    import platform
+
+    threads = os.environ.get("OPENBLAS_NUM_THREADS", "default")
+    print(f"lbo_notebooks MDS benchmark on {platform.node()} ({os.cpu_count()} cores, "
+          f"load average {os.getloadavg()[0]:.1f}, BLAS threads {threads}); "
+          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
+    result: dict = {"load_average": os.getloadavg()[0], "cores": os.cpu_count(), "blas_threads": threads,
+                    "defaults": SMDS_DEFAULTS, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+    if not args.skip_accuracy:
+        result["accuracy"] = part_accuracy(args.quick)
+    result["scaling"] = part_scaling(args.quick, args.classical_max)
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(result, indent=1, default=float))
+        print(f"results written to {args.json}")
+
+
+if __name__ == "__main__":
+    main()
