@@ -32,7 +32,7 @@ from .spectrum import Spectrum, check_operators
 __all__ = ["rayleigh_quotient", "min_rayleigh_quotient", "random_subspace", "optimal_subspace"]
 
 # Below this many vertices min_rayleigh_quotient(method="auto") uses dense linear algebra.
-DENSE_LIMIT = 1200
+DENSE_LIMIT = 400
 
 Method = Literal["auto", "dense", "sparse"]
 
@@ -175,7 +175,7 @@ def min_rayleigh_quotient(
         raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
     Q = _constraint_basis(orthogonal_to, A)
     n = W.shape[0]
-    use_dense = method == "dense" or (method == "auto" and n <= DENSE_LIMIT) or n - Q.shape[1] < 3
+    use_dense = method == "dense" or (method == "auto" and n <= DENSE_LIMIT) or n - Q.shape[1] < 50
     value, f = (_min_dense if use_dense else _min_sparse)(W, A, Q)
     if not return_vector:
         return value

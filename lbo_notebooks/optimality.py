@@ -40,7 +40,7 @@ __all__ = [
 ]
 
 # Below this many vertices worst_case_ratio(method="auto") uses a dense generalized eigensolver.
-DENSE_LIMIT = 1200
+DENSE_LIMIT = 400
 
 Method = Literal["auto", "dense", "sparse"]
 
