@@ -1,0 +1,332 @@
+"""Real-browser test: every notebook runs in JupyterLab, in headless Chromium, without errors.
+
+Skipped unless ``LBO_BROWSER_TESTS=1`` (it takes minutes and needs a browser). It installs
+nothing: it needs Debian's ``chromium`` package (``apt-get install chromium``; another binary can be
+named with ``LBO_CHROMIUM=/path``) and the ``playwright`` Python package, used only as a driver
+(never run ``playwright install``: the test launches the system browser through
+``executable_path``). Run it with::
+
+    LBO_BROWSER_TESTS=1 .venv/bin/python -m pytest -p no:dash tests/browser -v
+
+What happens: the ``notebooks/`` folder is copied to a temporary directory (so the repository's
+notebooks are never saved with outputs), JupyterLab is started on 127.0.0.1 on a free port with a
+random token, and for each notebook a fresh browser page opens it, runs *Run > Run All Cells* from
+the menu bar, waits until every cell has run and the kernel is idle, and checks that
+
+- no output shows a traceback or a widget that failed to render;
+- every plotly figure renders (a ``.js-plotly-plot`` with a WebGL canvas of non-zero size, no
+  "WebGL is not supported" message), and notebooks that draw 3D figures show at least one;
+- every notebook that builds a slider shows ipywidgets (``.jupyter-widgets``, ``.widget-slider``);
+- pressing ArrowRight on the first slider's handle changes the plotly data of its figure and the
+  picture itself (screenshots before and after differ);
+- the "Build Recommended" dialog never appears (``make.sh`` / ``binder/postBuild`` write a
+  ``page_config.json`` that switches the build check off).
+
+Screenshots (the page after the run, every figure, the slider before/after) and the browser console
+log go to ``artifacts/browser/<notebook>/`` (override with ``LBO_BROWSER_ARTIFACTS``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import secrets
+import shutil
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+if os.environ.get("LBO_BROWSER_TESTS") != "1":
+    pytest.skip("browser tests are opt-in: set LBO_BROWSER_TESTS=1", allow_module_level=True)
+
+try:
+    from playwright.sync_api import Page, sync_playwright
+except ImportError:  # pragma: no cover - only reached when the test was asked for
+    raise ImportError("LBO_BROWSER_TESTS=1 needs the playwright Python package: pip install playwright "
+                      "(the package only; the test uses the system chromium, never `playwright install`)")
+
+REPO = Path(__file__).resolve().parents[2]
+NOTEBOOKS = sorted((REPO / "notebooks").glob("*.ipynb"))
+CHROMIUM = os.environ.get("LBO_CHROMIUM", "/usr/bin/chromium")
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 # WebGL without a GPU is SwiftShader; headless Chromium 156 falls back to it on its
+                 # own, newer releases only with this flag.
+                 "--enable-unsafe-swiftshader"]
+ARTIFACTS = Path(os.environ.get("LBO_BROWSER_ARTIFACTS", REPO / "artifacts" / "browser"))
+RUN_TIMEOUT = float(os.environ.get("LBO_BROWSER_TIMEOUT", "900"))  # seconds for Run All Cells
+VIEWPORT = {"width": 1400, "height": 1000}
+# Code that draws a 3D figure or a slider in our notebooks.
+PLOT_CALLS = ("plot_mesh", "plot_meshes", "mesh_slider", "go.Figure", "FigureWidget")
+SLIDER_CALLS = ("mesh_slider", "IntSlider", "FloatSlider", "SelectionSlider", "interact")
+# User settings for the throw-away server: no network calls for news or update checks, and every
+# cell kept in the page (JupyterLab's default windowing drops or hides off-screen cells, which
+# would hide their outputs from the checks; what is rendered is the same).
+SETTINGS = {"@jupyterlab/apputils-extension/notification.jupyterlab-settings":
+            {"checkForUpdates": False, "fetchNews": "false"},
+            "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"}}
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _code(nb_path: Path) -> str:
+    nb = json.loads(nb_path.read_text())
+    return "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code")
+
+
+class Lab:
+    """A JupyterLab server on 127.0.0.1 serving a temporary copy of ``notebooks/``."""
+
+    def __init__(self, root: Path) -> None:
+        self.root = root
+        self.port, self.token = _free_port(), secrets.token_hex(16)
+        self.url = f"http://127.0.0.1:{self.port}"
+        settings = root.parent / "settings"
+        for name, value in SETTINGS.items():
+            (settings / name).parent.mkdir(parents=True, exist_ok=True)
+            (settings / name).write_text(json.dumps(value))
+        self.log = open(root.parent / "jupyterlab.log", "w")
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ServerApp.open_browser=False",
+             "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
+             f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
+             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent / 'workspaces'}"],
+            stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            if self.proc.poll() is not None:
+                raise RuntimeError(f"JupyterLab exited: see {self.log.name}")
+            try:
+                self.api("GET", "/api/status")
+                return
+            except (urllib.error.URLError, ConnectionError):
+                time.sleep(0.5)
+        raise RuntimeError(f"JupyterLab did not start in 120 s: see {self.log.name}")
+
+    def api(self, method: str, path: str) -> object:
+        request = urllib.request.Request(self.url + path, method=method,
+                                         headers={"Authorization": f"token {self.token}"})
+        with urllib.request.urlopen(request, timeout=10) as response:
+            body = response.read()
+        return json.loads(body) if body else None
+
+    def shutdown_kernels(self) -> None:
+        for kernel in self.api("GET", "/api/kernels"):
+            self.api("DELETE", f"/api/kernels/{kernel['id']}")
+
+    def stop(self) -> None:
+        self.proc.terminate()
+        try:
+            self.proc.wait(30)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+        self.log.close()
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    root = tmp_path_factory.mktemp("lab") / "notebooks"
+    shutil.copytree(REPO / "notebooks", root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
+    server = Lab(root)
+    yield server
+    server.stop()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    if not Path(CHROMIUM).exists():
+        pytest.fail(f"{CHROMIUM} not found: apt-get install chromium (or set LBO_CHROMIUM)")
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def page(browser, lab, request):
+    context = browser.new_context(viewport=VIEWPORT, device_scale_factor=1)
+    page = context.new_page()
+    console: list[str] = []
+    page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
+    page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
+    page.console_log = console
+    yield page
+    out = ARTIFACTS / request.node.callspec.id if hasattr(request.node, "callspec") else ARTIFACTS / request.node.name
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "console.log").write_text("\n".join(console))
+    context.close()
+    lab.shutdown_kernels()
+
+
+def _open(page: Page, lab: Lab, path: str) -> None:
+    page.goto(f"{lab.url}/lab/tree/{path}?reset&token={lab.token}")
+    page.locator(".jp-NotebookPanel .jp-Notebook").first.wait_for(state="visible", timeout=120_000)
+
+
+def _kernel_ready(page: Page, lab: Lab, timeout: float) -> None:
+    """Wait until the notebook's kernel has started, the page is connected to it and it is idle.
+
+    (The toolbar's indicator already reads "idle" before a kernel exists; running cells then
+    would open the "Select Kernel" dialog, so the server's view of the kernel is checked too.)
+    """
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        kernels = lab.api("GET", "/api/kernels")
+        ready = any(k["connections"] > 0 and k["execution_state"] == "idle" for k in kernels)
+        if ready and page.locator(
+                '.jp-NotebookPanel .jp-Notebook-ExecutionIndicator[data-status="idle"]').count() > 0:
+            return
+        time.sleep(0.5)
+    raise AssertionError(f"the notebook's kernel was not ready after {timeout:.0f} s: {lab.api('GET', '/api/kernels')}")
+
+
+def _build_dialog(page: Page) -> int:
+    return page.locator(".jp-Dialog", has_text="Build Recommended").count()
+
+
+def _run_all(page: Page) -> None:
+    """Run > Run All Cells, from the menu bar, as a reader would."""
+    page.locator(".lm-MenuBar-itemLabel", has_text=re.compile(r"^Run$")).click()
+    page.locator(".lm-Menu-itemLabel", has_text=re.compile(r"^Run All Cells$")).click()
+
+
+def _wait_until_done(page: Page, timeout: float) -> list[str]:
+    """Wait until no cell shows ``[*]`` and the kernel is idle twice in a row; return the prompts."""
+    deadline = time.monotonic() + timeout
+    stable = 0
+    while time.monotonic() < deadline:
+        prompts = page.locator(".jp-CodeCell .jp-InputArea-prompt").all_text_contents()
+        busy = any("*" in p for p in prompts)
+        idle = page.locator('.jp-NotebookPanel .jp-Notebook-ExecutionIndicator[data-status="idle"]').count() > 0
+        stable = stable + 1 if (idle and not busy and prompts) else 0
+        if stable >= 3:
+            return prompts
+        time.sleep(1.0)
+    raise AssertionError(f"Run All Cells did not finish in {timeout:.0f} s")
+
+
+PLOTLY_STATE = """el => {
+    const gd = el.classList.contains('js-plotly-plot') ? el : el.querySelector('.js-plotly-plot');
+    if (!gd || !gd.data) return null;
+    const pick = a => a ? Array.from(a).slice(0, 400) : null;
+    const t = gd.data[0] || {};
+    const title = gd.layout && gd.layout.title ? (gd.layout.title.text || gd.layout.title) : null;
+    return JSON.stringify([pick(t.intensity), pick(t.x), pick(t.y), pick(t.z), title]);
+}"""
+
+FIGURE_INFO = """el => {
+    const canvases = Array.from(el.querySelectorAll('canvas'));
+    const r = el.getBoundingClientRect();
+    return {
+        width: r.width, height: r.height,
+        canvases: canvases.length,
+        glCanvas: canvases.some(c => c.width > 0 && c.height > 0),
+        is3d: !!el.querySelector('.gl-container') || (el._fullLayout && !!el._fullLayout.scene),
+        noWebGL: /WebGL is not supported|webgl-error|no-webgl/i.test(el.innerText) || !!el.querySelector('.no-webgl'),
+    };
+}"""
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> None:
+    out = ARTIFACTS / notebook.stem
+    if out.exists():
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+    code = _code(notebook)
+
+    _open(page, lab, notebook.name)
+    _kernel_ready(page, lab, 180)
+    _run_all(page)
+    prompts = _wait_until_done(page, RUN_TIMEOUT)
+    page.wait_for_timeout(2000)  # let widget views and figures finish drawing
+    page.screenshot(path=str(out / "notebook.png"))
+
+    # Every code cell ran (Run All stops at the first error and leaves the rest unnumbered).
+    not_run = [i for i, p in enumerate(prompts) if not re.search(r"\[\d+\]", p)]
+    errors = []
+    for output in page.locator(".jp-OutputArea-output").all():
+        text = output.text_content() or ""
+        stderr = output.get_attribute("data-mime-type") == "application/vnd.jupyter.stderr"
+        if "Traceback (most recent call last)" in text or (stderr and re.search(r"^\w*(Error|Exception)\b", text, re.M)) \
+                or "Error displaying widget" in text or "Failed to load model class" in text:
+            errors.append(text[:1500])
+    assert not errors, f"{notebook.name}: error output in the browser:\n" + "\n---\n".join(errors)
+    assert not not_run, f"{notebook.name}: code cells {not_run} did not run (prompts {prompts})"
+
+    # 3D figures: every plotly figure drew a WebGL canvas.
+    figures = page.locator(".jp-OutputArea-output .js-plotly-plot")
+    infos = []
+    for i in range(figures.count()):
+        fig = figures.nth(i)
+        fig.scroll_into_view_if_needed()
+        page.wait_for_timeout(300)
+        info = fig.evaluate(FIGURE_INFO)
+        infos.append(info)
+        fig.screenshot(path=str(out / f"figure_{i:02d}.png"))
+        assert not info["noWebGL"], f"{notebook.name}: figure {i} says WebGL is not supported"
+        assert info["width"] > 100 and info["height"] > 100, f"{notebook.name}: figure {i} has no size: {info}"
+        if info["is3d"]:
+            assert info["glCanvas"], f"{notebook.name}: 3D figure {i} has no WebGL canvas: {info}"
+    if any(call in code for call in PLOT_CALLS):
+        assert any(i["is3d"] for i in infos), f"{notebook.name} draws 3D figures but none rendered: {infos}"
+
+    # Matplotlib images decoded.
+    broken = page.locator(".jp-RenderedImage img").evaluate_all("imgs => imgs.filter(i => !(i.naturalWidth > 0)).length")
+    assert broken == 0, f"{notebook.name}: {broken} images did not load"
+
+    # Widgets and one slider that moves its figure.
+    if any(call in code for call in SLIDER_CALLS):
+        assert page.locator(".jp-OutputArea-output .jupyter-widgets").count() > 0, f"{notebook.name}: no widget rendered"
+        viewers = page.locator(".jupyter-widgets.widget-vbox:has(.widget-slider):has(.js-plotly-plot)")
+        assert viewers.count() > 0, f"{notebook.name}: no slider with a figure rendered"
+        viewer = viewers.first
+        viewer.scroll_into_view_if_needed()
+        page.wait_for_timeout(500)
+        figure = viewer.locator(".js-plotly-plot").first
+        before_state = figure.evaluate(PLOTLY_STATE)
+        before_png = figure.screenshot(path=str(out / "slider_before.png"))
+        readout = viewer.locator(".widget-readout").first
+        before_readout = readout.inner_text() if readout.count() else None
+        handle = viewer.locator(".noUi-handle").first
+        handle.focus()
+        for _ in range(3):
+            page.keyboard.press("ArrowRight")
+        deadline = time.monotonic() + 120
+        after_state = before_state
+        while time.monotonic() < deadline and after_state == before_state:
+            page.wait_for_timeout(500)
+            after_state = figure.evaluate(PLOTLY_STATE)
+        page.wait_for_timeout(1500)  # let WebGL redraw
+        after_png = figure.screenshot(path=str(out / "slider_after.png"))
+        after_readout = readout.inner_text() if readout.count() else None
+        assert before_readout != after_readout, f"{notebook.name}: the slider did not move ({before_readout})"
+        assert after_state != before_state, f"{notebook.name}: moving the slider did not change the figure's data"
+        assert after_png != before_png, f"{notebook.name}: moving the slider did not change the picture"
+
+    assert _build_dialog(page) == 0, f"{notebook.name}: the 'Build Recommended' dialog appeared"
+    dialogs = page.locator(".jp-Dialog").all_inner_texts()
+    assert not dialogs, f"{notebook.name}: unexpected dialog(s): {dialogs}"
+
+
+def test_no_build_recommended_dialog(page: Page, lab: Lab) -> None:
+    """JupyterLab must not ask to rebuild (dash's extension triggers it unless page_config.json says no)."""
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.goto(f"{lab.url}/lab?reset&token={lab.token}")
+    page.locator(".jp-LauncherCard, .jp-Launcher").first.wait_for(state="visible", timeout=120_000)
+    page.wait_for_timeout(8000)  # the build check runs a few seconds after start-up
+    page.screenshot(path=str(ARTIFACTS / "lab_start.png"))
+    assert _build_dialog(page) == 0, (
+        "JupyterLab shows 'Build Recommended': write {\"buildCheck\": false, \"buildAvailable\": false} to "
+        "<sys.prefix>/etc/jupyter/labconfig/page_config.json (./make.sh install does this)")
