@@ -6,23 +6,25 @@ the ones the file lists, in the file's order; :func:`save_mesh` writes one;
 
 How each format is handled, and why
 -----------------------------------
-open3d reads PLY (ASCII and binary) and writes binary PLY and binary STL, after this module has
-checked the header against the file size, so that a header announcing absurd counts fails at
-once instead of allocating gigabytes, and after reading checks that open3d got everything the
-header announced (its PLY reader returns partial, uninitialised arrays instead of failing). The
-other formats are parsed and written here, because open3d's readers are not safe or faithful on
-them (measured with open3d 0.20):
+Every file is parsed here, with NumPy doing the bulk conversion, and open3d writes the binary
+formats (binary PLY at float64, binary STL). Before any data is read, the counts a header
+announces (OFF, PLY, binary STL) are checked against the file size, so a corrupt header fails at
+once instead of allocating gigabytes. open3d's readers were tried first and rejected because a
+broken file must raise :class:`MeshError`, not kill the Python process or Jupyter kernel
+(measured with open3d 0.20):
 
-- OFF: open3d's reader crashes the interpreter (segmentation fault) on a file with fewer
-  vertices than its header announces, and fills the vertex array with uninitialised memory when a
-  coordinate reads ``nan``.
+- PLY: a five-line ASCII PLY whose quad has an out-of-range index crashes the interpreter
+  (segmentation fault, in its ear-clipping triangulation); randomly corrupted binary PLY files
+  did the same; a truncated file or a ``nan`` gives partial, uninitialised arrays and no error.
+- OFF: a file with fewer vertices than its header announces crashes the interpreter; a ``nan``
+  coordinate gives uninitialised memory.
 - OBJ: open3d renumbers the vertices in order of first use, drops unreferenced ones, splits a
   vertex wherever its texture or normal index changes (cutting the surface open at every seam)
   and skips faces with more than three corners. Here the ``v`` and ``f`` lines are read directly,
   so vertex ``k`` of the mesh is the ``k``-th ``v`` line and ``vt``/``vn`` seams do not exist.
-- STL: open3d reads ASCII STL through ASSIMP at single precision, and its binary STL reader
-  took about 4 s for 200k triangles; a binary STL is a header and fixed 50-byte records, read
-  here with one ``numpy.fromfile`` call.
+- STL: open3d reads ASCII STL through ASSIMP at single precision, and its binary reader took
+  about 4 s for 200k triangles; a binary STL is a header and fixed 50-byte records, read here
+  with one ``numpy.fromfile`` call.
 - open3d writes text formats with six significant digits, which is lossy; here they are written
   with 17, so that saving and loading gives back the same float64 coordinates.
 
@@ -31,9 +33,8 @@ welded back into shared vertices, numbered in order of first appearance, so a cl
 stays closed.
 
 Polygons (faces with more than three corners, in OFF, OBJ or PLY) are refused by default with a
-:class:`MeshError`; with ``clean=True`` they are split into triangles (a fan from the polygon's
-first corner for OFF and OBJ; open3d's ear clipping for PLY, which gives the same fan for convex
-polygons) and the split is reported.
+:class:`MeshError`; with ``clean=True`` each is split into a fan of triangles from its first
+corner (right for convex polygons, which is what exporters write) and the split is reported.
 
 Examples
 --------
@@ -302,7 +303,7 @@ def _read_obj(p: Path) -> _Raw:
         if idx is not None and idx.size == 3 * len(face_lines) and all(len(x.split()) == 3 for x in block.split("\n")):
             if idx.size and idx.min() == 0:
                 raise MeshError("a face uses vertex index 0; OBJ indices are 1-based. Fix the file's 'f' lines.")
-            return _Raw(vertices, idx.reshape(-1, 3) - 1, len(face_lines), 0)
+            return _Raw(vertices, _obj_check_range(idx.reshape(-1, 3) - 1, len(vertices)), len(face_lines), 0)
     # General path: polygons, negative (relative) indices, comments.
     polygons: list[list[int]] = []
     nv = 0
@@ -326,13 +327,39 @@ def _read_obj(p: Path) -> _Raw:
                 raise MeshError(f"line {lineno}: a face needs at least 3 corners, got {len(poly)}.")
             polygons.append(poly)
     triangles, n_poly = _fan(polygons)
-    return _Raw(vertices, triangles, len(polygons), n_poly)
+    return _Raw(vertices, _obj_check_range(triangles, len(vertices)), len(polygons), n_poly)
 
 
+def _obj_check_range(triangles: NDArray[np.int64], nv: int) -> NDArray[np.int64]:
+    bad = np.flatnonzero(((triangles < 0) | (triangles >= nv)).any(axis=1))
+    if bad.size:
+        raise MeshError(
+            f"{bad.size} faces use vertex indices outside 1..{nv} (first: triangle {bad[0]} = "
+            f"{(triangles[bad[0]] + 1).tolist()}, 1-based as in the file) but the file has {nv} 'v' lines; "
+            "fix the file's 'f' lines."
+        )
+    return triangles
+
+
+# PLY property type -> numpy type code (sizes follow).
 _PLY_TYPES = {
-    "char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2, "ushort": 2, "uint16": 2,
-    "int": 4, "int32": 4, "uint": 4, "uint32": 4, "float": 4, "float32": 4, "double": 8, "float64": 8,
+    "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
+    "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
+    "float": "f4", "float32": "f4", "double": "f8", "float64": "f8",
 }
+_STRUCT = {"i1": "b", "u1": "B", "i2": "h", "u2": "H", "i4": "i", "u4": "I", "f4": "f", "f8": "d"}
+_FACE_LISTS = ("vertex_indices", "vertex_index")
+
+
+@dataclass(frozen=True)
+class _PlyProperty:
+    name: str
+    type: str  # numpy code of the value (of the items, for a list)
+    count: str | None = None  # numpy code of a list's length, None for a scalar
+
+    def min_bytes(self, corners: int) -> int:
+        size = np.dtype(self.type).itemsize
+        return size if self.count is None else np.dtype(self.count).itemsize + corners * size
 
 
 def _read_ply(p: Path) -> _Raw:
@@ -351,7 +378,7 @@ def _read_ply(p: Path) -> _Raw:
         raise MeshError("the PLY header holds non-ASCII bytes: it is corrupt.") from None
 
     fmt = None
-    elements: list[list[Any]] = []  # [name, count, [properties as (type, list_count_type or None)]]
+    elements: list[tuple[str, int, list[_PlyProperty]]] = []
     for line in header.splitlines()[1:]:
         parts = line.split()
         if not parts or parts[0] in ("comment", "obj_info"):
@@ -360,15 +387,14 @@ def _read_ply(p: Path) -> _Raw:
             if parts[0] == "format":
                 fmt = parts[1]
             elif parts[0] == "element":
-                elements.append([parts[1], int(parts[2]), []])
+                elements.append((parts[1], int(parts[2]), []))
+            elif parts[0] == "property" and parts[1] == "list":
+                elements[-1][2].append(_PlyProperty(parts[4], _PLY_TYPES[parts[3]], _PLY_TYPES[parts[2]]))
             elif parts[0] == "property":
-                if parts[1] == "list":
-                    elements[-1][2].append((parts[3], parts[2], parts[4]))
-                else:
-                    elements[-1][2].append((parts[1], None, parts[2]))
+                elements[-1][2].append(_PlyProperty(parts[2], _PLY_TYPES[parts[1]]))
             else:
                 raise ValueError
-        except (IndexError, ValueError):
+        except (IndexError, ValueError, KeyError):
             raise MeshError(f"unreadable PLY header line {line[:60]!r}: the header is corrupt.") from None
     if fmt not in ("ascii", "binary_little_endian", "binary_big_endian"):
         raise MeshError(f"unknown PLY format {fmt!r}; expected ascii, binary_little_endian or binary_big_endian.")
@@ -378,34 +404,134 @@ def _read_ply(p: Path) -> _Raw:
         raise MeshError("the PLY header declares no vertices ('element vertex N'); no mesh.")
     if nf <= 0:
         raise MeshError("the PLY file has no faces ('element face N'): it is a point cloud, not a surface.")
-    min_bytes = 0
-    for name, n, props in elements:
-        if n < 0:
-            raise MeshError(f"the PLY header announces a negative count for element {name!r}.")
-        per = 0
-        for ptype, count_type, _ in props:
-            if ptype not in _PLY_TYPES or (count_type is not None and count_type not in _PLY_TYPES):
-                raise MeshError(f"unknown PLY property type in element {name!r}; the header is corrupt.")
-            corners = 3 if name == "face" else 0
-            if fmt == "ascii":
-                per += 2 if count_type is None else 2 + 2 * corners
-            else:
-                per += _PLY_TYPES[ptype] if count_type is None else _PLY_TYPES[count_type] + corners * _PLY_TYPES[ptype]
-        min_bytes += n * per
+    vprops = {q.name: q for q in elements[[e[0] for e in elements].index("vertex")][2]}
+    if not all(c in vprops and vprops[c].count is None for c in "xyz"):
+        raise MeshError("the PLY vertex element lacks scalar x, y, z properties; no positions to read.")
+    fprops = [q.name for q in elements[[e[0] for e in elements].index("face")][2]]
+    if not any(name in fprops for name in _FACE_LISTS):
+        raise MeshError("the PLY face element has no 'vertex_indices' list; cannot read the faces.")
+    ascii = fmt == "ascii"
+    min_bytes = sum(
+        n * sum(2 + 6 * (q.count is not None and name == "face") if ascii else q.min_bytes(3 * (name == "face")) for q in props)
+        for name, n, props in elements
+    )
+    if any(n < 0 for _, n, _ in elements):
+        raise MeshError("the PLY header announces a negative element count; it is corrupt.")
     _check_counts(p, nv, nf, body_start + min_bytes)
 
-    o3d = _open3d()
-    with o3d.utility.VerbosityContextManager(o3d.utility.VerbosityLevel.Error):
-        tm = o3d.io.read_triangle_mesh(str(p))
-    vertices = np.asarray(tm.vertices, dtype=np.float64).copy()
-    triangles = np.asarray(tm.triangles, dtype=np.int64).copy()
-    if len(vertices) != nv or len(triangles) < nf:
-        raise MeshError(
-            f"the header announces {nv} vertices and {nf} faces but only {len(vertices)} vertices and "
-            f"{len(triangles)} triangles could be read: the file is truncated or holds non-numeric values "
-            "(e.g. 'nan' in an ASCII PLY). Re-export or re-download it."
-        )
-    return _Raw(vertices, triangles, nf, -1 if len(triangles) > nf else 0)
+    body = p.read_bytes()[body_start:]
+    if ascii:
+        vertices, polygons = _ply_ascii(body, elements)
+    else:
+        vertices, polygons = _ply_binary(body, elements, "<" if fmt == "binary_little_endian" else ">")
+    if isinstance(polygons, tuple):
+        triangles, n_poly = polygons
+    else:
+        short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
+        if short:
+            raise MeshError(f"face {short[0]} has {len(polygons[short[0]])} corners; a face needs at least 3.")
+        triangles, n_poly = _fan(polygons)
+    return _Raw(vertices, triangles, nf, n_poly)
+
+
+def _ply_ascii(body: bytes, elements: list[tuple[str, int, list[_PlyProperty]]]) -> tuple[NDArray[np.float64], Any]:
+    """ASCII PLY body: one line per element row."""
+    if b"\x00" in body[: 1 << 16]:
+        raise MeshError("the ASCII PLY body holds binary data (NUL bytes): the file is corrupt.")
+    lines = [line for line in body.decode("latin-1").splitlines() if line.strip()]
+    pos = 0
+    vertices = polygons = None
+    for name, n, props in elements:
+        rows = lines[pos : pos + n]
+        pos += n
+        if len(rows) < n:
+            raise MeshError(f"the header announces {n} {name} rows but the file ends after {len(rows)}: it is truncated.")
+        if name == "vertex":
+            if any(q.count is not None for q in props):
+                raise MeshError("list properties on PLY vertices are not supported; re-export without them.")
+            arr = _numbers("\n".join(rows), np.float64)
+            if arr is None or arr.size != n * len(props):
+                bad = next((k for k, r in enumerate(rows) if len(r.split()) != len(props)), 0)
+                raise MeshError(f"vertex {bad} ({rows[bad][:60]!r}) is not {len(props)} numbers; the file is corrupt.")
+            cols = [q.name for q in props]
+            vertices = arr.reshape(n, len(props))[:, [cols.index(c) for c in "xyz"]].copy()
+        elif name == "face":
+            if len(props) == 1:
+                polygons = _parse_counted_faces(rows, 0)  # (triangles, n_polygons)
+                continue
+            polygons = []
+            for k, row in enumerate(rows):
+                tokens, at, poly = row.split(), 0, None
+                try:
+                    for q in props:
+                        if q.count is None:
+                            at += 1
+                        else:
+                            m = int(tokens[at])
+                            if m < 0 or at + 1 + m > len(tokens):
+                                raise ValueError
+                            if q.name in _FACE_LISTS and poly is None:
+                                poly = [int(t) for t in tokens[at + 1 : at + 1 + m]]
+                            at += 1 + m
+                except (ValueError, IndexError):
+                    raise MeshError(f"face {k} ({row[:60]!r}) does not match the header's properties; the file is corrupt.") from None
+                polygons.append(poly)
+    return vertices, polygons
+
+
+def _ply_binary(body: bytes, elements: list[tuple[str, int, list[_PlyProperty]]], endian: str) -> tuple[NDArray[np.float64], Any]:
+    """Binary PLY body: fixed-size rows through numpy; rows with lists walked one by one."""
+    off = 0
+    vertices = polygons = None
+    for name, n, props in elements:
+        lists = [q for q in props if q.count is not None]
+        if not lists or (len(lists) == 1 and name == "face"):
+            # Fixed-size rows (for faces: assume triangles, then check that they are).
+            fields = []
+            for q in props:
+                if q.count is None:
+                    fields.append((q.name, endian + q.type))
+                else:
+                    fields += [("__count", endian + q.count), (q.name, endian + q.type, (3,))]
+            dtype = np.dtype(fields)
+            if off + n * dtype.itemsize <= len(body):
+                rows = np.frombuffer(body, dtype=dtype, count=n, offset=off)
+                if not lists or np.all(rows["__count"] == 3):
+                    off += n * dtype.itemsize
+                    if name == "vertex":
+                        vertices = np.column_stack([rows[c].astype(np.float64) for c in "xyz"])
+                    elif name == "face":
+                        polygons = (rows[lists[0].name].astype(np.int64), 0)
+                    continue
+            elif not lists:
+                raise MeshError(f"the file ends inside the {name} data: it is truncated.")
+        if name == "vertex":
+            raise MeshError("list properties on PLY vertices are not supported; re-export without them.")
+        # General case: walk row by row.
+        out: list[list[int]] = []
+        for _ in range(n):
+            poly = None
+            for q in props:
+                size = np.dtype(q.type).itemsize
+                if q.count is None:
+                    off += size
+                    continue
+                csize = np.dtype(q.count).itemsize
+                if off + csize > len(body):
+                    raise MeshError(f"the file ends inside the {name} data: it is truncated.")
+                m = struct.unpack_from(endian + _STRUCT[q.count], body, off)[0]
+                off += csize
+                if m < 0 or off + m * size > len(body):
+                    raise MeshError(f"a {name} list announces {m} items past the end of the file: it is corrupt.")
+                if name == "face" and q.name in _FACE_LISTS and poly is None:
+                    poly = [int(i) for i in struct.unpack_from(f"{endian}{m}{_STRUCT[q.type]}", body, off)]
+                off += m * size
+            if off > len(body):
+                raise MeshError(f"the file ends inside the {name} data: it is truncated.")
+            out.append(poly)
+        if name == "face":
+            polygons = out
+    return vertices, polygons
 
 
 def _read_stl(p: Path) -> _Raw:

@@ -234,7 +234,8 @@ BROKEN = [
     ("off-moebius", "mo.off", _MOEBIUS, "orientation"),
     ("obj-inf", "inf.obj", "v 0 0 inf\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "non-finite"),
     ("obj-index-zero", "z.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "1-based"),
-    ("obj-index-out-of-range", "oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "outside 0..2"),
+    ("obj-index-out-of-range", "oor.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "outside 1..3"),
+    ("obj-negative-out-of-range", "nr.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", "outside 1..3"),
     ("obj-bad-face", "bf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "not a face"),
     ("obj-point-cloud", "pc.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "point cloud"),
     ("obj-quad", "q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "more than three corners"),
@@ -244,10 +245,12 @@ BROKEN = [
     ("ply-binary-absurd", "ab.ply", _binary_ply(4000000000, [(0, 0, 0)] * 3, [(0, 1, 2)]), "announces 4000000000"),
     ("ply-binary-truncated", "bt.ply", _binary_ply(3, [(0, 0, 0)] * 3, [(0, 1, 2)])[:-6], "truncated"),
     ("ply-point-cloud", "pc.ply", _ascii_ply(3, 0, _TRI), "point cloud"),
-    ("ply-ascii-nan", "nan.ply", _ascii_ply(3, 1, "0 0 nan\n1 0 0\n0 1 inf\n3 0 1 2\n"), "non-numeric"),
+    ("ply-ascii-nan", "nan.ply", _ascii_ply(3, 1, "0 0 nan\n1 0 0\n0 1 inf\n3 0 1 2\n"), "non-finite"),
     ("ply-binary-nan", "bnan.ply", _binary_ply(3, [(0, 0, np.nan), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]), "non-finite"),
     ("ply-index-out-of-range", "oor.ply", _ascii_ply(3, 1, _TRI + "3 0 1 9\n"), "outside 0..2"),
     ("ply-quad", "q.ply", _ascii_ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"), "more than three corners"),
+    # open3d 0.20 crashes the interpreter on this one (out-of-range index in a polygon).
+    ("ply-quad-out-of-range", "qo.ply", _ascii_ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 99999999\n"), "more than three corners"),
     ("stl-binary-absurd", "ab.stl", b"\0" * 80 + struct.pack("<I", 4000000000) + b"\0" * 100, "neither a binary STL"),
     ("stl-binary-zero", "z.stl", b"\0" * 80 + struct.pack("<I", 0), "0 triangles"),
     ("stl-ascii-truncated", "t.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n", "multiple of 3"),
@@ -334,7 +337,9 @@ def test_clean_repairs_the_repairable_defects_and_says_so(tmp_path, case, words,
     assert words in message and name in message
 
 
-@pytest.mark.parametrize("case", ["off-non-manifold", "off-moebius", "off-nan", "off-index-out-of-range", "off-absurd-counts"])
+@pytest.mark.parametrize(
+    "case", ["off-non-manifold", "off-moebius", "off-nan", "off-index-out-of-range", "off-absurd-counts", "ply-quad-out-of-range"]
+)
 def test_clean_still_refuses_what_cannot_be_repaired(tmp_path, case):
     _, name, content, _ = next(c for c in BROKEN if c[0] == case)
     with pytest.raises(MeshError):
@@ -496,13 +501,76 @@ def test_unknown_library_and_missing_open3d_messages(monkeypatch, tmp_path):
     monkeypatch.setattr(_open3d, "_load", _failing(ModuleNotFoundError("No module named 'open3d'", name="open3d")))
     with pytest.raises(ImportError, match="pip install open3d"):
         _open3d.import_open3d()
-    # load_mesh passes the explanation on for formats read through open3d.
-    path = save_mesh(shapes.icosphere(0), tmp_path / "s.ply", binary=False)
+    # save_mesh passes the explanation on for the formats open3d writes.
     monkeypatch.setattr(_open3d, "_load", _failing(OSError("libusb-1.0.so.0: cannot open shared object file")))
     with pytest.raises(ImportError, match="apt-get install libusb-1.0-0"):
-        load_mesh(path)
+        save_mesh(shapes.icosphere(0), tmp_path / "s.ply")
 
 
 def test_importing_the_io_module_does_not_import_open3d():
     code = "import sys, lbo_notebooks.io, lbo_notebooks._open3d; assert 'open3d' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_off_variants_counts_on_the_header_line_colours_and_comments(tmp_path):
+    text = "COFF 4 2 0\n# colours after xyz and after faces\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 0 255\n0 1 0 1 1 1 255\n3 0 1 2 9 9 9\n3 0 2 3 9 9 9\n"
+    mesh = load_mesh(write(tmp_path / "c.off", text))
+    np.testing.assert_array_equal(mesh.vertices, SQUARE_V)
+    np.testing.assert_array_equal(mesh.faces, SQUARE_F)
+
+
+def _ply_with_extras(binary: bool) -> bytes:
+    """A square (one quad, one triangle below it) with normals, colours and a face colour."""
+    v = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, -1, 0)]
+    faces = [(0, 1, 2, 3), (1, 0, 4)]
+    head = (
+        f"ply\nformat {'binary_big_endian' if binary else 'ascii'} 1.0\ncomment extras\n"
+        "element vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\n"
+        "element face 2\nproperty list uchar uint vertex_indices\nproperty uchar red\n"
+        "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+    ).encode()
+    if not binary:
+        body = "".join(f"{x} {y} {z} 0 0 1 200\n" for x, y, z in v)
+        body += "".join(f"{len(f)} " + " ".join(map(str, f)) + " 7\n" for f in faces) + "0 1\n"
+        return head + body.encode()
+    body = b"".join(struct.pack(">3d3fB", *p, 0, 0, 1, 200) for p in v)
+    body += b"".join(struct.pack(f">B{len(f)}IB", len(f), *f, 7) for f in faces) + struct.pack(">2i", 0, 1)
+    return head + body
+
+
+@pytest.mark.parametrize("binary", [True, False])
+def test_ply_with_extra_properties_polygons_and_other_elements(tmp_path, binary):
+    path = write(tmp_path / "x.ply", _ply_with_extras(binary))
+    with pytest.raises(MeshError, match="1 faces have more than three corners"):
+        load_mesh(path)
+    mesh, message = _load_clean(path)
+    np.testing.assert_array_equal(mesh.vertices[:, 1], [0, 0, 1, 1, -1])
+    np.testing.assert_array_equal(mesh.faces, [[0, 1, 2], [0, 2, 3], [1, 0, 4]])
+    assert "1 polygons split" in message
+
+
+@pytest.mark.parametrize("ext,binary", WRITE_MODES)
+def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary):
+    """Truncated, overwritten or padded bytes: never a crash, a hang or another exception."""
+    source = save_mesh(shapes.icosphere(1), tmp_path / f"src{ext}", binary=binary).read_bytes()
+    rng = np.random.default_rng(WRITE_MODES.index((ext, binary)))
+    for k in range(24):
+        data = bytearray(source)
+        if k % 3 == 0:
+            data = data[: rng.integers(len(data))]
+        elif k % 3 == 1:
+            for _ in range(rng.integers(1, 8)):
+                data[rng.integers(len(data))] = rng.integers(256)
+        else:
+            at = rng.integers(len(data))
+            data[at:at] = bytes(rng.integers(0, 256, rng.integers(1, 20), dtype=np.uint8))
+        path = write(tmp_path / f"c{k}{ext}", bytes(data))
+        start = time.perf_counter()
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", MeshRepairWarning)
+                assert isinstance(load_mesh(path, clean=bool(k % 2)), Mesh)
+        except MeshError:
+            pass
+        assert time.perf_counter() - start < 5.0
