@@ -36,6 +36,7 @@ from .spectrum import check_operators, eigenbasis
 __all__ = [
     "eigen_basis",
     "random_smooth_basis",
+    "random_smooth_functions",
     "pca_basis",
     "umbrella_basis",
     "identity_mass_basis",
@@ -84,13 +85,40 @@ def eigen_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np
     return np.array(eigenbasis(mesh, n, mass=mass).vectors)
 
 
+def random_smooth_functions(mesh: Mesh, count: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
+    """Random smooth functions: white noise smoothed twice by an implicit heat step.
+
+    Each noise column ``g`` becomes ``(A + t W)^{-1} A (A + t W)^{-1} A g`` with
+    ``t = (width * sqrt(area))^2``, so the smoothing length is a fixed fraction of the surface's
+    size and does not depend on units. Uses the Voronoi mass.
+
+    Returns
+    -------
+    ndarray (n_vertices, count)
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> random_smooth_functions(shapes.icosphere(2), 3, seed=1).shape
+    (162, 3)
+    """
+    if not isinstance(mesh, Mesh):
+        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
+        raise ValueError(f"count must be a non-negative integer, got {count!r}.")
+    if not (np.isscalar(width) and np.isfinite(width) and width > 0):
+        raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
+    W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    t = (width * np.sqrt(mesh.area)) ** 2
+    lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
+    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(count)))
+    return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if count else g
+
+
 def random_smooth_basis(
     mesh: Mesh, n: int, *, mass: MassKind = "voronoi", seed: int = 0, width: float = 0.15
 ) -> NDArray[np.float64]:
-    """Random smooth functions: white noise smoothed twice by an implicit heat step.
-
-    Each noise column ``g`` becomes ``(A + t W)^{-2} A^2 g`` with ``t = (width * sqrt(area))^2``, so
-    the smoothing length is a fixed fraction of the surface's size and does not depend on units.
+    """The constant and ``n - 1`` :func:`random_smooth_functions`, A-orthonormalised.
 
     Examples
     --------
@@ -102,14 +130,7 @@ def random_smooth_basis(
     True
     """
     n, A = _check(mesh, n, mass)
-    if not (np.isfinite(width) and width > 0):
-        raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
-    W = stiffness_matrix(mesh)
-    t = (width * np.sqrt(mesh.area)) ** 2
-    lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
-    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, max(n - 1, 0)))
-    smooth = lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if n > 1 else g
-    return _constant_first(mesh, A, smooth, n)
+    return _constant_first(mesh, A, random_smooth_functions(mesh, n - 1, seed=seed, width=width), n)
 
 
 def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:

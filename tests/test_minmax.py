@@ -133,3 +133,31 @@ def test_bad_input(blob):
         optimal_subspace(s, s.k)
     with pytest.raises(ValueError, match="zero"):
         rayleigh_quotient(W, A, np.zeros(m.n_vertices))
+
+
+def test_solver_object_reuses_its_factorisation():
+    from lbo_notebooks.minmax import ConstrainedRayleigh
+
+    m = shapes.bumpy_sphere(3, seed=5)
+    s = eigenbasis(m, 12)
+    solver = ConstrainedRayleigh(s.stiffness, s.mass)
+    for n in (0, 3, 11):
+        assert solver.minimum(s.vectors[:, :n]) == pytest.approx(s.values[n], rel=1e-9, abs=1e-12)
+    C = random_subspace(m.n_vertices, 6, seed=2)
+    assert solver.minimum(C) == pytest.approx(min_rayleigh_quotient(s.stiffness, s.mass, C, method="dense"), rel=1e-10)
+
+
+def test_rotating_plane_reaches_lam2_only_at_zero():
+    from lbo_notebooks.minmax import plane_normal, plane_slider
+
+    M = random_symmetric(11)
+    lam = np.linalg.eigvalsh(M)
+    angles = np.arange(0, 181, 5)
+    mins = np.array([min_rayleigh_quotient(M, np.eye(3), plane_normal(M, a)) for a in angles])
+    assert mins[0] == pytest.approx(lam[1], abs=1e-12) and mins[-1] == pytest.approx(lam[1], abs=1e-12)
+    assert np.all(mins[1:-1] < lam[1] - 1e-6)
+    w = plane_slider(M)
+    w.slider.value = 90
+    assert "min on the plane" in w.figure.layout.title.text
+    with pytest.raises(ValueError, match="symmetric 3 x 3"):
+        plane_normal(np.ones((2, 2)), 0.0)
