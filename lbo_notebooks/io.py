@@ -88,7 +88,7 @@ class _Raw:
     vertices: NDArray[np.float64]
     triangles: NDArray[np.int64]
     n_file_faces: int  # faces as the file lists them
-    n_polygons: int  # faces with more than three corners (-1: some, number unknown)
+    n_polygons: int  # faces with more than three corners
 
 
 def _check_path(path: PathLike) -> Path:
@@ -655,7 +655,7 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
     >>> load_mesh(path)
     Traceback (most recent call last):
     ...
-    lbo_notebooks.mesh.MeshError: ...1 faces have more than three corners...
+    lbo_notebooks.mesh.MeshError: ...1 of its 1 faces have more than three corners...
     >>> import warnings
     >>> with warnings.catch_warnings():
     ...     warnings.simplefilter("ignore")
@@ -675,14 +675,10 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
             warnings.warn(f"{str(p)!r} was repaired: {report}", MeshRepairWarning, stacklevel=2)
         return mesh
     if raw.n_polygons:
-        how_many = (
-            f"{raw.n_polygons} faces have more than three corners"
-            if raw.n_polygons > 0
-            else f"its {raw.n_file_faces} faces make {len(raw.triangles)} triangles, so some have more than three corners"
-        )
         raise MeshError(
-            f"{str(p)!r}: {how_many}; the LBO needs triangles. Load with clean=True, which splits "
-            "each polygon into triangles, or triangulate it in a mesh editor."
+            f"{str(p)!r}: {raw.n_polygons} of its {raw.n_file_faces} faces have more than three corners; the LBO "
+            "needs triangles. Load with clean=True, which splits each polygon into a fan of triangles, or "
+            "triangulate it in a mesh editor."
         )
     try:
         return Mesh(raw.vertices, raw.triangles)
@@ -807,7 +803,7 @@ class CleanReport:
     n_vertices_in, n_faces_in, n_vertices_out, n_faces_out : int
         Sizes before (triangles, after splitting polygons) and after cleaning.
     polygons_split : int
-        Faces with more than three corners split into triangles (-1: some, count unknown).
+        Faces with more than three corners split into triangles.
     vertices_welded : int
         Vertices merged into an earlier vertex with exactly the same coordinates.
     degenerate_faces : int
@@ -847,7 +843,7 @@ class CleanReport:
 
     def __str__(self) -> str:
         items = [
-            (self.polygons_split, "polygons split into triangles" if self.polygons_split > 0 else None),
+            (self.polygons_split, "polygons split into triangles"),
             (self.vertices_welded, "duplicate vertices welded"),
             (self.degenerate_faces, "degenerate faces removed"),
             (self.duplicate_faces, "duplicate faces removed"),
@@ -855,9 +851,7 @@ class CleanReport:
             (self.faces_flipped, "faces flipped to a consistent orientation"),
             (self.components_removed, "smaller components removed"),
         ]
-        parts = [f"{n} {what}" for n, what in items if n and what]
-        if self.polygons_split < 0:
-            parts.insert(0, "polygons split into triangles")
+        parts = [f"{n} {what}" for n, what in items if n]
         done = "; ".join(parts) if parts else "nothing to repair"
         return (
             f"{done} ({self.n_vertices_in} -> {self.n_vertices_out} vertices, "
