@@ -1,0 +1,229 @@
+"""Tests for the procedural creatures: topology, triangle quality, correspondence, isometry,
+part scaling, determinism and input validation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import dijkstra
+
+from lbo_notebooks import Mesh, shapes
+from lbo_notebooks import creatures as C
+
+N = 3000  # small meshes keep the file fast; one test uses 10,000
+
+
+@pytest.fixture(scope="module", params=["dog", "horse"])
+def family(request: pytest.FixtureRequest) -> tuple[str, dict[str, Mesh]]:
+    return request.param, C.creature_poses(request.param, n_vertices=N)
+
+
+def _edge_lengths(mesh: Mesh, edges: np.ndarray) -> np.ndarray:
+    v = mesh.vertices
+    return np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1)
+
+
+def _min_angles(mesh: Mesh) -> np.ndarray:
+    p = mesh.vertices[mesh.faces]
+    out = []
+    for k in range(3):
+        a = p[:, (k + 1) % 3] - p[:, k]
+        b = p[:, (k + 2) % 3] - p[:, k]
+        cos = np.einsum("ij,ij->i", a, b) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
+        out.append(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
+    return np.min(out, axis=0)
+
+
+def _signed_volume(mesh: Mesh) -> float:
+    p = mesh.vertices[mesh.faces]
+    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+
+
+def _graph(mesh: Mesh) -> coo_matrix:
+    e = mesh.edges
+    n = mesh.n_vertices
+    return coo_matrix((_edge_lengths(mesh, e), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
+
+
+def _farthest_points(mesh: Mesh, k: int) -> list[int]:
+    g = _graph(mesh)
+    picked = [0]
+    d = dijkstra(g, directed=False, indices=0)
+    picked = [int(np.argmax(d))]
+    d = dijkstra(g, directed=False, indices=picked[0])
+    for _ in range(k - 1):
+        picked.append(int(np.argmax(d)))
+        d = np.minimum(d, dijkstra(g, directed=False, indices=picked[-1]))
+    return picked
+
+
+def test_reexported_from_shapes() -> None:
+    assert shapes.creature is C.creature
+    assert shapes.creature_poses is C.creature_poses
+    assert set(C.SPECIES) >= {"dog", "horse"}
+    assert len(C.POSES) >= 6
+
+
+def test_topology_and_orientation(family: tuple[str, dict[str, Mesh]]) -> None:
+    _, poses = family
+    for name, m in poses.items():
+        assert m.is_closed, name
+        assert m.n_components == 1, name
+        assert m.euler_characteristic == 2, name
+        assert np.all(m.edge_face_counts == 2), name  # edge-manifold (Mesh also checks > 2)
+        assert _signed_volume(m) > 0, f"{name}: normals point inward"
+        # Mesh(check=True) re-validates consistent orientation and manifoldness.
+        Mesh(m.vertices, m.faces)
+
+
+def test_outward_normals_point_away_from_body(family: tuple[str, dict[str, Mesh]]) -> None:
+    # A point a little outside along each face normal has winding number ~0, inside ~1.
+    igl = pytest.importorskip("igl")
+
+    _, poses = family
+    m = poses["standing"]
+    eps = 0.2 * m.mean_edge_length
+    centres = m.vertices[m.faces].mean(axis=1)[::7]
+    normals = m.face_normals[::7]
+    outside = igl.winding_number(m.vertices, m.faces, centres + eps * normals)
+    inside = igl.winding_number(m.vertices, m.faces, centres - eps * normals)
+    assert np.median(np.abs(outside)) < 0.05 and np.median(inside) > 0.95
+
+
+def test_triangle_quality(family: tuple[str, dict[str, Mesh]]) -> None:
+    _, poses = family
+    for name, m in poses.items():
+        a = _min_angles(m)
+        assert a.min() >= 5.0, name
+        assert np.mean(a >= 25.0) >= 0.9, name
+
+
+def test_poses_share_triangulation(family: tuple[str, dict[str, Mesh]]) -> None:
+    _, poses = family
+    faces = poses["standing"].faces
+    assert {"standing", "walking", "galloping", "sitting", "head_turned", "tail_raised"} <= set(poses)
+    for name, m in poses.items():
+        assert np.array_equal(m.faces, faces), name
+        if name != "standing":
+            assert not np.allclose(m.vertices, poses["standing"].vertices), f"{name} did not move"
+
+
+def test_poses_nearly_isometric(family: tuple[str, dict[str, Mesh]]) -> None:
+    _, poses = family
+    rest = poses["standing"]
+    e = rest.edges
+    l0 = _edge_lengths(rest, e)
+    samples = _farthest_points(rest, 50)
+    d0 = dijkstra(_graph(rest), directed=False, indices=samples)[:, samples]
+    iu = np.triu_indices(50, 1)
+    for name, m in poses.items():
+        rel = np.abs(_edge_lengths(m, e) / l0 - 1.0)
+        assert np.median(rel) < 0.02, name
+        assert np.percentile(rel, 99) < 0.10, name
+        d = dijkstra(_graph(m), directed=False, indices=samples)[:, samples]
+        assert np.mean(np.abs(d[iu] / d0[iu] - 1.0)) < 0.03, name
+
+
+def test_no_interpenetration(family: tuple[str, dict[str, Mesh]]) -> None:
+    # Self-intersection would put some surface points inside another part: just outside the
+    # surface the winding number of the whole mesh would then be ~1 instead of ~0.
+    igl = pytest.importorskip("igl")
+
+    _, poses = family
+    for name, m in poses.items():
+        eps = 0.3 * m.mean_edge_length
+        centres = m.vertices[m.faces].mean(axis=1)
+        w = igl.winding_number(m.vertices, m.faces, centres + eps * m.face_normals)
+        assert np.max(w) < 0.5, f"{name}: {np.sum(w >= 0.5)} faces lie inside another part"
+
+
+def test_vertex_count_is_honoured() -> None:
+    for n in (2_000, 10_000):
+        m = C.creature("dog", n_vertices=n)
+        assert abs(m.n_vertices - n) <= 0.1 * n, (n, m.n_vertices)
+
+
+def test_deterministic() -> None:
+    a = C.creature("dog", "walking", {"head": 1.3}, n_vertices=N)
+    C._template.cache_clear()
+    b = C.creature("dog", "walking", {"head": 1.3}, n_vertices=N)
+    assert a is not b
+    assert np.array_equal(a.vertices, b.vertices) and np.array_equal(a.faces, b.faces)
+
+
+def test_returned_meshes_are_immutable() -> None:
+    m = C.creature("dog", n_vertices=N)
+    with pytest.raises(ValueError):
+        m.vertices[0, 0] = 1.0
+    with pytest.raises(AttributeError):
+        m.vertices = np.zeros((3, 3))  # type: ignore[misc]
+    assert C.creature("dog", n_vertices=N) == m
+
+
+@pytest.mark.parametrize("part, factor", [("head", 1.6), ("legs", 1.3), ("tail", 0.7)])
+def test_part_scaling(part: str, factor: float) -> None:
+    rest = C.creature("dog", n_vertices=N)
+    big = C.creature("dog", parts={part: factor}, n_vertices=N)
+    assert np.array_equal(big.faces, rest.faces)
+    masks = C.creature_parts("dog", n_vertices=N)
+    groups = {"head": ["head"], "legs": ["front_legs", "hind_legs"], "tail": ["tail"]}[part]
+    in_part = np.any([masks[g] for g in groups], axis=0)
+    face_in = in_part[rest.faces].all(axis=1)
+    face_out = (~in_part)[rest.faces].all(axis=1)
+    ratio_in = big.face_areas[face_in].sum() / rest.face_areas[face_in].sum()
+    ratio_out = big.face_areas[face_out].sum() / rest.face_areas[face_out].sum()
+    assert abs(ratio_in / factor**2 - 1.0) < 0.12, ratio_in
+    assert abs(ratio_out - 1.0) < 0.05, ratio_out
+    # Smoothness: no edge is stretched more than the factor itself.
+    e = rest.edges
+    rel = _edge_lengths(big, e) / _edge_lengths(rest, e)
+    assert rel.max() < max(factor, 1 / factor) * 1.1 and rel.min() > min(factor, 1 / factor) / 1.1
+
+
+def test_dict_pose() -> None:
+    rest = C.creature("dog", n_vertices=N)
+    same = C.creature("dog", {"tail_base": 0.0}, n_vertices=N)
+    assert np.array_equal(same.vertices, rest.vertices)
+    up = C.creature("dog", {"tail_base": -30.0, "tail_mid": (-20.0, 0.0, 0.0)}, n_vertices=N)
+    tail = C.creature_parts("dog", n_vertices=N)["tail"]
+    assert up.vertices[tail, 2].max() > rest.vertices[tail, 2].max() + 0.05
+    # Only the tail (and its blending band) moves.
+    moved = np.linalg.norm(up.vertices - rest.vertices, axis=1) > 1e-9
+    assert moved[tail].mean() > 0.9 and moved[~tail].mean() < 0.1
+
+
+def test_head_turn_turns_left() -> None:
+    rest = C.creature("dog", n_vertices=N)
+    turned = C.creature("dog", {"neck": (0.0, 20.0, 0.0)}, n_vertices=N)
+    head = C.creature_parts("dog", n_vertices=N)["head"]
+    assert turned.vertices[head, 1].mean() > rest.vertices[head, 1].mean() + 0.03
+
+
+def test_parts_partition_vertices() -> None:
+    masks = C.creature_parts("dog", n_vertices=N)
+    total = np.sum([m.astype(int) for m in masks.values()], axis=0)
+    assert np.all(total == 1)
+    assert set(masks) == {"torso", "neck", "head", "tail", "front_legs", "hind_legs"}
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(species="cat"), "species"),
+        (dict(pose="flying"), "pose"),
+        (dict(pose={"wing": 10.0}), "joint"),
+        (dict(pose={"neck": (1.0, 2.0)}), "pitch"),
+        (dict(pose={"neck": 120.0}), "90"),
+        (dict(pose={"neck": float("nan")}), "finite"),
+        (dict(parts={"wings": 2.0}), "part"),
+        (dict(parts={"head": -1.0}), "factor"),
+        (dict(parts=[("head", 2.0)]), "dict"),
+        (dict(n_vertices=100), "n_vertices"),
+        (dict(n_vertices=3000.5), "n_vertices"),
+    ],
+)
+def test_bad_input_raises(kwargs: dict, match: str) -> None:
+    args = dict(n_vertices=N) | kwargs
+    with pytest.raises(ValueError, match=match):
+        C.creature(**args)
