@@ -93,6 +93,7 @@ class _Primitive:
 class _Species:
     primitives: tuple[_Primitive, ...]
     bands: dict[str, tuple[float, float]]  # (parent side, child side) band extents
+    scale_band: float  # parent-side band extent of part scaling
     spacing: float  # marching-cubes grid spacing
 
 
@@ -104,10 +105,11 @@ def _build_species(
     body: list[dict[str, Any]],
     leg: list[dict[str, Any]],
     ear: dict[str, Any],
-    bands: dict[str, float],
+    bands: dict[str, tuple[float, float]],
+    scale_band: float,
     spacing: float,
 ) -> _Species:
-    """Assemble joints and primitives; left-side entries are mirrored to the right."""
+    """Assemble the primitives; left-side entries (ears, legs) are mirrored to the right."""
     prims: list[_Primitive] = []
     index: dict[str, int] = {}
     for spec in body:
@@ -137,7 +139,7 @@ def _build_species(
     for name in JOINTS:
         base = name[:-2] if name.endswith(("_l", "_r")) else name
         full_bands[name] = bands[base]
-    return _Species(tuple(prims), full_bands, spacing)
+    return _Species(tuple(prims), full_bands, scale_band, spacing)
 
 
 def _dog() -> _Species:
@@ -180,7 +182,7 @@ def _dog() -> _Species:
              "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.16),
              "elbow": (0.08, 0.08), "wrist": (0.08, 0.05), "hip": (0.03, 0.16), "knee": (0.08, 0.08),
              "hock": (0.06, 0.05)}
-    return _build_species(body, leg, ear, bands, spacing=0.01)
+    return _build_species(body, leg, ear, bands, scale_band=0.12, spacing=0.01)
 
 
 def _horse() -> _Species:
@@ -220,7 +222,7 @@ def _horse() -> _Species:
              "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.22),
              "elbow": (0.1, 0.1), "wrist": (0.1, 0.06), "hip": (0.03, 0.22), "knee": (0.1, 0.1),
              "hock": (0.08, 0.06)}
-    return _build_species(body, leg, ear, bands, spacing=0.012)
+    return _build_species(body, leg, ear, bands, scale_band=0.15, spacing=0.012)
 
 
 @functools.lru_cache(maxsize=None)
@@ -368,7 +370,10 @@ class _Template:
     mesh: Mesh  # the standing pose
     owners: NDArray[np.int64]  # per vertex: index into JOINT_ORDER of the joint that moves it
     weights: NDArray[np.float64]  # (len(JOINTS), n): phi_j per vertex
-    centres: NDArray[np.float64]  # (len(JOINTS), 3): rest positions of the joints
+    centres: NDArray[np.float64]  # (len(JOINTS), 3): rotation centres
+    scale_weights: NDArray[np.float64]  # (len(JOINTS), n): psi_j, the weights of part scaling
+    scale_centres: NDArray[np.float64]  # (len(JOINTS), 3): centres of part scaling
+    centre_weights: NDArray[np.float64]  # (len(JOINTS), len(JOINTS)): psi_j at rotation centre k
 
 
 _JOINT_ORDER: tuple[str, ...] = tuple(_JOINT_PARENTS)  # parents before children (root first)
@@ -412,9 +417,9 @@ def _remesh(spec: _Species, n_vertices: int) -> tuple[NDArray[np.float64], NDArr
 
 
 def _joint_weights(
-    mesh: Mesh, spec: _Species, owners: NDArray[np.int64]
+    mesh: Mesh, owners: NDArray[np.int64], bands: Mapping[str, tuple[float, float]]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """phi_j for every joint and its rotation centre.
+    """phi_j for every joint and its centre.
 
     phi_j is 1 on the body parts below joint j and 0 on the rest, except in a band around the
     seam between the two, measured along the surface (shortest paths on the edge graph), where
@@ -440,9 +445,13 @@ def _joint_weights(
         cut = e[inside[e[:, 0]] != inside[e[:, 1]]]
         if len(cut) == 0:
             raise RuntimeError(f"joint {joint!r} has no seam on the surface (internal error).")
-        parent_side, child_side = spec.bands[joint]
+        parent_side, child_side = bands[joint]
         dist = dijkstra(graph, directed=False, indices=np.unique(cut), min_only=True,
                         limit=max(parent_side, child_side))
+        if child_side == 0.0:  # the seam's inner vertices join the band too
+            inner = np.unique(cut[inside[cut]])
+            dist[inner] = 0.0
+            child_side = 1e-12
         band = np.where(inside, dist < child_side, dist < parent_side)
         phi = inside.astype(np.float64)
         free = np.flatnonzero(band)
@@ -465,10 +474,17 @@ def _template(species: str, n_vertices: int) -> _Template:
     d = np.stack([_primitive_distance(pr, u) for pr in spec.primitives])
     owner_names = [spec.primitives[i].owner for i in np.argmin(d, axis=0)]
     owners = np.array([_JOINT_ORDER.index(o) for o in owner_names], dtype=np.int64)
-    weights, centres = _joint_weights(mesh, spec, owners)
-    for a in (owners, weights, centres):
+    weights, centres = _joint_weights(mesh, owners, spec.bands)
+    # Part scaling blends on the parent side only, so that the whole part keeps its shape.
+    scale_weights, scale_centres = _joint_weights(mesh, owners, {j: (spec.scale_band, 0.0) for j in JOINTS})
+    from scipy.spatial import cKDTree
+
+    _, near = cKDTree(u).query(centres, k=8)
+    centre_weights = scale_weights[:, near].mean(axis=2)  # psi_j at each rotation centre
+    out = _Template(mesh, owners, weights, centres, scale_weights, scale_centres, centre_weights)
+    for a in (owners, weights, centres, scale_weights, scale_centres, centre_weights):
         a.setflags(write=False)
-    return _Template(mesh, owners, weights, centres)
+    return out
 
 
 # ------------------------------------------------------------------------------------------
@@ -594,10 +610,9 @@ def _deform(
         s = scales.get(joint, 1.0)
         if s == 1.0:
             continue
-        c = centres[row].copy()
-        x = c + np.power(s, template.weights[row])[:, None] * (x - c)
-        below = [JOINTS.index(j) for j in _subtree(joint) if j != joint]
-        centres[below] = c + s * (centres[below] - c)
+        c = template.scale_centres[row]
+        x = c + np.power(s, template.scale_weights[row])[:, None] * (x - c)
+        centres = c + np.power(s, template.centre_weights[row])[:, None] * (centres - c)
     for row in range(len(JOINTS) - 1, -1, -1):
         rotvec = rotations.get(JOINTS[row])
         if rotvec is not None:
