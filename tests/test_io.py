@@ -561,3 +561,10 @@ def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary
         except MeshError:
             pass
         assert time.perf_counter() - start < 5.0
+
+
+def test_clean_drops_an_unused_non_finite_vertex_but_refuses_a_used_one():
+    mesh, report = clean_mesh((SQUARE_V + [[np.nan, 0, 0]], SQUARE_F))
+    assert mesh.n_vertices == 4 and report.unreferenced_vertices == 1
+    with pytest.raises(MeshError, match="non-finite"):
+        clean_mesh((SQUARE_V + [[np.nan, 0, 0]], SQUARE_F + [[1, 4, 2]]))
