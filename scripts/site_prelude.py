@@ -7,7 +7,9 @@ It changes only how results are *displayed*, so that the static HTML works offli
 - ``lbo_notebooks.plotting.mesh_slider`` viewers (a live ipywidgets slider + FigureWidget, which
   need a kernel) display as a plain plotly figure with a plotly slider whose steps hold up to
   ``LBO_SITE_SLIDER_STEPS`` (default 16) precomputed frames, so the figure stays interactive
-  without a kernel. The viewer object itself is untouched: later cells can still drive it.
+  without a kernel; an ipywidgets box that contains such a viewer (e.g. with an extra control)
+  shows the viewer's static figure at the other controls' current values. The viewer objects
+  themselves are untouched: later cells can still drive them.
 """
 
 
@@ -86,14 +88,45 @@ def _lbo_site_setup() -> None:
     except ImportError:  # the site can still be built for notebooks that do not use the package
         _plotting = None
 
-    if _plotting is not None and hasattr(_plotting, "MeshSlider"):
-        def _display_static(self):
-            from IPython.display import display
+    if _plotting is None or not hasattr(_plotting, "MeshSlider"):
+        return
+    import weakref
 
-            display(static_slider_figure(self))
+    import ipywidgets
 
-        _plotting.MeshSlider._ipython_display_ = _display_static
+    viewers: weakref.WeakValueDictionary = weakref.WeakValueDictionary()  # id(viewer.widget) -> viewer
+    original_init = _plotting.MeshSlider.__init__
 
+    def _init(self, *args, **kwargs):
+        original_init(self, *args, **kwargs)
+        viewers[id(self.widget)] = self
+
+    def _display_static(self):
+        from IPython.display import display
+
+        display(static_slider_figure(self))
+
+    def _descendant_viewers(widget) -> list:
+        found = [viewers[id(widget)]] if id(widget) in viewers else []
+        for child in getattr(widget, "children", ()):
+            found += _descendant_viewers(child)
+        return found
+
+    original_box_repr = ipywidgets.Box._repr_mimebundle_
+
+    def _box_repr(self, **kwargs):
+        """A box holding mesh_slider viewers (e.g. with extra controls) shows their static figures."""
+        inner = _descendant_viewers(self)
+        if not inner:
+            return original_box_repr(self, **kwargs)
+        parts = [pio.renderers["lbo_site"].to_mimebundle(static_slider_figure(v).to_dict())["text/html"] for v in inner]
+        note = ("<p><em>The other controls of this widget are live only when the notebook runs in "
+                "JupyterLab; the figure shows their current setting.</em></p>")
+        return {"text/html": note + "\n".join(parts)}
+
+    _plotting.MeshSlider.__init__ = _init
+    _plotting.MeshSlider._ipython_display_ = _display_static
+    ipywidgets.Box._repr_mimebundle_ = _box_repr
 
 _lbo_site_setup()
 del _lbo_site_setup
