@@ -265,11 +265,20 @@ def _face_cross(m: Mesh) -> NDArray[np.float64]:
     return np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
 
 
+def _directed_edges(f: NDArray[np.int64]) -> NDArray[np.int64]:
+    return np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+
+
+def _pair_keys(pairs: NDArray[np.int64], n: int) -> NDArray[np.int64]:
+    # One int64 per index pair: 1-D np.unique is ~50x faster than np.unique(..., axis=0).
+    return pairs[:, 0] * np.int64(n) + pairs[:, 1]
+
+
 def _edge_table(m: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    f = m.faces
-    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    e.sort(axis=1)
-    edges, counts = np.unique(e, axis=0, return_counts=True)
+    n = m.n_vertices
+    e = np.sort(_directed_edges(m.faces), axis=1)
+    keys, counts = np.unique(_pair_keys(e, n), return_counts=True)
+    edges = np.stack([keys // n, keys % n], axis=1)
     return _readonly(edges.astype(np.int64)), _readonly(counts.astype(np.int64))
 
 
@@ -313,7 +322,8 @@ def validate_topology(mesh: Mesh) -> None:
     f, n = mesh.faces, mesh.n_vertices
 
     key = np.sort(f, axis=1)
-    _, first, counts = np.unique(key, axis=0, return_index=True, return_counts=True)
+    key = (key[:, 0] * np.int64(n) + key[:, 1]) * np.int64(n) + key[:, 2] if n < 2**21 else key
+    _, first, counts = np.unique(key, axis=0 if key.ndim == 2 else None, return_index=True, return_counts=True)
     if np.any(counts > 1):
         dup = np.sort(first[counts > 1])
         raise MeshError(
@@ -339,11 +349,10 @@ def validate_topology(mesh: Mesh) -> None:
             "edges or repair it in a mesh editor."
         )
 
-    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    keys, dcounts = np.unique(_pair_keys(_directed_edges(f), n), return_counts=True)
     if np.any(dcounts > 1):
-        d, _ = np.unique(directed, axis=0, return_counts=True)
-        bad = d[dcounts > 1]
+        twice = keys[dcounts > 1]
+        bad = np.stack([twice // n, twice % n], axis=1)
         raise MeshError(
             f"inconsistent orientation: {len(bad)} edges are traversed in the same direction by both "
             f"of their faces (first: edge {bad[0].tolist()}). Flip faces so that neighbours agree, "
