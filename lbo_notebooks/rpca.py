@@ -69,6 +69,7 @@ DENSE_LIMIT = 1500
 # Residual (relative backward error) at which a data eigenpair counts as converged.
 _DATA_TOL = 1e-12
 _MAX_ROUNDS = 8
+_SPLIT = 1e-2
 
 
 # --- small linear-algebra helpers --------------------------------------------------------------
@@ -269,7 +270,7 @@ class RegularizedPCA:
         self.data_values.setflags(write=False)
         # The split-point shift: small against the smoothness eigenvalues at every scale
         # (the first nonzero one is of order 4 pi / area), like spectrum.eigenbasis's shift.
-        self._t0 = 1e-2 * 4.0 * np.pi / self.area
+        self._t0 = _SPLIT * 4.0 * np.pi / self.area
         self._base_factor: spla.SuperLU | None = None
         self._base_solved: NDArray[np.float64] | None = None
 
