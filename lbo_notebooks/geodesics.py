@@ -218,7 +218,7 @@ def available_memory() -> int:
     return int(psutil.virtual_memory().available)
 
 
-def _check_memory(need: int, budget: float | None, what: str) -> None:
+def _check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
     if budget is None:
         budget = 0.5 * available_memory()
         where = "half of the memory available now"
@@ -229,7 +229,7 @@ def _check_memory(need: int, budget: float | None, what: str) -> None:
     if need > budget:
         raise MemoryError(
             f"{what} needs {need / 2**30:.2f} GiB, more than {where} ({budget / 2**30:.2f} GiB). "
-            "Use fewer sources, or spectral_mds / landmark_mds, which never form an n x n matrix."
+            f"{hint[0].upper() + hint[1:]}, or use spectral_mds / landmark_mds, which never form an n x n matrix."
         )
 
 

@@ -202,7 +202,8 @@ def classical_mds(
         n = mesh.n_vertices
         _check_dim(dim, n, "the number of vertices")
         _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
-                      f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)")
+                      f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
+                      "simplify the mesh (fewer vertices)")
         D2 = _solver(mesh, _check_method(method)).distances(
             np.arange(n), progress=progress, memory_budget=float("inf")
         )
@@ -218,7 +219,8 @@ def classical_mds(
         if np.any(D < 0):
             raise ValueError("distances must be non-negative.")
         _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
-                      f"classical MDS on {n} points (two more {n} x {n} float64 matrices)")
+                      f"classical MDS on {n} points (two more {n} x {n} float64 matrices)",
+                      "use fewer points")
         D2 = np.square(D)  # a new buffer: the caller's matrix is never modified
     dim = int(dim)
     # B = -1/2 J D2 J with D2 symmetrised (heat distances are not exactly symmetric).
