@@ -23,14 +23,6 @@ from lbo_notebooks.operators import MASS_KINDS, mass_matrix, stiffness_matrix
 ALPHAS = (0.0, 0.25, 0.4, 0.5, 0.75, 1.0)
 
 
-def _creature_or_none() -> Mesh | None:
-    try:
-        from lbo_notebooks.creatures import creature
-    except ImportError:
-        return None
-    return creature("dog", n_vertices=2000)
-
-
 @pytest.fixture(scope="module")
 def bumpy() -> Mesh:
     return shapes.bumpy_sphere(3)
@@ -38,11 +30,8 @@ def bumpy() -> Mesh:
 
 @pytest.fixture(scope="module")
 def curved_shapes(bumpy: Mesh) -> list[Mesh]:
-    out = [bumpy, shapes.torus(n_major=24, n_minor=10), shapes.ellipsoid(subdivisions=3)]
-    c = _creature_or_none()
-    if c is not None:
-        out.append(c)
-    return out
+    creature = shapes.creature("dog", n_vertices=2000)
+    return [bumpy, shapes.torus(n_major=24, n_minor=10), shapes.ellipsoid(subdivisions=3), creature]
 
 
 # --- Gaussian curvature ---------------------------------------------------------------------------
