@@ -251,7 +251,7 @@ def a_orthonormalize(
         pre = pre[:, None] if pre.ndim == 1 else pre
         if pre.ndim != 2 or pre.shape[0] != nv:
             raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
-        cols = np.hstack([pre, cols]) if cols.size or cols.ndim == 2 else pre
+        cols = np.hstack([pre, cols]) if cols.ndim == 2 and cols.shape[0] == nv else cols
     if cols.ndim != 2 or cols.shape[0] != nv:
         raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
     if not np.all(np.isfinite(cols)):
