@@ -16,7 +16,7 @@ from .mesh import Mesh
 
 __all__ = ["icosphere", "ellipsoid", "torus", "rectangle", "disk", "bumpy_sphere", "creature", "creature_poses"]
 
-_CREATURE_NAMES = ("creature", "creature_poses", "SPECIES", "POSES")
+_CREATURE_NAMES = ("creature", "creature_poses", "creature_parts", "pose_distortion", "SPECIES", "POSES", "JOINTS", "PARTS")
 
 
 def __getattr__(name: str) -> Any:
