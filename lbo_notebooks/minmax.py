@@ -372,6 +372,7 @@ class PlaneSlider:
 
         self.matrix = _check_3x3(matrix)
         self.lam = np.linalg.eigvalsh(self.matrix)
+        self._values = list(angles)
         self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, plane_normal(self.matrix, angles[0])))
         self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
                                               continuous_update=False)
