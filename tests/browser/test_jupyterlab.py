@@ -17,7 +17,7 @@ the menu bar, waits until every cell has run and the kernel is idle, and checks 
 - every plotly figure renders (a ``.js-plotly-plot`` with a WebGL canvas of non-zero size, no
   "WebGL is not supported" message), and notebooks that draw 3D figures show at least one;
 - every notebook that builds a slider shows ipywidgets (``.jupyter-widgets``, ``.widget-slider``);
-- pressing ArrowRight on the first slider's handle changes the plotly data of its figure and the
+- pressing the arrow keys on the first slider's handle changes the plotly data of its figure and the
   picture itself (screenshots before and after differ);
 - the "Build Recommended" dialog never appears (``make.sh`` / ``binder/postBuild`` write a
   ``page_config.json`` that switches the build check off).
@@ -182,7 +182,11 @@ def _kernel_ready(page: Page, lab: Lab, timeout: float) -> None:
     """
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
-        kernels = lab.api("GET", "/api/kernels")
+        try:
+            kernels = lab.api("GET", "/api/kernels")
+        except urllib.error.HTTPError:  # jupyter_server can answer 500 while a kernel is starting
+            time.sleep(0.5)
+            continue
         ready = any(k["connections"] > 0 and k["execution_state"] == "idle" for k in kernels)
         if ready and page.locator(
                 '.jp-NotebookPanel .jp-Notebook-ExecutionIndicator[data-status="idle"]').count() > 0:
@@ -209,6 +213,9 @@ def _wait_until_done(page: Page, timeout: float) -> list[str]:
         prompts = page.locator(".jp-CodeCell .jp-InputArea-prompt").all_text_contents()
         busy = any("*" in p for p in prompts)
         idle = page.locator('.jp-NotebookPanel .jp-Notebook-ExecutionIndicator[data-status="idle"]').count() > 0
+        dialogs = page.locator(".jp-Dialog").all_inner_texts()
+        if dialogs:  # e.g. "Kernel Restarting" after the kernel died (out of memory)
+            raise AssertionError(f"a dialog interrupted the run: {dialogs}")
         stable = stable + 1 if (idle and not busy and prompts) else 0
         if stable >= 3:
             return prompts
@@ -236,6 +243,50 @@ FIGURE_INFO = """el => {
         noWebGL: /WebGL is not supported|webgl-error|no-webgl/i.test(el.innerText) || !!el.querySelector('.no-webgl'),
     };
 }"""
+
+
+def _move_a_slider(page: Page, notebook: Path, out: Path) -> None:
+    """Press arrow keys on the first slider that drives a figure; its figure must change.
+
+    The slider sits in a widget box with a plotly figure (``mesh_slider``) or with an output
+    (``interact``); the plotly data (if any) and a screenshot of the box are compared.
+    """
+    boxes = page.locator(".jp-OutputArea-output .jupyter-widgets.widget-vbox:has(.widget-slider):has(.js-plotly-plot)")
+    if boxes.count() == 0:
+        boxes = page.locator(".jp-OutputArea-output .jupyter-widgets.widget-vbox:has(.widget-slider)")
+    assert boxes.count() > 0, f"{notebook.name}: no slider inside a widget box"
+    box = boxes.first
+    box.scroll_into_view_if_needed()
+    page.wait_for_timeout(500)
+    figure = box.locator(".js-plotly-plot").first if box.locator(".js-plotly-plot").count() else None
+    target = figure or box
+    state = (lambda: figure.evaluate(PLOTLY_STATE)) if figure else (lambda: None)
+    before_state = state()
+    before_png = target.screenshot(path=str(out / "slider_before.png"))
+    # The last slider of the box is mesh_slider's own (extra controls come first).
+    slider = box.locator(".widget-slider").last
+    readout = slider.locator(".widget-readout")
+    before_readout = readout.inner_text() if readout.count() else None
+    handle = slider.locator(".noUi-handle").first
+    for key in ("ArrowRight", "ArrowLeft"):  # ArrowLeft when the slider starts at its maximum
+        handle.focus()
+        for _ in range(3):
+            page.keyboard.press(key)
+        page.wait_for_timeout(1000)
+        if readout.count() == 0 or readout.inner_text() != before_readout:
+            break
+    after_readout = readout.inner_text() if readout.count() else None
+    assert after_readout != before_readout, f"{notebook.name}: the slider did not move ({before_readout})"
+    deadline = time.monotonic() + 120  # the kernel computes the new frame
+    after_state = state()
+    while figure and time.monotonic() < deadline and after_state == before_state:
+        page.wait_for_timeout(500)
+        after_state = state()
+    page.wait_for_timeout(2000)  # let WebGL / the output redraw
+    after_png = target.screenshot(path=str(out / "slider_after.png"))
+    if figure:
+        assert after_state != before_state, f"{notebook.name}: moving the slider did not change the figure's data"
+    assert after_png != before_png, f"{notebook.name}: moving the slider did not change the picture"
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
@@ -286,34 +337,11 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> No
     broken = page.locator(".jp-RenderedImage img").evaluate_all("imgs => imgs.filter(i => !(i.naturalWidth > 0)).length")
     assert broken == 0, f"{notebook.name}: {broken} images did not load"
 
-    # Widgets and one slider that moves its figure.
+    # Widgets, and one slider that changes what it drives.
     if any(call in code for call in SLIDER_CALLS):
         assert page.locator(".jp-OutputArea-output .jupyter-widgets").count() > 0, f"{notebook.name}: no widget rendered"
-        viewers = page.locator(".jupyter-widgets.widget-vbox:has(.widget-slider):has(.js-plotly-plot)")
-        assert viewers.count() > 0, f"{notebook.name}: no slider with a figure rendered"
-        viewer = viewers.first
-        viewer.scroll_into_view_if_needed()
-        page.wait_for_timeout(500)
-        figure = viewer.locator(".js-plotly-plot").first
-        before_state = figure.evaluate(PLOTLY_STATE)
-        before_png = figure.screenshot(path=str(out / "slider_before.png"))
-        readout = viewer.locator(".widget-readout").first
-        before_readout = readout.inner_text() if readout.count() else None
-        handle = viewer.locator(".noUi-handle").first
-        handle.focus()
-        for _ in range(3):
-            page.keyboard.press("ArrowRight")
-        deadline = time.monotonic() + 120
-        after_state = before_state
-        while time.monotonic() < deadline and after_state == before_state:
-            page.wait_for_timeout(500)
-            after_state = figure.evaluate(PLOTLY_STATE)
-        page.wait_for_timeout(1500)  # let WebGL redraw
-        after_png = figure.screenshot(path=str(out / "slider_after.png"))
-        after_readout = readout.inner_text() if readout.count() else None
-        assert before_readout != after_readout, f"{notebook.name}: the slider did not move ({before_readout})"
-        assert after_state != before_state, f"{notebook.name}: moving the slider did not change the figure's data"
-        assert after_png != before_png, f"{notebook.name}: moving the slider did not change the picture"
+        assert page.locator(".jp-OutputArea-output .widget-slider").count() > 0, f"{notebook.name}: no slider rendered"
+        _move_a_slider(page, notebook, out)
 
     assert _build_dialog(page) == 0, f"{notebook.name}: the 'Build Recommended' dialog appeared"
     dialogs = page.locator(".jp-Dialog").all_inner_texts()
