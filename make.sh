@@ -63,6 +63,9 @@ case "${1:-}" in
   test)
     system_packages; python_env "[test]"
     log "running unit tests and every notebook (nbval)"
+    # Two pytest workers on two cores: one BLAS thread each (oversubscribed OpenBLAS is ~30x
+    # slower on the small dense problems the tests solve).
+    export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
     exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax tests notebooks "${@:2}" ;;
   bench)
     system_packages; python_env "[test]"

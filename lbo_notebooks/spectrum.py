@@ -129,6 +129,10 @@ def check_operators(stiffness: sp.spmatrix, mass: sp.spmatrix) -> tuple[sp.csr_m
         raise ValueError(f"stiffness {W.shape} and mass {A.shape} must be square and of the same size.")
     if not (np.all(np.isfinite(W.data)) and np.all(np.isfinite(A.data))):
         raise ValueError("stiffness or mass contains NaN or inf; check the mesh for degenerate faces.")
+    for name, M in (("stiffness", W), ("mass", A)):
+        scale = abs(M).max() if M.nnz else 0.0
+        if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
+            raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
     if np.any(A.diagonal() <= 0):
         raise ValueError("the mass matrix has a non-positive diagonal entry; it must be positive definite.")
     return W, A

@@ -169,6 +169,10 @@ def test_bad_inputs():
         eigenbasis(m, 5, shift=-1.0)
     with pytest.raises(ValueError, match="same size"):
         eigenbasis((stiffness_matrix(m), sp.identity(3)), 2)
+    W = stiffness_matrix(m).tolil()
+    W[0, 1] += 1.0
+    with pytest.raises(ValueError, match="symmetric"):
+        eigenbasis((W.tocsr(), mass_matrix(m)), 2)
     with pytest.raises(ValueError, match="Mesh or a"):
         eigenbasis(np.eye(3), 2)
     with pytest.raises(ValueError, match="read-only"):
