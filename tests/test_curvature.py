@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import scipy.linalg
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -182,6 +183,14 @@ def _smallest_pivot(A) -> float:
     lu = spla.splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     assert np.array_equal(lu.perm_r, lu.perm_c), "the factorisation pivoted off the diagonal"
     return float(lu.U.diagonal().min())
+
+
+def test_smallest_pivot_detects_indefinite_matrices(bumpy: Mesh) -> None:
+    # The positive-definiteness oracle below must be able to fail.
+    M = mass_matrix(bumpy, "consistent")
+    lowest = scipy.linalg.eigvalsh(M.toarray())[0]
+    assert _smallest_pivot(M) > 0
+    assert _smallest_pivot((M - 1.5 * lowest * sp.identity(M.shape[0])).tocsr()) < 0
 
 
 @pytest.mark.parametrize("kind", MASS_KINDS)
