@@ -156,12 +156,12 @@ class Mesh:
     @property
     def edges(self) -> NDArray[np.int64]:
         """Unique undirected edges, shape (e, 2), each row sorted ascending."""
-        return self.cached("edges", lambda m: _edge_table(m)[0])
+        return self.cached("edge_table", _edge_table)[0]
 
     @property
     def edge_face_counts(self) -> NDArray[np.int64]:
         """How many faces use each edge of :attr:`edges` (1 on the boundary, 2 inside)."""
-        return self.cached("edge_face_counts", lambda m: _edge_table(m)[1])
+        return self.cached("edge_table", _edge_table)[1]
 
     @property
     def boundary_edges(self) -> NDArray[np.int64]:
