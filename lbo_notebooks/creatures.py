@@ -149,17 +149,17 @@ def _dog() -> _Species:
         dict(key="chest", parent="pelvis", kind="cone", owner="spine", blend=0.16, a=(0.04, 0, 0.62),
              b=(0.30, 0, 0.62), ra=0.165, rb=0.185, squash=0.8),
         dict(key="neck", parent="chest", kind="cone", owner="neck", blend=0.10, a=(0.34, 0, 0.70),
-             b=(0.51, 0, 0.91), ra=0.095, rb=0.075),
-        dict(key="head", parent="neck", kind="ellipsoid", owner="head", blend=0.06, a=(0.55, 0, 0.95),
-             radii=(0.12, 0.085, 0.09)),
-        dict(key="snout", parent="head", kind="cone", owner="head", blend=0.06, a=(0.60, 0, 0.93),
-             b=(0.77, 0, 0.90), ra=0.065, rb=0.042),
+             b=(0.57, 0, 0.98), ra=0.09, rb=0.07),
+        dict(key="head", parent="neck", kind="ellipsoid", owner="head", blend=0.06, a=(0.61, 0, 1.03),
+             radii=(0.13, 0.09, 0.095)),
+        dict(key="snout", parent="head", kind="cone", owner="head", blend=0.06, a=(0.67, 0, 1.01),
+             b=(0.85, 0, 0.97), ra=0.066, rb=0.045),
         dict(key="tail1", parent="pelvis", kind="cone", owner="tail_base", blend=0.06, a=(-0.40, 0, 0.67),
              b=(-0.58, 0, 0.78), ra=0.05, rb=0.04),
         dict(key="tail2", parent="tail1", kind="cone", owner="tail_mid", blend=0.03, a=(-0.58, 0, 0.78),
              b=(-0.74, 0, 0.92), ra=0.04, rb=0.03),
     ]
-    ear = dict(key="ear", parent="head", kind="ellipsoid", owner="ear", blend=0.035, a=(0.50, 0.06, 1.04),
+    ear = dict(key="ear", parent="head", kind="ellipsoid", owner="ear", blend=0.035, a=(0.57, 0.062, 1.13),
                radii=(0.045, 0.022, 0.07), tilt=(-0.35, 0.0, 0.0))
     leg = [
         dict(key="upper_arm", parent="chest", kind="cone", owner="shoulder", blend=0.08, a=(0.28, 0.11, 0.56),
@@ -178,10 +178,10 @@ def _dog() -> _Species:
              b=(-0.23, 0.11, 0.04), ra=0.045, rb=0.04),
     ]
     # (parent side, child side) extent of each joint's blending band along the surface.
-    bands = {"spine": (0.3, 0.3), "neck": (0.03, 0.2), "head": (0.15, 0.04), "ear": (0.01, 0.06),
-             "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.16),
-             "elbow": (0.08, 0.08), "wrist": (0.08, 0.05), "hip": (0.03, 0.16), "knee": (0.08, 0.08),
-             "hock": (0.06, 0.05)}
+    bands = {"spine": (0.3, 0.3), "neck": (0.03, 0.2), "head": (0.16, 0.04), "ear": (0.01, 0.06),
+             "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.2),
+             "elbow": (0.12, 0.12), "wrist": (0.1, 0.05), "hip": (0.03, 0.2), "knee": (0.12, 0.12),
+             "hock": (0.08, 0.06)}
     return _build_species(body, leg, ear, bands, scale_band=0.12, spacing=0.01)
 
 
@@ -220,8 +220,8 @@ def _horse() -> _Species:
     ]
     bands = {"spine": (0.35, 0.35), "neck": (0.03, 0.3), "head": (0.2, 0.04), "ear": (0.01, 0.06),
              "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.22),
-             "elbow": (0.1, 0.1), "wrist": (0.1, 0.06), "hip": (0.03, 0.22), "knee": (0.1, 0.1),
-             "hock": (0.08, 0.06)}
+             "elbow": (0.14, 0.14), "wrist": (0.12, 0.06), "hip": (0.03, 0.22), "knee": (0.14, 0.14),
+             "hock": (0.1, 0.06)}
     return _build_species(body, leg, ear, bands, scale_band=0.15, spacing=0.012)
 
 
@@ -525,11 +525,11 @@ POSES: dict[str, dict[str, Angles]] = {
         "ear_r": (-15.0, 0.0, 0.0),
     },
     "sitting": {
-        **_legs((-12.0, 0.0, -6.0), (20.0, -20.0, 12.0), "l"),
-        **_legs((-12.0, 0.0, -6.0), (20.0, -20.0, 12.0), "r"),
+        **_legs((-18.0, 3.0, -10.0), (4.0, -26.0, 18.0), "l"),
+        **_legs((-18.0, 3.0, -10.0), (4.0, -26.0, 18.0), "r"),
         "spine": (5.0, 0.0, 0.0),
-        "neck": (-6.0, 0.0, 0.0),
-        "head": (4.0, 0.0, 0.0),
+        "neck": (-8.0, 0.0, 0.0),
+        "head": (6.0, 0.0, 0.0),
         "tail_base": (12.0, 0.0, 0.0),
         "tail_mid": (10.0, 0.0, 0.0),
     },
@@ -540,8 +540,8 @@ POSES: dict[str, dict[str, Angles]] = {
         "ear_r": (0.0, 0.0, -10.0),
     },
     "tail_raised": {
-        "tail_base": (-28.0, 0.0, 0.0),
-        "tail_mid": (-22.0, 0.0, 0.0),
+        "tail_base": (-26.0, 0.0, 0.0),
+        "tail_mid": (-20.0, 0.0, 0.0),
         "ear_l": (10.0, 0.0, 0.0),
         "ear_r": (10.0, 0.0, 0.0),
     },
@@ -553,8 +553,8 @@ backward-pointing tail goes down); yaw > 0 turns toward the animal's left; roll 
 left side. Joints not listed keep their rest angle.
 """
 
-# The whole body pitches about the hind paws when sitting (a rigid motion of the root).
-_ROOT_PITCH = {"sitting": 26.0}
+# Sitting also pitches the whole body nose-up (a rigid motion, then set back on the ground).
+_ROOT_PITCH = {"sitting": 27.0}
 
 
 def _rotation_vector(angles: Angles) -> NDArray[np.float64]:
