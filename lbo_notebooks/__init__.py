@@ -32,7 +32,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling"),
     "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
-    "rpca": ("regularized_pca",),
+    "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta", "reconstruction_error", "principal_angles"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}

@@ -175,6 +175,15 @@ def _check_beta(beta: float) -> float:
     return float(beta)
 
 
+def _mu_from_beta(beta: float, s_B: float, lam_ref: float) -> float:
+    beta = _check_beta(beta)
+    if beta == 1.0:
+        return float("inf")
+    if s_B <= 0.0:
+        raise ValueError("the data are identically zero (after centring), so beta has no meaning; pass mu instead.")
+    return beta / (1.0 - beta) * s_B / lam_ref
+
+
 def _area_weights(A: sp.csr_matrix) -> NDArray[np.float64]:
     return np.asarray(A.sum(axis=1)).ravel()
 
@@ -289,12 +298,7 @@ class RegularizedPCA:
 
     def mu_from_beta(self, beta: float, m: int) -> float:
         """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
-        beta = _check_beta(beta)
-        if beta == 1.0:
-            return float("inf")
-        if self.top_data_value <= 0.0:
-            raise ValueError("the data are identically zero (after centring), so beta has no meaning; pass mu instead.")
-        return beta / (1.0 - beta) * self.top_data_value / self.reference_eigenvalue(m)
+        return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(m))
 
     def beta_from_mu(self, mu: float, m: int) -> float:
         """Inverse of :meth:`mu_from_beta`."""
@@ -614,15 +618,9 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, cen
     X = _check_data(data, A.shape[0])
     if center:
         X = _centred(X, A)
-    beta = _check_beta(beta)
-    if beta == 1.0:
-        return float("inf")
     gram = X.T @ (A @ X)
     s_B = float(np.linalg.eigvalsh((gram + gram.T) / 2)[-1])
-    if s_B <= 0:
-        raise ValueError("the data are identically zero, so beta has no meaning; pass mu instead.")
-    lam_ref = 4.0 * np.pi * _check_m(m, A.shape[0]) / float(A.sum())
-    return beta / (1.0 - beta) * s_B / lam_ref
+    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_m(m, A.shape[0]) / float(A.sum()))
 
 
 def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
