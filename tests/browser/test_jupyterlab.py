@@ -9,7 +9,8 @@ named with ``LBO_CHROMIUM=/path``) and the ``playwright`` Python package, used o
     LBO_BROWSER_TESTS=1 .venv/bin/python -m pytest -p no:dash tests/browser -v
 
 What happens: the ``notebooks/`` folder is copied to a temporary directory (so the repository's
-notebooks are never saved with outputs), JupyterLab is started on 127.0.0.1 on a free port with a
+notebooks are never saved with outputs; the rest of the repository is linked beside it, so that
+relative paths such as ``../benchmarks/...`` resolve), JupyterLab is started on 127.0.0.1 on a free port with a
 random token, and for each notebook a fresh browser page opens it, runs *Run > Run All Cells* from
 the menu bar, waits until every cell has run and the kernel is idle, and checks that
 
@@ -92,16 +93,16 @@ class Lab:
         self.root = root
         self.port, self.token = _free_port(), secrets.token_hex(16)
         self.url = f"http://127.0.0.1:{self.port}"
-        settings = root.parent / "settings"
+        settings = root.parent.parent / "settings"
         for name, value in SETTINGS.items():
             (settings / name).parent.mkdir(parents=True, exist_ok=True)
             (settings / name).write_text(json.dumps(value))
-        self.log = open(root.parent / "jupyterlab.log", "w")
+        self.log = open(root.parent.parent / "jupyterlab.log", "w")
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ServerApp.open_browser=False",
              "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
              f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
-             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent / 'workspaces'}"],
+             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent.parent / 'workspaces'}"],
             stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
@@ -136,7 +137,14 @@ class Lab:
 
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
-    root = tmp_path_factory.mktemp("lab") / "notebooks"
+    # A copy of notebooks/ (JupyterLab autosaves: the repository's notebooks must stay clean) next
+    # to links to the rest of the repository, so that paths like "../benchmarks/x.json" still work.
+    mirror = tmp_path_factory.mktemp("lab") / "repo"
+    mirror.mkdir()
+    for entry in REPO.iterdir():
+        if entry.name not in {"notebooks", ".git", "artifacts"}:
+            (mirror / entry.name).symlink_to(entry)
+    root = mirror / "notebooks"
     shutil.copytree(REPO / "notebooks", root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
     server = Lab(root)
     yield server
