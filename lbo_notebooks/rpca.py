@@ -409,8 +409,7 @@ class RegularizedPCA:
         return self._base_factor, self._base_solved
 
     def _solve_sparse(self, m: int, mu: float) -> RPCAResult:
-        W, A, U, X = self.stiffness, self.mass, self._U, self.data
-        c = U.shape[1]
+        W, A, U = self.stiffness, self.mass, self._U
         tau = mu * self._t0
         F0, Z0 = self._base()
         Y0 = Z0 / mu  # (mu W + tau A)^-1 U
@@ -686,7 +685,7 @@ def reconstruction_error(
     basis : array_like, shape (n, m)
         A-orthonormal basis.
     mass : scipy.sparse matrix
-    targets : (n, d) array, or a sequence of them
+    targets : (n, d) array, or a list/tuple of them
         One shape (e.g. vertex coordinates of a pose) or several.
 
     Returns
@@ -704,9 +703,7 @@ def reconstruction_error(
     """
     A = sp.csr_matrix(mass, dtype=np.float64)
     P = _check_basis(basis, A)
-    many = not (isinstance(targets, np.ndarray) or (np.ndim(targets) in (1, 2) and not isinstance(targets, (list, tuple))))
-    if isinstance(targets, (list, tuple)) and len(targets) and np.ndim(targets[0]) == 1 and np.ndim(targets) == 2:
-        many = False  # a plain nested list of rows is one target
+    many = isinstance(targets, (list, tuple))  # a sequence of shapes; an array is one shape
     items = list(targets) if many else [targets]
     a = _area_weights(A)
     errors = []
