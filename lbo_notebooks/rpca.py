@@ -24,6 +24,11 @@ single shift-invert Lanczos run cannot resolve both ends. :class:`RegularizedPCA
    A-orthogonal complement of the data eigenvectors (Woodbury solves with the step-1 factor);
 4. finishes with one Rayleigh–Ritz over both sets.
 
+Cost: one sparse factorisation of ``W + t0 A``, one per data eigenvalue above the split (at most
+c, the number of data columns), and a Lanczos run as long as :func:`~lbo_notebooks.eigenbasis`'s;
+memory O(n (m + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, m = 100, one BLAS thread):
+about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
+
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
 ``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
 
