@@ -14,7 +14,8 @@ weight ``phi_j`` on the surface: 1 on the body parts below the joint, 0 on the r
 harmonic (cotangent Laplace equation) in a band around the junction. A joint rotation by angle
 ``theta`` turns vertex ``x`` by ``phi_j(x) * theta`` about the joint centre, deepest joints first
 (forward kinematics with fractional angles); a part scaling by ``s`` maps
-``x -> c + s**phi_j(x) (x - c)``. Because the rotation is spread evenly over the band, an
+``x -> c + s**psi_j(x) (x - c)``, with a weight ``psi_j`` that blends on the parent side of the
+seam only, so that the whole part scales by ``s``. Because the rotation is spread evenly over the band, an
 outer fibre at distance ``r`` from the bone axis stretches by about ``r theta / L`` for a band
 of length ``L``: joints sit where the body is thin and the poses keep their angles moderate, so
 the deformations stay nearly isometric.
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
@@ -210,13 +212,13 @@ def _horse() -> _Species:
         dict(key="forearm", parent="upper_arm", kind="cone", owner="elbow", blend=0.04, a=(0.30, 0.14, 0.68),
              b=(0.32, 0.14, 0.28), ra=0.06, rb=0.042),
         dict(key="front_paw", parent="forearm", kind="cone", owner="wrist", blend=0.04, a=(0.32, 0.14, 0.28),
-             b=(0.34, 0.14, 0.06), ra=0.042, rb=0.055),
+             b=(0.34, 0.14, 0.055), ra=0.042, rb=0.055),
         dict(key="thigh", parent="pelvis", kind="cone", owner="hip", blend=0.09, a=(-0.42, 0.14, 0.98),
              b=(-0.30, 0.14, 0.68), ra=0.10, rb=0.065),
         dict(key="shin", parent="thigh", kind="cone", owner="knee", blend=0.04, a=(-0.30, 0.14, 0.68),
              b=(-0.48, 0.14, 0.40), ra=0.065, rb=0.045),
         dict(key="hind_foot", parent="shin", kind="cone", owner="hock", blend=0.04, a=(-0.48, 0.14, 0.40),
-             b=(-0.46, 0.14, 0.06), ra=0.045, rb=0.055),
+             b=(-0.46, 0.14, 0.055), ra=0.045, rb=0.055),
     ]
     bands = {"spine": (0.35, 0.35), "neck": (0.03, 0.3), "head": (0.2, 0.04), "ear": (0.01, 0.06),
              "tail_base": (0.02, 0.16), "tail_mid": (0.1, 0.1), "shoulder": (0.03, 0.22),
@@ -505,7 +507,7 @@ def _legs(front: tuple[float, float, float], hind: tuple[float, float, float], s
     return {f"{n}_{side}": (a, 0.0, 0.0) for n, a in zip(names, front + hind)}
 
 
-POSES: dict[str, dict[str, Angles]] = {
+_POSES: dict[str, dict[str, Angles]] = {
     "standing": {},
     "walking": {
         **_legs((18.0, -8.0, 10.0), (-14.0, 16.0, -10.0), "l"),
@@ -525,6 +527,7 @@ POSES: dict[str, dict[str, Angles]] = {
         "ear_r": (-15.0, 0.0, 0.0),
     },
     "sitting": {
+        "body": (27.0, 0.0, 0.0),
         **_legs((-18.0, 3.0, -10.0), (4.0, -26.0, 18.0), "l"),
         **_legs((-18.0, 3.0, -10.0), (4.0, -26.0, 18.0), "r"),
         "spine": (5.0, 0.0, 0.0),
@@ -546,15 +549,15 @@ POSES: dict[str, dict[str, Angles]] = {
         "ear_r": (10.0, 0.0, 0.0),
     },
 }
-"""Named poses: joint -> (pitch, yaw, roll) in degrees, relative to the standing pose.
+POSES: Mapping[str, Mapping[str, Angles]] = MappingProxyType({k: MappingProxyType(v) for k, v in _POSES.items()})
+"""Named poses (read-only): joint -> (pitch, yaw, roll) in degrees, relative to standing.
 
 Pitch > 0 turns the bone's forward direction upward (nose up, a hanging leg swings forward, a
 backward-pointing tail goes down); yaw > 0 turns toward the animal's left; roll > 0 lifts its
-left side. Joints not listed keep their rest angle.
+left side. Joints not listed keep their rest angle. The key ``"body"`` turns the whole animal
+rigidly (sitting pitches it nose-up). Every pose is then set on the ground plane z = 0 of the
+standing pose by a vertical translation.
 """
-
-# Sitting also pitches the whole body nose-up (a rigid motion, then set back on the ground).
-_ROOT_PITCH = {"sitting": 27.0}
 
 
 def _rotation_vector(angles: Angles) -> NDArray[np.float64]:
@@ -606,9 +609,8 @@ meets the body; ``"neck"`` keeps the head's size and only carries it along.
 # ------------------------------------------------------------------------------------------
 # Deformation and public API
 # ------------------------------------------------------------------------------------------
-def _deform(
-    template: _Template, rotations: dict[str, NDArray[np.float64]], scales: dict[str, float], root_pitch: float
-) -> NDArray[np.float64]:
+def _deform(template: _Template, rotations: dict[str, NDArray[np.float64]], scales: dict[str, float]) -> NDArray[np.float64]:
+    """Part scalings, then joint rotations (deepest first), then the rigid ``"body"`` turn."""
     x = np.array(template.mesh.vertices, dtype=np.float64)
     centres = np.array(template.centres)
     for row in range(len(JOINTS) - 1, -1, -1):  # deepest joints first
@@ -623,10 +625,8 @@ def _deform(
         rotvec = rotations.get(JOINTS[row])
         if rotvec is not None:
             x = _rotate(x, centres[row], rotvec, template.weights[row])
-    if root_pitch:
-        hind = [JOINTS.index("hock_l"), JOINTS.index("hock_r")]
-        pivot = centres[hind].mean(axis=0)
-        x = _rotate(x, pivot, np.array([0.0, -np.radians(root_pitch), 0.0]), np.ones(len(x)))
+    if "body" in rotations:
+        x = _rotate(x, x.mean(axis=0), rotations["body"], np.ones(len(x)))
     # Rest on the same ground plane as the standing pose (a rigid translation).
     x[:, 2] += template.mesh.vertices[:, 2].min() - x[:, 2].min()
     return x
@@ -646,20 +646,20 @@ def _check_species(species: Any) -> str:
     return str(species)
 
 
-def _parse_pose(pose: Any) -> tuple[dict[str, NDArray[np.float64]], float]:
+def _parse_pose(pose: Any) -> dict[str, NDArray[np.float64]]:
+    """Rotation vectors of the joints (and of ``"body"``) named in a pose."""
     if isinstance(pose, str):
         if pose not in POSES:
             raise ValueError(f"unknown pose {pose!r}; choose one of {tuple(POSES)} or pass a dict of joint angles.")
         angles: Mapping[str, Any] = POSES[pose]
-        root = _ROOT_PITCH.get(pose, 0.0)
     elif isinstance(pose, Mapping):
-        angles, root = pose, 0.0
+        angles = pose
     else:
         raise ValueError(f"pose must be a pose name or a dict joint -> angles in degrees, got {type(pose).__name__}.")
     rotations = {}
     for joint, value in angles.items():
-        if joint not in JOINTS:
-            raise ValueError(f"unknown joint {joint!r} in pose; joints are {JOINTS}.")
+        if joint not in JOINTS and joint != "body":
+            raise ValueError(f"unknown joint {joint!r} in pose; joints are {JOINTS} (and 'body' for the whole animal).")
         a = np.atleast_1d(np.asarray(value, dtype=np.float64))
         if a.shape == (1,):
             a = np.array([a[0], 0.0, 0.0])
@@ -671,7 +671,7 @@ def _parse_pose(pose: Any) -> tuple[dict[str, NDArray[np.float64]], float]:
             raise ValueError(f"angles of joint {joint!r} must lie within +-90 degrees, got {a.tolist()}.")
         if np.any(a != 0.0):
             rotations[joint] = _rotation_vector(tuple(a))
-    return rotations, root
+    return rotations
 
 
 def _parse_parts(parts: Any) -> dict[str, float]:
@@ -707,8 +707,11 @@ def creature(
         Body proportions.
     pose : str or dict, default "standing"
         A name from :data:`POSES`, or a dict ``joint -> angles`` with joint names from
-        :data:`JOINTS` and angles in degrees relative to the standing pose: a pitch, or a
-        ``(pitch, yaw, roll)`` triple (conventions in :data:`POSES`), each within +-90.
+        :data:`JOINTS` (or ``"body"``, a rigid turn of the whole animal) and angles in degrees
+        relative to the standing pose: a pitch, or a ``(pitch, yaw, roll)`` triple
+        (conventions in :data:`POSES`), each within +-90. The named poses are tested to be
+        nearly isometric and free of self-intersections; large custom angles stretch the
+        joints (about ``r theta / L``, see the module notes) and can make parts collide.
     parts : dict, optional
         ``part -> factor`` with part names from :data:`PARTS`, e.g. ``{"head": 1.6}``. Each part
         is scaled about its joint, blending smoothly into the rest of the body.
@@ -719,7 +722,8 @@ def creature(
     -------
     Mesh
         Closed, edge-manifold, outward oriented, one component, Euler characteristic 2. The
-        standing dog is about 1.5 units long and stands on the plane z = 0 facing +x.
+        standing dog is about 1.7 units long (the horse about 1.9), faces +x, has its left side
+        at y > 0 and stands on the plane z = 0.
 
     Raises
     ------
@@ -737,18 +741,28 @@ def creature(
     """
     species = _check_species(species)
     n_vertices = _check_n_vertices(n_vertices)
-    rotations, root = _parse_pose(pose)
+    rotations = _parse_pose(pose)
     scales = _parse_parts(parts)
     template = _template(species, n_vertices)
-    if not rotations and not scales and not root:
+    if not rotations and not scales:
         return template.mesh
-    return template.mesh.with_vertices(_deform(template, rotations, scales, root))
+    return template.mesh.with_vertices(_deform(template, rotations, scales))
 
 
 def creature_poses(
     species: str = "dog", n_vertices: int = 10_000, parts: Mapping[str, float] | None = None
 ) -> dict[str, Mesh]:
     """Every named pose of :data:`POSES` as meshes sharing one triangulation.
+
+    Parameters
+    ----------
+    species, n_vertices, parts
+        As in :func:`creature`; ``parts`` scales the same parts in every pose.
+
+    Returns
+    -------
+    dict of str to Mesh
+        Pose name -> mesh, in the order of :data:`POSES` (``"standing"`` first).
 
     Examples
     --------
