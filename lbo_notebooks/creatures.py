@@ -401,8 +401,13 @@ def _subtree(joint: str) -> set[str]:
 
 def _remesh(spec: _Species, n_vertices: int) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Marching cubes, then isotropic remeshing to about ``n_vertices``, then projection."""
-    import gpytoolbox
+    import warnings
+
     from skimage.measure import marching_cubes
+
+    with warnings.catch_warnings():  # gpytoolbox's import touches deprecated numpy/scipy paths
+        warnings.simplefilter("ignore", DeprecationWarning)
+        import gpytoolbox
 
     values, origin = _field_on_grid(spec)
     v, f, _, _ = marching_cubes(values, 0.0, spacing=(spec.spacing,) * 3)

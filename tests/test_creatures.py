@@ -227,3 +227,40 @@ def test_bad_input_raises(kwargs: dict, match: str) -> None:
     args = dict(n_vertices=N) | kwargs
     with pytest.raises(ValueError, match=match):
         C.creature(**args)
+
+
+def test_pose_distortion_oracles() -> None:
+    rest = C.creature("dog", n_vertices=N)
+    zero = C.pose_distortion(rest, rest)
+    assert zero == {"edge_median": 0.0, "edge_p99": 0.0, "geodesic_mean": 0.0}
+    # A uniform scaling by 1.1 changes every length, hence every geodesic, by exactly 10%.
+    grown = C.pose_distortion(rest, rest.with_vertices(1.1 * rest.vertices))
+    for value in grown.values():
+        assert value == pytest.approx(0.1, rel=1e-9)
+    with pytest.raises(ValueError, match="triangulation"):
+        C.pose_distortion(rest, C.creature("horse", n_vertices=N))
+    with pytest.raises(ValueError, match="n_samples"):
+        C.pose_distortion(rest, rest, n_samples=1)
+
+
+def test_isometry_at_10k() -> None:
+    poses = C.creature_poses("dog", n_vertices=10_000)
+    for name, m in poses.items():
+        d = C.pose_distortion(poses["standing"], m)
+        assert d["edge_median"] < 0.02 and d["edge_p99"] < 0.10 and d["geodesic_mean"] < 0.03, (name, d)
+
+
+def test_body_key_turns_rigidly() -> None:
+    rest = C.creature("dog", n_vertices=N)
+    turned = C.creature("dog", {"body": (0.0, 90.0, 0.0)}, n_vertices=N)
+    assert C.pose_distortion(rest, turned, n_samples=5)["edge_p99"] < 1e-12
+    # Facing +y now: the long axis of the bounding box swapped from x to y.
+    extent = np.ptp(turned.vertices, axis=0)
+    assert extent[1] > 2 * extent[0]
+
+
+def test_poses_are_read_only() -> None:
+    with pytest.raises(TypeError):
+        C.POSES["new"] = {}  # type: ignore[index]
+    with pytest.raises(TypeError):
+        C.POSES["walking"]["neck"] = (0.0, 0.0, 0.0)  # type: ignore[index]
