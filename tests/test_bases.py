@@ -15,8 +15,18 @@ ALL = [
     bases.umbrella_basis,
     bases.identity_mass_basis,
     bases.polynomial_basis,
-    lambda m, n, mass="voronoi": bases.metric_basis(m, n, lambda mm: sp.diags(1.0 + mm.vertices[:, 0] ** 2) @ mass_matrix(mm, mass), mass=mass),
+    lambda m, n, mass="voronoi": bases.metric_basis(m, n, _heavier_on_the_sides(mass), mass=mass),
 ]
+
+
+def _heavier_on_the_sides(mass):
+    # A conformal factor rho scales the mass as D A D with D = diag(sqrt(rho)): symmetric for
+    # every mass kind (D A alone is not symmetric when A is the consistent mass).
+    def metric(m):
+        d = sp.diags(np.sqrt(1.0 + m.vertices[:, 0] ** 2))
+        return d @ mass_matrix(m, mass) @ d
+
+    return metric
 IDS = ["eigen", "random", "pca", "umbrella", "identity", "polynomial", "metric"]
 
 
