@@ -419,14 +419,38 @@ def _remesh(spec: _Species, n_vertices: int) -> tuple[NDArray[np.float64], NDArr
     p = v[f]
     area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
     h = 0.98 * np.sqrt(2.0 * area / (np.sqrt(3.0) * n_vertices))
-    for _ in range(3):
+    stage = 1.25 * spec.spacing
+    if h < stage:
+        # Refining far below the marching-cubes edge length in one go stalls the remesher
+        # (measured: > 2 min at 45k vertices); an intermediate, projected mesh avoids it.
+        v, f = gpytoolbox.remesh_botsch(v, f, 5, stage, True)
+        v = _project_to_surface(spec, np.asarray(v, dtype=np.float64))
+        f = np.ascontiguousarray(f, dtype=np.int32)
+    best = None
+    for _ in range(4):
         u, g = gpytoolbox.remesh_botsch(v, f, 10, h, True)
+        u, g = np.asarray(u, dtype=np.float64), np.asarray(g, dtype=np.int64)
         ratio = len(u) / n_vertices
-        if abs(ratio - 1.0) < 0.04:
+        # The remesher should keep the topology; a sphere it must stay (else try another h).
+        if _is_sphere(u, g) and (best is None or abs(ratio - 1.0) < abs(len(best[0]) / n_vertices - 1.0)):
+            best = (u, g)
+        if best is not None and abs(len(best[0]) / n_vertices - 1.0) < 0.04:
             break
-        h *= np.sqrt(ratio)
-    u = _project_to_surface(spec, np.asarray(u, dtype=np.float64))
-    return u, np.asarray(g, dtype=np.int64)
+        h *= np.sqrt(ratio) if abs(ratio - 1.0) >= 0.04 else 1.03
+    if best is None:
+        raise RuntimeError(f"remeshing did not give a closed genus-0 surface for n_vertices={n_vertices}; try another size.")
+    return _project_to_surface(spec, best[0]), best[1]
+
+
+def _is_sphere(v: NDArray[np.float64], f: NDArray[np.int64]) -> bool:
+    """True for a closed, edge-manifold, connected triangle mesh with Euler characteristic 2."""
+    from .mesh import MeshError
+
+    try:
+        m = Mesh(v, f)
+    except MeshError:
+        return False
+    return m.is_closed and m.n_components == 1 and m.euler_characteristic == 2
 
 
 def _joint_weights(
@@ -481,6 +505,7 @@ def _joint_weights(
 
 @functools.lru_cache(maxsize=16)
 def _template(species: str, n_vertices: int) -> _Template:
+    """The standing mesh with its skinning data; cached in memory (arrays are read-only)."""
     spec = _species(species)
     u, g = _remesh(spec, n_vertices)
     mesh = Mesh(u, g)
