@@ -325,7 +325,8 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> No
     assert not not_run, f"{notebook.name}: code cells {not_run} did not run (prompts {prompts})"
 
     # 3D figures: every plotly figure drew a WebGL canvas.
-    figures = page.locator(".jp-OutputArea-output .js-plotly-plot")
+    # Plotly's JupyterLab renderer makes the output itself the plot; FigureWidget nests it.
+    figures = page.locator(".jp-OutputArea-output.js-plotly-plot, .jp-OutputArea-output .js-plotly-plot")
     infos = []
     for i in range(figures.count()):
         fig = figures.nth(i)
