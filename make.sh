@@ -66,7 +66,7 @@ case "${1:-}" in
     # Two pytest workers on two cores: one BLAS thread each (oversubscribed OpenBLAS is ~30x
     # slower on the small dense problems the tests solve).
     export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
-    exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules tests notebooks lbo_notebooks "${@:2}" ;;
+    exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules --durations=15 tests notebooks lbo_notebooks "${@:2}" ;;
   bench)
     system_packages; python_env "[test]"
     for b in benchmarks/*.py; do log "$b"; "$VENV/bin/python" "$b"; done ;;
