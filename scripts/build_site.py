@@ -205,7 +205,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--mathjax", help="local MathJax 2 folder to copy into the site, or a MathJax URL")
     args = parser.parse_args(argv)
 
-    sources = [p.resolve() for p in args.notebooks] or sorted((REPO / "notebooks").glob("*.ipynb"))
+    # The series' entry point first, then the numbered notebooks in order.
+    sources = [p.resolve() for p in args.notebooks] or sorted(
+        (REPO / "notebooks").glob("*.ipynb"), key=lambda p: (p.stem != "00_start_here", p.name))
     if not sources:
         print("no notebooks found", file=sys.stderr)
         return 1
