@@ -3,6 +3,9 @@
 #
 #   ./make.sh lab     install everything into .venv and open JupyterLab on notebooks/
 #   ./make.sh test    install everything (with test extras) and run unit tests + every notebook
+#   ./make.sh browser real-browser test: JupyterLab driven by Debian's chromium (Playwright)
+#   ./make.sh binder  rebuild a fresh environment from binder/ only and run the notebooks in it
+#   ./make.sh site    execute the notebooks and write a static HTML site into build/site
 #   ./make.sh bench   print the benchmark tables (benchmarks/*.py)
 #   ./make.sh install only install
 #
@@ -67,9 +70,23 @@ case "${1:-}" in
     # slower on the small dense problems the tests solve).
     export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
     exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules --durations=15 tests notebooks lbo_notebooks "${@:2}" ;;
+  site)
+    system_packages; python_env "[test]"
+    exec "$VENV/bin/python" scripts/build_site.py "${@:2}" ;;
+  browser)
+    system_packages; python_env "[test]"
+    if ! command -v chromium >/dev/null 2>&1; then
+      log "installing Debian's chromium for the real-browser test (Playwright uses it; it downloads no browser)"
+      { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; } \
+        || { log "install the browser with: sudo apt-get install -y chromium"; exit 1; }
+    fi
+    export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+    LBO_BROWSER_TESTS=1 exec "$VENV/bin/python" -m pytest -p no:dash tests/browser -v "${@:2}" ;;
+  binder)
+    exec scripts/binder_parity.sh "${@:2}" ;;
   bench)
     system_packages; python_env "[test]"
     for b in benchmarks/*.py; do log "$b"; "$VENV/bin/python" "$b"; done ;;
   *)
-    echo "usage: ./make.sh {lab|test|bench|install} [extra arguments]" >&2; exit 2 ;;
+    echo "usage: ./make.sh {lab|test|browser|binder|site|bench|install} [extra arguments]" >&2; exit 2 ;;
 esac

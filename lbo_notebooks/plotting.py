@@ -271,6 +271,8 @@ class MeshSlider:
         self._symmetric, self._colorscale = symmetric, colorscale
         self._display = _Display(mesh, max_faces)
         self.figure = go.FigureWidget(plot_mesh(mesh, None, max_faces=max_faces, height=height))
+        if title is not None:  # leave room for the title that update() sets
+            self.figure.layout.margin.t = 40
         if all(isinstance(v, (int, np.integer)) for v in values) and values == list(range(values[0], values[-1] + 1)):
             self.slider = widgets.IntSlider(value=values[0], min=values[0], max=values[-1], description=description,
                                             continuous_update=False)
