@@ -7,6 +7,8 @@ import resource
 import time
 from typing import Any, Callable
 
+import numpy as np
+
 
 def _child(fn: Callable[..., Any], args: tuple, queue: Any) -> None:
     base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -29,3 +31,13 @@ def measure(fn: Callable[..., Any], *args: Any) -> tuple[float, float, float, An
     out = queue.get()
     proc.join()
     return out
+
+
+def best_time(fn: Callable[[], object], repeat: int = 3) -> float:
+    """Best wall time of ``repeat`` calls of ``fn`` (the least noisy single number on a busy machine)."""
+    best = np.inf
+    for _ in range(repeat):
+        start = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - start)
+    return best

@@ -24,18 +24,13 @@ import time
 import numpy as np
 
 from lbo_notebooks import Mesh
+from lbo_notebooks.operators import corner_angles
 from lbo_notebooks import creatures as C
 
 
 def _min_angles(mesh: Mesh) -> np.ndarray:
-    p = mesh.vertices[mesh.faces]
-    out = []
-    for k in range(3):
-        a = p[:, (k + 1) % 3] - p[:, k]
-        b = p[:, (k + 2) % 3] - p[:, k]
-        cos = np.einsum("ij,ij->i", a, b) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
-        out.append(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
-    return np.min(out, axis=0)
+    """Smallest angle of each triangle, in degrees."""
+    return np.degrees(corner_angles(mesh)).min(axis=1)
 
 
 def _timed(fn):  # type: ignore[no-untyped-def]

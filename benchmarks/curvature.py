@@ -17,22 +17,19 @@ Times are the best of a few runs; the machine is shared, so read the ratios. Run
 from __future__ import annotations
 
 import time
-from typing import Callable
+from pathlib import Path
 
 import numpy as np
 
-from lbo_notebooks import Mesh, eigenbasis, shapes
+import sys
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _measure import best_time as _best  # noqa: E402
+
+from lbo_notebooks import Mesh, eigenbasis, shapes  # noqa: E402
 from lbo_notebooks.curvature import metric_mass_matrix
 from lbo_notebooks.operators import mass_matrix
 
 
-def _best(fn: Callable[[], object], repeat: int = 3) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def _fresh(mesh: Mesh) -> Mesh:

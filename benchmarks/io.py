@@ -17,7 +17,11 @@ from pathlib import Path
 
 import numpy as np
 
-from lbo_notebooks import Mesh, shapes
+import sys
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _measure import best_time as _best  # noqa: E402
+
+from lbo_notebooks import Mesh, shapes  # noqa: E402
 from lbo_notebooks.io import load_mesh, read_mesh_arrays, save_mesh
 
 
@@ -45,13 +49,6 @@ def scan_like_arrays(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     return v[used], (np.cumsum(used) - 1)[f]
 
 
-def _best(fn, repeat: int = 3) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def main() -> None:

@@ -48,7 +48,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .mesh import Mesh
-from .operators import MASS_KINDS, MassKind, face_cotangents, mass_matrix
+from .operators import MASS_KINDS, MassKind, corner_angles, mass_matrix
 
 __all__ = [
     "DEFAULT_FLOOR",
@@ -135,7 +135,7 @@ def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
 
     def compute(m: Mesh) -> NDArray[np.float64]:
         # angle = arccot(cot) in (0, pi); the three angles of each face sum to pi to round-off.
-        angles = np.arctan2(1.0, face_cotangents(m))
+        angles = corner_angles(m)
         total = np.bincount(m.faces.ravel(), weights=angles.ravel(), minlength=m.n_vertices)
         full = np.where(_interior_mask(m), 2.0 * np.pi, np.pi)
         out = full - total

@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from .mesh import Mesh
 
-__all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "MassKind", "MASS_KINDS"]
+__all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS"]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
 MASS_KINDS: tuple[str, ...] = ("voronoi", "barycentric", "consistent")
@@ -46,6 +46,20 @@ def face_cotangents(mesh: Mesh) -> NDArray[np.float64]:
         return cot
 
     return mesh.cached("face_cotangents", compute)
+
+
+def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
+    """Interior angle (radians) at each corner, shape (m, 3): column k is the angle at ``faces[:, k]``.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import Mesh
+    >>> m = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> np.degrees(corner_angles(m)).round(6).tolist()
+    [[90.0, 45.0, 45.0]]
+    """
+    # cot = cos/sin with sin > 0, so arctan2(1, cot) is the angle in (0, pi), accurate near 0 and pi.
+    return np.arctan2(1.0, face_cotangents(mesh))
 
 
 def stiffness_matrix(mesh: Mesh) -> sp.csr_matrix:
