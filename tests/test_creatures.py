@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import dijkstra
 
 from lbo_notebooks import Mesh, shapes
 from lbo_notebooks import creatures as C
@@ -20,11 +18,6 @@ def family(request: pytest.FixtureRequest) -> tuple[str, dict[str, Mesh]]:
     return request.param, C.creature_poses(request.param, n_vertices=N)
 
 
-def _edge_lengths(mesh: Mesh, edges: np.ndarray) -> np.ndarray:
-    v = mesh.vertices
-    return np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1)
-
-
 def _min_angles(mesh: Mesh) -> np.ndarray:
     """Smallest angle of each triangle, in degrees."""
     return np.degrees(corner_angles(mesh)).min(axis=1)
@@ -33,24 +26,6 @@ def _min_angles(mesh: Mesh) -> np.ndarray:
 def _signed_volume(mesh: Mesh) -> float:
     p = mesh.vertices[mesh.faces]
     return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
-
-
-def _graph(mesh: Mesh) -> coo_matrix:
-    e = mesh.edges
-    n = mesh.n_vertices
-    return coo_matrix((_edge_lengths(mesh, e), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
-
-
-def _farthest_points(mesh: Mesh, k: int) -> list[int]:
-    g = _graph(mesh)
-    picked = [0]
-    d = dijkstra(g, directed=False, indices=0)
-    picked = [int(np.argmax(d))]
-    d = dijkstra(g, directed=False, indices=picked[0])
-    for _ in range(k - 1):
-        picked.append(int(np.argmax(d)))
-        d = np.minimum(d, dijkstra(g, directed=False, indices=picked[-1]))
-    return picked
 
 
 def test_reexported_from_shapes() -> None:
@@ -105,19 +80,13 @@ def test_poses_share_triangulation(family: tuple[str, dict[str, Mesh]]) -> None:
 
 
 def test_poses_nearly_isometric(family: tuple[str, dict[str, Mesh]]) -> None:
+    # pose_distortion itself is checked against exact oracles in test_pose_distortion_oracles.
     _, poses = family
-    rest = poses["standing"]
-    e = rest.edges
-    l0 = _edge_lengths(rest, e)
-    samples = _farthest_points(rest, 50)
-    d0 = dijkstra(_graph(rest), directed=False, indices=samples)[:, samples]
-    iu = np.triu_indices(50, 1)
     for name, m in poses.items():
-        rel = np.abs(_edge_lengths(m, e) / l0 - 1.0)
-        assert np.median(rel) < 0.02, name
-        assert np.percentile(rel, 99) < 0.10, name
-        d = dijkstra(_graph(m), directed=False, indices=samples)[:, samples]
-        assert np.mean(np.abs(d[iu] / d0[iu] - 1.0)) < 0.03, name
+        d = C.pose_distortion(poses["standing"], m, n_samples=50)
+        assert d["edge_median"] < 0.02, name
+        assert d["edge_p99"] < 0.10, name
+        assert d["geodesic_mean"] < 0.03, name
 
 
 def test_no_interpenetration(family: tuple[str, dict[str, Mesh]]) -> None:
