@@ -58,14 +58,17 @@ class TreeMemorySampler(threading.Thread):
         self.cpu_seconds = 0.0
         self._stop_event = threading.Event()
 
-    def sample(self) -> int:
+    def _tree(self) -> list:
+        """The kernel process and its children (empty once the kernel has exited)."""
         try:
             root = psutil.Process(self.pid)
-            procs = [root, *root.children(recursive=True)]
+            return [root, *root.children(recursive=True)]
         except psutil.NoSuchProcess:
-            return 0
+            return []
+
+    def sample(self) -> int:
         total = 0
-        for p in procs:
+        for p in self._tree():
             try:
                 total += p.memory_info().rss
             except (psutil.NoSuchProcess, psutil.AccessDenied):
@@ -90,13 +93,8 @@ class TreeMemorySampler(threading.Thread):
 
     def cpu_time(self) -> float:
         """User + system CPU seconds of the kernel process tree so far (less load-dependent than wall time)."""
-        try:
-            root = psutil.Process(self.pid)
-            procs = [root, *root.children(recursive=True)]
-        except psutil.NoSuchProcess:
-            return 0.0
         total = 0.0
-        for p in procs:
+        for p in self._tree():
             try:
                 t = p.cpu_times()
                 total += t.user + t.system + t.children_user + t.children_system
