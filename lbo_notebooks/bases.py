@@ -296,7 +296,7 @@ def metric_basis(mesh: Mesh, n: int, metric: Metric, *, mass: MassKind = "vorono
     metric : sparse matrix, (W, A) tuple, or callable
         The other metric's mass matrix (the stiffness stays the cotangent ``W``: in 2-D a conformal
         change of metric only changes the mass), a full ``(W, A)`` pair, or a function
-        ``metric(mesh)`` returning either. Notebook 04's scale-invariant metric plugs in as
+        ``metric(mesh)`` returning either. Notebook 06's scale-invariant metric plugs in as
         ``lambda m: curvature.metric_mass_matrix(m, alpha)``.
 
     Examples

@@ -3,7 +3,7 @@
 One command (from the repository root, with the project's environment)::
 
     python scripts/build_site.py                   # -> build/site/index.html
-    python scripts/build_site.py --out /tmp/site notebooks/01_laplace_beltrami.ipynb
+    python scripts/build_site.py --out /tmp/site notebooks/02_laplace_beltrami.ipynb
 
 Each notebook in ``notebooks/`` is executed top to bottom in a fresh kernel (working directory
 ``notebooks/``, like JupyterLab) and converted with nbconvert's ``HTMLExporter`` (lab template).
