@@ -24,7 +24,9 @@ __version__ = "0.1.0"
 # Public names by module: one line per module, one concept per module.
 _EXPORTS: dict[str, tuple[str, ...]] = {
     "mesh": ("Mesh", "MeshError"),
-    "io": ("load_mesh", "save_mesh", "clean_mesh"),
+    "io": ("load_mesh", "save_mesh", "load_points"),
+    "repair": ("clean_mesh",),
+    "pointcloud": ("PointCloud",),
     "operators": ("stiffness_matrix", "mass_matrix"),
     "spectrum": ("Spectrum", "eigenbasis"),
     "plotting": ("plot_mesh",),
@@ -35,7 +37,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
     "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta", "reconstruction_error", "principal_angles"),
 }
-_SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax"}
+_SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 
 __all__ = sorted(_WHERE) + sorted(_SUBMODULES)

@@ -1,8 +1,9 @@
-"""Reading, writing and repairing triangle-mesh files (.off, .obj, .ply, .stl).
+"""Reading and writing mesh and point files (.off, .obj, .ply, .stl; points also .xyz, .pts, .txt).
 
 :func:`load_mesh` returns a validated :class:`~lbo_notebooks.Mesh` whose vertices are exactly
-the ones the file lists, in the file's order; :func:`save_mesh` writes one;
-:func:`clean_mesh` repairs what can be repaired and reports what it changed.
+the ones the file lists, in the file's order; :func:`save_mesh` writes one; :func:`load_points`
+reads a :class:`~lbo_notebooks.PointCloud`. Repair lives in :mod:`lbo_notebooks.repair`
+(:func:`clean_mesh`, also importable from here); ``load_mesh(path, clean=True)`` applies it.
 
 How each format is handled, and why
 -----------------------------------
@@ -16,6 +17,11 @@ broken file must raise :class:`MeshError`, not kill the Python process or Jupyte
 - PLY: a five-line ASCII PLY whose quad has an out-of-range index crashes the interpreter
   (segmentation fault, in its ear-clipping triangulation); randomly corrupted binary PLY files
   did the same; a truncated file or a ``nan`` gives partial, uninitialised arrays and no error.
+  PLY is read with the ``plyfile`` library instead, after the header has been checked here:
+  scanners write headers ``plyfile`` alone refuses (the Stanford files' ``property ambient_red
+  uchar { ambient color }`` puts the name before the type and a comment in braces), so each
+  header line is normalised first. Every element is read (ASCII, binary little or big endian);
+  only ``vertex`` (x, y, z) and ``face`` (``vertex_indices`` or ``vertex_index``) are used.
 - OFF: a file with fewer vertices than its header announces crashes the interpreter; a ``nan``
   coordinate gives uninitialised memory.
 - OBJ: open3d renumbers the vertices in order of first use, drops unreferenced ones, splits a
@@ -49,26 +55,34 @@ True
 
 from __future__ import annotations
 
+import io
 import os
 import re
 import struct
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence, Union
+from typing import Any, Union
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
-from .mesh import DEGENERATE_AREA_TOL, Mesh, MeshError, validate_topology
+from .mesh import Mesh, MeshError, unique_rows
+from .pointcloud import PointCloud
+from .repair import CleanReport, clean_arrays, clean_mesh, triangulate_polygons
 
-__all__ = ["load_mesh", "save_mesh", "clean_mesh", "read_mesh_arrays", "CleanReport", "MeshRepairWarning", "FORMATS"]
+__all__ = [
+    "load_mesh", "save_mesh", "load_points", "read_mesh_arrays", "clean_mesh", "CleanReport", "MeshRepairWarning",
+    "FORMATS", "POINT_FORMATS",
+]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
 #: Supported file extensions (lower case, with the dot).
 FORMATS: tuple[str, ...] = (".off", ".obj", ".ply", ".stl")
 _BINARY_FORMATS = (".ply", ".stl")
+#: Extensions :func:`load_points` reads: the mesh formats (their vertices) and text point lists.
+POINT_FORMATS: tuple[str, ...] = FORMATS + (".xyz", ".pts", ".txt", ".csv")
 
 # Smallest number of bytes a record can take in a text file: "0 0 0\n" and "3 0 1 2\n".
 _MIN_TEXT_VERTEX_BYTES = 6
@@ -91,15 +105,16 @@ class _Raw:
     n_polygons: int  # faces with more than three corners
 
 
-def _check_path(path: PathLike) -> Path:
+def _check_path(path: PathLike, formats: tuple[str, ...] = FORMATS) -> Path:
     p = Path(os.fspath(path))
     ext = p.suffix.lower()
-    if ext not in FORMATS:
+    if ext not in formats:
         raise ValueError(
-            f"unsupported mesh file extension {p.suffix!r} in {str(p)!r}; supported: {', '.join(FORMATS)}."
+            f"unsupported {'mesh' if formats == FORMATS else 'point'} file extension {p.suffix!r} in {str(p)!r}; "
+            f"supported: {', '.join(formats)}."
         )
     if not p.exists():
-        raise FileNotFoundError(f"no such mesh file: {str(p)!r}")
+        raise FileNotFoundError(f"no such {'mesh' if formats == FORMATS else 'point'} file: {str(p)!r}")
     if not p.is_file():
         raise MeshError(f"{str(p)!r} is not a regular file; pass the path of a mesh file.")
     if p.stat().st_size == 0:
@@ -139,11 +154,11 @@ def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.in
     return raw.vertices, raw.triangles
 
 
-def _read_raw(p: Path) -> _Raw:
+def _read_raw(p: Path, *, need_faces: bool = True) -> _Raw:
     ext = p.suffix.lower()
     reader = {".off": _read_off, ".obj": _read_obj, ".ply": _read_ply, ".stl": _read_stl}[ext]
     try:
-        return reader(p)
+        return reader(p) if ext in (".off", ".stl") else reader(p, need_faces)
     except MeshError as exc:
         raise MeshError(f"{str(p)!r}: {exc}") from None
 
@@ -165,19 +180,6 @@ def _content_lines(text: str) -> list[str]:
         if line:
             out.append(line)
     return out
-
-
-def _fan(polygons: Sequence[Sequence[int]]) -> tuple[NDArray[np.int64], int]:
-    """Triangles from polygons: a fan from each polygon's first corner; also the polygon count."""
-    tris: list[tuple[int, int, int]] = []
-    n_poly = 0
-    for poly in polygons:
-        if len(poly) > 3:
-            n_poly += 1
-        a = poly[0]
-        for k in range(1, len(poly) - 1):
-            tris.append((a, poly[k], poly[k + 1]))
-    return np.array(tris, dtype=np.int64).reshape(-1, 3), n_poly
 
 
 def _read_off(p: Path) -> _Raw:
@@ -280,17 +282,19 @@ def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], 
         if n < 3:
             raise MeshError(f"face {k} has {n} corners; a face needs at least 3. Remove it from the file.")
         polygons.append(poly)
-    tris, n_poly = _fan(polygons)
+    tris, n_poly = triangulate_polygons(polygons)
     return tris, n_poly
 
 
-def _read_obj(p: Path) -> _Raw:
+def _read_obj(p: Path, need_faces: bool = True) -> _Raw:
     text = _read_text(p, "OBJ")
     lines = text.splitlines()
     vertex_lines = [line[2:].split("#", 1)[0] for line in lines if line[:2] in ("v ", "v\t")]
     face_lines = [line[2:] for line in lines if line[:2] in ("f ", "f\t")]
     if not vertex_lines:
         raise MeshError("no vertex ('v x y z') lines found; this is not an OBJ mesh.")
+    if not face_lines and not need_faces:
+        return _Raw(_parse_vertex_lines(vertex_lines, 0), np.zeros((0, 3), np.int64), 0, 0)
     if not face_lines:
         raise MeshError("no face ('f a b c') lines found: the file is a point cloud or line set, not a surface.")
     vertices = _parse_vertex_lines(vertex_lines, 0)
@@ -326,7 +330,7 @@ def _read_obj(p: Path) -> _Raw:
             if len(poly) < 3:
                 raise MeshError(f"line {lineno}: a face needs at least 3 corners, got {len(poly)}.")
             polygons.append(poly)
-    triangles, n_poly = _fan(polygons)
+    triangles, n_poly = triangulate_polygons(polygons)
     return _Raw(vertices, _obj_check_range(triangles, len(vertices)), len(polygons), n_poly)
 
 
@@ -341,28 +345,21 @@ def _obj_check_range(triangles: NDArray[np.int64], nv: int) -> NDArray[np.int64]
     return triangles
 
 
-# PLY property type -> numpy type code (sizes follow).
+# PLY property types (both spellings of the format's spec) and the smallest size of each.
 _PLY_TYPES = {
-    "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
-    "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
-    "float": "f4", "float32": "f4", "double": "f8", "float64": "f8",
+    "char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2, "ushort": 2, "uint16": 2,
+    "int": 4, "int32": 4, "uint": 4, "uint32": 4, "float": 4, "float32": 4, "double": 8, "float64": 8,
 }
-_STRUCT = {"i1": "b", "u1": "B", "i2": "h", "u2": "H", "i4": "i", "u4": "I", "f4": "f", "f8": "d"}
+_PLY_FORMATS = ("ascii", "binary_little_endian", "binary_big_endian")
 _FACE_LISTS = ("vertex_indices", "vertex_index")
 
 
-@dataclass(frozen=True)
-class _PlyProperty:
-    name: str
-    type: str  # numpy code of the value (of the items, for a list)
-    count: str | None = None  # numpy code of a list's length, None for a scalar
+def _ply_header(p: Path) -> tuple[bytes, int, str, list[tuple[str, int, int]]]:
+    """Check and normalise a PLY header.
 
-    def min_bytes(self, corners: int) -> int:
-        size = np.dtype(self.type).itemsize
-        return size if self.count is None else np.dtype(self.count).itemsize + corners * size
-
-
-def _read_ply(p: Path) -> _Raw:
+    Returns the header rewritten in the form ``plyfile`` reads, the offset of the body, the
+    format and per element ``(name, count, minimum bytes per row)``.
+    """
     with open(p, "rb") as fh:
         head = fh.read(_MAX_HEADER_BYTES)
     if not head.startswith(b"ply"):
@@ -373,165 +370,102 @@ def _read_ply(p: Path) -> _Raw:
     newline = head.find(b"\n", end)
     body_start = len(head) if newline < 0 else newline + 1
     try:
-        header = head[:end].decode("ascii")
+        text = head[:end].decode("ascii")
     except UnicodeDecodeError:
         raise MeshError("the PLY header holds non-ASCII bytes: it is corrupt.") from None
-
     fmt = None
-    elements: list[tuple[str, int, list[_PlyProperty]]] = []
-    for line in header.splitlines()[1:]:
-        parts = line.split()
-        if not parts or parts[0] in ("comment", "obj_info"):
+    out = ["ply"]
+    elements: list[tuple[str, int, int]] = []
+    for line in text.splitlines()[1:]:
+        parts = re.sub(r"\{[^}]*\}", " ", line).split()  # '{ ambient color }': a comment
+        if not parts:
+            continue
+        if parts[0] in ("comment", "obj_info"):
+            out.append(line.strip())
             continue
         try:
             if parts[0] == "format":
                 fmt = parts[1]
+                if fmt not in _PLY_FORMATS:
+                    raise MeshError(f"unknown PLY format {fmt!r}; expected ascii, binary_little_endian or binary_big_endian.")
+                out.append(f"format {fmt} {parts[2] if len(parts) > 2 else '1.0'}")
             elif parts[0] == "element":
-                elements.append((parts[1], int(parts[2]), []))
+                count = int(parts[2])
+                if count < 0:
+                    raise MeshError("the PLY header announces a negative element count; it is corrupt.")
+                elements.append((parts[1], count, 0))
+                out.append(f"element {parts[1]} {count}")
             elif parts[0] == "property" and parts[1] == "list":
-                elements[-1][2].append(_PlyProperty(parts[4], _PLY_TYPES[parts[3]], _PLY_TYPES[parts[2]]))
+                count_type, item_type, name = parts[2], parts[3], parts[4]
+                if count_type not in _PLY_TYPES or item_type not in _PLY_TYPES:
+                    raise ValueError
+                row = _PLY_TYPES[count_type] if fmt != "ascii" else 2
+                elements[-1] = (elements[-1][0], elements[-1][1], elements[-1][2] + row)
+                out.append(f"property list {count_type} {item_type} {name}")
             elif parts[0] == "property":
-                elements[-1][2].append(_PlyProperty(parts[2], _PLY_TYPES[parts[1]]))
+                kind, name = parts[1], parts[2]
+                if kind not in _PLY_TYPES and name in _PLY_TYPES:
+                    kind, name = name, kind  # 'property ambient_red uchar', as in the PLY spec's example
+                if kind not in _PLY_TYPES:
+                    raise ValueError
+                row = _PLY_TYPES[kind] if fmt != "ascii" else 2
+                elements[-1] = (elements[-1][0], elements[-1][1], elements[-1][2] + row)
+                out.append(f"property {kind} {name}")
             else:
                 raise ValueError
-        except (IndexError, ValueError, KeyError):
+        except (IndexError, ValueError) as exc:
+            if isinstance(exc, MeshError):
+                raise
             raise MeshError(f"unreadable PLY header line {line[:60]!r}: the header is corrupt.") from None
-    if fmt not in ("ascii", "binary_little_endian", "binary_big_endian"):
-        raise MeshError(f"unknown PLY format {fmt!r}; expected ascii, binary_little_endian or binary_big_endian.")
+    if fmt is None:
+        raise MeshError("the PLY header has no 'format' line; it is corrupt.")
+    out.append("end_header\n")
+    return "\n".join(out).encode("ascii"), body_start, fmt, elements
+
+
+def _read_ply(p: Path, need_faces: bool = True) -> _Raw:
+    import plyfile
+
+    header, body_start, fmt, elements = _ply_header(p)
     counts = {name: n for name, n, _ in elements}
     nv, nf = counts.get("vertex", 0), counts.get("face", 0)
     if nv <= 0:
         raise MeshError("the PLY header declares no vertices ('element vertex N'); no mesh.")
-    if nf <= 0:
-        raise MeshError("the PLY file has no faces ('element face N'): it is a point cloud, not a surface.")
-    vprops = {q.name: q for q in elements[[e[0] for e in elements].index("vertex")][2]}
-    if not all(c in vprops and vprops[c].count is None for c in "xyz"):
-        raise MeshError("the PLY vertex element lacks scalar x, y, z properties; no positions to read.")
-    fprops = [q.name for q in elements[[e[0] for e in elements].index("face")][2]]
-    if not any(name in fprops for name in _FACE_LISTS):
-        raise MeshError("the PLY face element has no 'vertex_indices' list; cannot read the faces.")
-    ascii = fmt == "ascii"
-    min_bytes = sum(
-        n * sum(2 + 6 * (q.count is not None and name == "face") if ascii else q.min_bytes(3 * (name == "face")) for q in props)
-        for name, n, props in elements
-    )
-    if any(n < 0 for _, n, _ in elements):
-        raise MeshError("the PLY header announces a negative element count; it is corrupt.")
+    if nf <= 0 and need_faces:
+        raise MeshError("the PLY file has no faces ('element face N'): it is a point cloud, not a surface. "
+                        "Read it with lbo.load_points.")
+    # Before reading: the rows the header announces must fit in the file (a face holds >= 3 indices).
+    min_bytes = sum(n * (row + (3 * (1 if fmt != "ascii" else 2) if name == "face" else 0)) for name, n, row in elements)
     _check_counts(p, nv, nf, body_start + min_bytes)
-
-    body = p.read_bytes()[body_start:]
-    if ascii:
-        vertices, polygons = _ply_ascii(body, elements)
-    else:
-        vertices, polygons = _ply_binary(body, elements, "<" if fmt == "binary_little_endian" else ">")
-    if isinstance(polygons, tuple):
-        triangles, n_poly = polygons
-    else:
-        short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
-        if short:
-            raise MeshError(f"face {short[0]} has {len(polygons[short[0]])} corners; a face needs at least 3.")
-        triangles, n_poly = _fan(polygons)
+    with open(p, "rb") as fh:
+        fh.seek(body_start)
+        stream = io.BytesIO(header + fh.read())
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ply = plyfile.PlyData.read(stream)
+    except (plyfile.PlyParseError, ValueError, TypeError, OverflowError, EOFError, struct.error) as exc:
+        raise MeshError(f"the PLY data does not match its header ({str(exc)[:120]}): the file is truncated or corrupt.") from None
+    vertex = ply["vertex"].data
+    names = vertex.dtype.names or ()
+    if not all(c in names and vertex.dtype[c].shape == () and vertex.dtype[c] != object for c in "xyz"):
+        raise MeshError("the PLY vertex element lacks scalar x, y, z properties; no positions to read.")
+    vertices = np.column_stack([vertex[c].astype(np.float64) for c in "xyz"])
+    if nf <= 0:
+        return _Raw(vertices, np.zeros((0, 3), np.int64), 0, 0)
+    face = ply["face"].data
+    key = next((name for name in _FACE_LISTS if name in (face.dtype.names or ())), None)
+    if key is None:
+        raise MeshError("the PLY face element has no 'vertex_indices' list; cannot read the faces.")
+    lists = face[key]
+    lengths = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(lists))
+    if lengths.min() < 3:
+        k = int(np.argmin(lengths))
+        raise MeshError(f"face {k} has {lengths[k]} corners; a face needs at least 3.")
+    if np.all(lengths == 3):
+        return _Raw(vertices, np.stack(lists).astype(np.int64).reshape(-1, 3), nf, 0)
+    triangles, n_poly = triangulate_polygons([x.astype(np.int64).tolist() for x in lists])
     return _Raw(vertices, triangles, nf, n_poly)
-
-
-def _ply_ascii(body: bytes, elements: list[tuple[str, int, list[_PlyProperty]]]) -> tuple[NDArray[np.float64], Any]:
-    """ASCII PLY body: one line per element row."""
-    if b"\x00" in body[: 1 << 16]:
-        raise MeshError("the ASCII PLY body holds binary data (NUL bytes): the file is corrupt.")
-    lines = [line for line in body.decode("latin-1").splitlines() if line.strip()]
-    pos = 0
-    vertices = polygons = None
-    for name, n, props in elements:
-        rows = lines[pos : pos + n]
-        pos += n
-        if len(rows) < n:
-            raise MeshError(f"the header announces {n} {name} rows but the file ends after {len(rows)}: it is truncated.")
-        if name == "vertex":
-            if any(q.count is not None for q in props):
-                raise MeshError("list properties on PLY vertices are not supported; re-export without them.")
-            arr = _numbers("\n".join(rows), np.float64)
-            if arr is None or arr.size != n * len(props):
-                bad = next((k for k, r in enumerate(rows) if len(r.split()) != len(props)), 0)
-                raise MeshError(f"vertex {bad} ({rows[bad][:60]!r}) is not {len(props)} numbers; the file is corrupt.")
-            cols = [q.name for q in props]
-            vertices = arr.reshape(n, len(props))[:, [cols.index(c) for c in "xyz"]].copy()
-        elif name == "face":
-            if len(props) == 1:
-                polygons = _parse_counted_faces(rows, 0)  # (triangles, n_polygons)
-                continue
-            polygons = []
-            for k, row in enumerate(rows):
-                tokens, at, poly = row.split(), 0, None
-                try:
-                    for q in props:
-                        if q.count is None:
-                            at += 1
-                        else:
-                            m = int(tokens[at])
-                            if m < 0 or at + 1 + m > len(tokens):
-                                raise ValueError
-                            if q.name in _FACE_LISTS and poly is None:
-                                poly = [int(t) for t in tokens[at + 1 : at + 1 + m]]
-                            at += 1 + m
-                except (ValueError, IndexError):
-                    raise MeshError(f"face {k} ({row[:60]!r}) does not match the header's properties; the file is corrupt.") from None
-                polygons.append(poly)
-    return vertices, polygons
-
-
-def _ply_binary(body: bytes, elements: list[tuple[str, int, list[_PlyProperty]]], endian: str) -> tuple[NDArray[np.float64], Any]:
-    """Binary PLY body: fixed-size rows through numpy; rows with lists walked one by one."""
-    off = 0
-    vertices = polygons = None
-    for name, n, props in elements:
-        lists = [q for q in props if q.count is not None]
-        if not lists or (len(lists) == 1 and name == "face"):
-            # Fixed-size rows (for faces: assume triangles, then check that they are).
-            fields = []
-            for q in props:
-                if q.count is None:
-                    fields.append((q.name, endian + q.type))
-                else:
-                    fields += [("__count", endian + q.count), (q.name, endian + q.type, (3,))]
-            dtype = np.dtype(fields)
-            if off + n * dtype.itemsize <= len(body):
-                rows = np.frombuffer(body, dtype=dtype, count=n, offset=off)
-                if not lists or np.all(rows["__count"] == 3):
-                    off += n * dtype.itemsize
-                    if name == "vertex":
-                        vertices = np.column_stack([rows[c].astype(np.float64) for c in "xyz"])
-                    elif name == "face":
-                        polygons = (rows[lists[0].name].astype(np.int64), 0)
-                    continue
-            elif not lists:
-                raise MeshError(f"the file ends inside the {name} data: it is truncated.")
-        if name == "vertex":
-            raise MeshError("list properties on PLY vertices are not supported; re-export without them.")
-        # General case: walk row by row.
-        out: list[list[int]] = []
-        for _ in range(n):
-            poly = None
-            for q in props:
-                size = np.dtype(q.type).itemsize
-                if q.count is None:
-                    off += size
-                    continue
-                csize = np.dtype(q.count).itemsize
-                if off + csize > len(body):
-                    raise MeshError(f"the file ends inside the {name} data: it is truncated.")
-                m = struct.unpack_from(endian + _STRUCT[q.count], body, off)[0]
-                off += csize
-                if m < 0 or off + m * size > len(body):
-                    raise MeshError(f"a {name} list announces {m} items past the end of the file: it is corrupt.")
-                if name == "face" and q.name in _FACE_LISTS and poly is None:
-                    poly = [int(i) for i in struct.unpack_from(f"{endian}{m}{_STRUCT[q.type]}", body, off)]
-                off += m * size
-            if off > len(body):
-                raise MeshError(f"the file ends inside the {name} data: it is truncated.")
-            out.append(poly)
-        if name == "face":
-            polygons = out
-    return vertices, polygons
 
 
 def _read_stl(p: Path) -> _Raw:
@@ -578,35 +512,19 @@ def _weld_corners(corners: NDArray[np.float64]) -> tuple[NDArray[np.float64], ND
 
     Vertices are numbered in order of first appearance in the corner list.
     """
-    first, inverse = _unique_rows(corners)
+    first, inverse = unique_rows(corners)
     order = np.argsort(first, kind="stable")  # groups sorted by first appearance
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
     return corners[first[order]].copy(), rank[inverse].reshape(-1, 3).astype(np.int64)
 
 
-def _unique_rows(a: NDArray[Any]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Group equal rows of a 2-D array.
-
-    Returns ``first`` (index of the first row of each group, groups in sorted order) and
-    ``inverse`` (group of each row). A stable lexicographic sort: much faster than
-    ``np.unique(a, axis=0)``, which sorts opaque row records.
-    """
-    if len(a) == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    order = np.lexsort(a.T[::-1])
-    s = a[order]
-    new = np.ones(len(a), dtype=bool)
-    new[1:] = np.any(s[1:] != s[:-1], axis=1)
-    inverse = np.empty(len(a), dtype=np.int64)
-    inverse[order] = np.cumsum(new) - 1
-    return order[new].astype(np.int64), inverse
-
 
 def _open3d() -> Any:
     from ._open3d import import_open3d
 
     return import_open3d()
+
 
 
 # =============================================================================================
@@ -625,14 +543,19 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
         The file. The extension (case-insensitive) selects the format.
     clean : bool, default False
         Repair what can be repaired (see :func:`clean_mesh`) and issue a
-        :class:`MeshRepairWarning` saying what changed. Without it, any defect raises.
+        :class:`MeshRepairWarning` saying what changed. Without it, any defect raises. What no
+        repair makes manifold (non-manifold edges, non-orientable pieces) is kept and reported;
+        ``lbo.eigenbasis(lbo.load_mesh(path, clean=True), k)`` gives every such mesh a spectrum,
+        through the robust Laplacian where the cotangent one cannot serve it. A mesh in ``c``
+        pieces has ``c`` zero eigenvalues (the report says how many pieces).
     keep_largest_component : bool, default False
         With ``clean=True``, keep only the connected component with the most faces.
 
     Returns
     -------
     Mesh
-        A validated mesh. Several connected components and boundaries are legal.
+        A validated mesh. Several connected components and boundaries are legal. With
+        ``clean=True`` it may be non-manifold or non-orientable (built with ``check=False``).
 
     Raises
     ------
@@ -643,8 +566,8 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
     MeshError
         If the file is unreadable, empty, truncated or junk, announces absurd counts, or holds
         a defect: non-finite coordinates, indices out of range, polygons, degenerate or
-        duplicate faces, unreferenced vertices (all repaired by ``clean=True``), non-manifold
-        edges or a non-orientable surface (never repaired). The message names the file, the
+        duplicate faces, unreferenced vertices, non-manifold edges, inconsistent orientation (all
+        accepted by ``clean=True``; corrupt data never is). The message names the file, the
         defect and the fix.
 
     Examples
@@ -668,11 +591,13 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
     raw = _read_raw(p)
     if clean:
         try:
-            mesh, report = _clean(raw.vertices, raw.triangles, keep_largest_component, raw.n_polygons)
+            mesh, report = clean_arrays(
+                raw.vertices, raw.triangles, keep_largest_component=keep_largest_component, polygons_split=raw.n_polygons
+            )
         except MeshError as exc:
             raise MeshError(f"{str(p)!r}: cannot be repaired: {exc}") from None
-        if report.changed:
-            warnings.warn(f"{str(p)!r} was repaired: {report}", MeshRepairWarning, stacklevel=2)
+        if report.noteworthy:
+            warnings.warn(f"{str(p)!r} loaded with clean=True: {report}", MeshRepairWarning, stacklevel=2)
         return mesh
     if raw.n_polygons:
         raise MeshError(
@@ -791,315 +716,86 @@ def _stl_text(v: NDArray[np.float64], f: NDArray[np.int64]) -> str:
     return "solid lbo_notebooks\n" + _rows(rows, facet) + "endsolid lbo_notebooks\n"
 
 
-# =============================================================================================
-# Cleaning
-# =============================================================================================
-@dataclass(frozen=True)
-class CleanReport:
-    """What :func:`clean_mesh` changed. ``str(report)`` is a one-line summary.
 
-    Attributes
-    ----------
-    n_vertices_in, n_faces_in, n_vertices_out, n_faces_out : int
-        Sizes before (triangles, after splitting polygons) and after cleaning.
-    polygons_split : int
-        Faces with more than three corners split into triangles.
-    vertices_welded : int
-        Vertices merged into an earlier vertex with exactly the same coordinates.
-    degenerate_faces : int
-        Zero-area faces removed (repeated corners, or area below the :class:`Mesh` tolerance).
-    duplicate_faces : int
-        Faces removed because an earlier face has the same three vertices.
-    unreferenced_vertices : int
-        Vertices removed because no face uses them (also those orphaned by removed faces).
-    faces_flipped : int
-        Faces whose orientation was reversed to agree with their neighbours.
-    components_removed : int
-        Components dropped by ``keep_largest_component``.
-    vertex_map : ndarray, shape (n_vertices_in,)
-        New index of each input vertex, or -1 if it was removed.
-    """
-
-    n_vertices_in: int
-    n_faces_in: int
-    n_vertices_out: int
-    n_faces_out: int
-    polygons_split: int = 0
-    vertices_welded: int = 0
-    degenerate_faces: int = 0
-    duplicate_faces: int = 0
-    unreferenced_vertices: int = 0
-    faces_flipped: int = 0
-    components_removed: int = 0
-    vertex_map: NDArray[np.int64] = field(default_factory=lambda: np.zeros(0, np.int64), repr=False, compare=False)
-
-    @property
-    def changed(self) -> bool:
-        """True when cleaning changed anything."""
-        return bool(
-            self.polygons_split or self.vertices_welded or self.degenerate_faces or self.duplicate_faces
-            or self.unreferenced_vertices or self.faces_flipped or self.components_removed
-        )
-
-    def __str__(self) -> str:
-        items = [
-            (self.polygons_split, "polygons split into triangles"),
-            (self.vertices_welded, "duplicate vertices welded"),
-            (self.degenerate_faces, "degenerate faces removed"),
-            (self.duplicate_faces, "duplicate faces removed"),
-            (self.unreferenced_vertices, "unreferenced vertices removed"),
-            (self.faces_flipped, "faces flipped to a consistent orientation"),
-            (self.components_removed, "smaller components removed"),
-        ]
-        parts = [f"{n} {what}" for n, what in items if n]
-        done = "; ".join(parts) if parts else "nothing to repair"
-        return (
-            f"{done} ({self.n_vertices_in} -> {self.n_vertices_out} vertices, "
-            f"{self.n_faces_in} -> {self.n_faces_out} faces)"
-        )
-
-
-MeshLike = Union[Mesh, tuple[ArrayLike, Any]]
-
-
-def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Mesh, CleanReport]:
-    """Repair a mesh or raw ``(vertices, faces)`` arrays; return the clean mesh and a report.
-
-    Repairs, in this order: split polygons into fans of triangles; weld vertices with exactly
-    equal coordinates (the first keeps its place); remove degenerate faces (repeated corners or
-    zero area, same tolerance as :class:`Mesh`), then duplicate faces (same three vertices in
-    any order; the first is kept); re-orient each connected component consistently (breadth
-    first over faces that share an edge, flipping as few faces as possible); optionally keep the
-    component with the most faces; finally drop unreferenced vertices, keeping the others'
-    order. Boundaries and several components are legal and left alone.
+def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
+    """Read a point cloud: a vertex-only PLY, a text list of points, or a mesh file's vertices.
 
     Parameters
     ----------
-    mesh : Mesh or (vertices, faces)
-        A :class:`Mesh` (e.g. built with ``check=False``) or raw arrays: ``vertices`` (n, 3) and
-        ``faces`` as an (m, 3) integer array or a sequence of polygons (index sequences with at
-        least three corners). The caller's arrays are never modified.
-    keep_largest_component : bool, default False
-        Keep only the vertex-connected component with the most faces.
+    path : str or os.PathLike
+        ``.ply`` (the ``vertex`` element; faces, if any, are ignored), ``.xyz``, ``.pts``,
+        ``.txt``, ``.csv`` (one point per line, numbers separated by spaces, tabs or commas; the
+        first three columns are x y z, further columns such as normals or colours are ignored; a
+        ``.pts`` count line and a non-numeric header line are skipped; ``#`` and ``//`` start
+        comments), or ``.off``/``.obj``/``.stl`` (the mesh's vertices).
+    clean : bool, default False
+        Drop points with NaN/inf coordinates and repeated points (the first is kept), with a
+        :class:`MeshRepairWarning` saying how many. Without it they raise.
 
     Returns
     -------
-    mesh : Mesh
-        The repaired, validated mesh.
-    report : CleanReport
-        What changed (``str(report)`` summarises it; ``report.vertex_map`` maps old vertex
-        indices to new ones).
+    PointCloud
 
     Raises
     ------
+    FileNotFoundError, ValueError
+        Missing file; unsupported extension.
     MeshError
-        For what cannot be repaired: wrong shapes, indices out of range, non-finite coordinates
-        on a used vertex, edges shared by more than two faces, a non-orientable component.
+        Corrupt file, rows that are not at least three numbers, or (without ``clean``) bad points.
 
     Examples
     --------
-    >>> v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0], [5, 5, 5]]
-    >>> f = [[0, 1, 2], [2, 3, 4], [0, 1, 2]]     # vertex 4 repeats vertex 1, 5 is unused
-    >>> m, report = clean_mesh((v, f))
-    >>> m.faces.tolist()
-    [[0, 1, 2], [2, 1, 3]]
-    >>> print(report)
-    1 duplicate vertices welded; 1 duplicate faces removed; 1 unreferenced vertices removed; 1 faces flipped to a consistent orientation (6 -> 4 vertices, 3 -> 2 faces)
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "scan.xyz"
+    >>> _ = path.write_text("0 0 0 0 0 1\\n1 0 0 0 0 1\\n0 1 0 0 0 1\\n0 0 1 1 0 0\\n1 1 1 0 1 0\\n")
+    >>> load_points(path).n_points
+    5
     """
-    if isinstance(mesh, Mesh):
-        vertices, faces = mesh.vertices, mesh.faces
-    else:
-        try:
-            vertices, faces = mesh
-        except (TypeError, ValueError):
-            raise TypeError("clean_mesh needs a Mesh or a (vertices, faces) pair.") from None
-    v = np.array(vertices, dtype=np.float64, copy=True)
-    if v.ndim != 2 or v.shape[1] != 3:
-        raise MeshError(f"vertices must have shape (n, 3), got {v.shape}.")
-    n_poly = 0
+    p = _check_path(path, POINT_FORMATS)
+    ext = p.suffix.lower()
     try:
-        f = np.array(faces, dtype=np.int64, copy=True)
-        if f.ndim == 2 and f.shape[1] == 3:
-            pass
-        elif f.ndim == 2 and f.shape[1] > 3 or f.ndim == 1 and f.size == 0:
-            raise ValueError
-        else:
-            raise MeshError(f"faces must have shape (m, 3) or be a list of polygons, got shape {f.shape}.")
-    except (ValueError, TypeError):
-        polygons = [list(map(int, poly)) for poly in faces]
-        short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
-        if short:
-            raise MeshError(f"{len(short)} faces have fewer than 3 corners (first: face {short[0]}).") from None
-        f, n_poly = _fan(polygons)
-    return _clean(v, f, keep_largest_component, n_poly)
+        points = _read_raw(p, need_faces=False).vertices if ext in FORMATS else _read_point_text(p)
+    except MeshError as exc:
+        msg = str(exc)
+        raise MeshError(msg if msg.startswith(repr(str(p))) else f"{str(p)!r}: {msg}") from None
+    if clean:
+        finite = np.isfinite(points).all(axis=1)
+        first, _ = unique_rows(points[finite])
+        keep = np.flatnonzero(finite)[np.sort(first)]
+        dropped = len(points) - len(keep)
+        if dropped:
+            warnings.warn(
+                f"{str(p)!r}: {int((~finite).sum())} non-finite and {dropped - int((~finite).sum())} repeated points "
+                f"dropped ({len(points)} -> {len(keep)} points)", MeshRepairWarning, stacklevel=2,
+            )
+        points = points[keep]
+    try:
+        return PointCloud(points)
+    except MeshError as exc:
+        raise MeshError(f"{str(p)!r}: {exc}") from None
 
 
-def _clean(v: NDArray[np.float64], f: NDArray[np.int64], keep_largest: bool, n_poly: int) -> tuple[Mesh, CleanReport]:
-    n_in, m_in = len(v), len(f)
-    if m_in == 0:
-        raise MeshError("the mesh has no faces; nothing to clean.")
-    if f.min() < 0 or f.max() >= n_in:
-        bad = np.flatnonzero(((f < 0) | (f >= n_in)).any(axis=1))
-        raise MeshError(
-            f"{bad.size} faces use vertex indices outside 0..{n_in - 1} (first: face {bad[0]} = {f[bad[0]].tolist()}); "
-            "fix the file: indices must refer to existing vertices."
-        )
-    used = np.zeros(n_in, dtype=bool)
-    used[f.ravel()] = True
-    finite = np.isfinite(v).all(axis=1)
-    if np.any(used & ~finite):
-        bad = np.flatnonzero(used & ~finite)
-        raise MeshError(
-            f"{bad.size} vertices used by faces have non-finite (NaN or inf) coordinates (first: vertex {bad[0]}); "
-            "fix them in the source."
-        )
-
-    # Weld used vertices with exactly equal coordinates onto the first of them.
-    rep = np.arange(n_in)
-    idx = np.flatnonzero(used)
-    first, inverse = _unique_rows(v[idx])
-    rep[idx] = idx[first[inverse]]
-    welded = int(np.count_nonzero(rep[idx] != idx))
-    f = rep[f]
-
-    # Degenerate faces: repeated corners or (near-)zero area, with the Mesh tolerance.
-    repeated = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
-    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    area = 0.5 * np.linalg.norm(cross, axis=1)
-    ref = v[np.unique(f)]
-    diagonal = float(np.linalg.norm(ref.max(axis=0) - ref.min(axis=0)))
-    degenerate = repeated | (area <= DEGENERATE_AREA_TOL * max(diagonal, np.finfo(float).tiny) ** 2)
-    f = f[~degenerate]
-    n_degenerate = int(degenerate.sum())
-    if len(f) == 0:
-        raise MeshError("every face is degenerate (zero area); there is no surface left.")
-
-    # Duplicate faces: same vertex set; keep the first occurrence.
-    first_face, _ = _unique_rows(np.sort(f, axis=1))
-    keep = np.zeros(len(f), dtype=bool)
-    keep[first_face] = True
-    n_duplicate = int(len(f) - keep.sum())
-    f = f[keep]
-
-    # Edge-manifoldness cannot be repaired: let the Mesh checks name the defect.
-    v_c, f_c, vmap = _compact(v, f)
-    def nonmanifold() -> None:
-        validate_topology(Mesh(v_c, f_c, check=False))  # names the non-manifold edges
-        raise MeshError("some edges are shared by more than two faces; the mesh is not edge-manifold.")
-
-    f_c, flipped = _orient(f_c, nonmanifold)
-
-    removed_components = 0
-    if keep_largest:
-        labels = _vertex_components(f_c, len(v_c))[f_c[:, 0]]
-        sizes = np.bincount(labels)
-        removed_components = int(np.count_nonzero(sizes)) - 1
-        f_c = f_c[labels == int(np.argmax(sizes))]
-    v_out, f_out, vmap2 = _compact(v_c, f_c)
-
-    # Compose: input vertex -> its weld representative -> compacted index -> final index.
-    mid = vmap[rep]
-    vertex_map = np.where(mid >= 0, vmap2[np.maximum(mid, 0)], -1)
-    unreferenced = n_in - welded - len(v_out)
-    mesh = Mesh(v_out, f_out)
-    report = CleanReport(
-        n_vertices_in=n_in, n_faces_in=m_in, n_vertices_out=mesh.n_vertices, n_faces_out=mesh.n_faces,
-        polygons_split=n_poly, vertices_welded=welded, degenerate_faces=n_degenerate,
-        duplicate_faces=n_duplicate, unreferenced_vertices=unreferenced, faces_flipped=flipped,
-        components_removed=removed_components, vertex_map=vertex_map,
-    )
-    return mesh, report
-
-
-def _compact(v: NDArray[np.float64], f: NDArray[np.int64]) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64]]:
-    """Drop unreferenced vertices keeping order; also return old -> new index (-1 if dropped)."""
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    new = np.full(len(v), -1, dtype=np.int64)
-    new[used] = np.arange(int(used.sum()))
-    return v[used], new[f], new
-
-
-def _vertex_components(f: NDArray[np.int64], n: int) -> NDArray[np.int64]:
-    """Connected-component label of each vertex (vertices joined by face edges)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    rows = np.concatenate([f[:, 0], f[:, 1]])
-    cols = np.concatenate([f[:, 1], f[:, 2]])
-    graph = coo_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
-    return connected_components(graph, directed=False)[1]
-
-
-def _orient(f: NDArray[np.int64], on_nonmanifold: Any) -> tuple[NDArray[np.int64], int]:
-    """Flip faces so that every interior edge is traversed in opposite directions by its faces.
-
-    Breadth-first over the faces of each edge-connected component (all components at once,
-    level by level); per component the orientation needing fewer flips wins. Calls
-    ``on_nonmanifold()`` (which must raise) if an edge has more than two faces. Raises
-    MeshError for a non-orientable component.
-    """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    m = len(f)
-    half = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    face_of = np.tile(np.arange(m), 3)
-    _, edge_id = _unique_rows(np.sort(half, axis=1))
-    if np.any(np.bincount(edge_id) > 2):
-        on_nonmanifold()
-    order = np.argsort(edge_id, kind="stable")
-    e_sorted = edge_id[order]
-    pair = np.flatnonzero(e_sorted[1:] == e_sorted[:-1])  # interior edges: two consecutive half-edges
-    h1, h2 = order[pair], order[pair + 1]
-    if h1.size == 0:
-        return f.copy(), 0
-    a, b = face_of[h1], face_of[h2]
-    # Same direction along the shared edge -> the two faces need opposite flip states.
-    need = (half[h1, 0] == half[h2, 0]).astype(np.int8)
-
-    graph = coo_matrix((np.ones(a.size), (a, b)), shape=(m, m)).tocsr()
-    graph = graph + graph.T
-    n_comp, labels = connected_components(graph, directed=False)
-    # Adjacency with the 'need' bit, both directions, in CSR form.
-    src = np.concatenate([a, b])
-    dst = np.concatenate([b, a])
-    bit = np.concatenate([need, need])
-    srt = np.argsort(src, kind="stable")
-    src, dst, bit = src[srt], dst[srt], bit[srt]
-    indptr = np.searchsorted(src, np.arange(m + 1))
-
-    state = np.full(m, -1, dtype=np.int8)
-    _, roots = np.unique(labels, return_index=True)
-    state[roots] = 0
-    frontier = roots
-    while frontier.size:
-        starts, stops = indptr[frontier], indptr[frontier + 1]
-        lengths = stops - starts
-        if lengths.sum() == 0:
-            break
-        pos = np.repeat(starts - np.cumsum(lengths) + lengths, lengths) + np.arange(lengths.sum())
-        owners = np.repeat(frontier, lengths)
-        nb = dst[pos]
-        fresh = state[nb] < 0
-        nb, owners, pos = nb[fresh], owners[fresh], pos[fresh]
-        nb_unique, first = np.unique(nb, return_index=True)
-        state[nb_unique] = state[owners[first]] ^ bit[pos[first]]
-        frontier = nb_unique
-
-    conflict = (state[a] ^ state[b]) != need
-    if np.any(conflict):
-        comps = np.unique(labels[a[conflict]])
-        face = int(a[conflict][0])
-        raise MeshError(
-            f"{comps.size} connected component(s) are non-orientable (like a Moebius strip; first conflict at "
-            f"face {face} = {f[face].tolist()}): no choice of face orientations makes neighbours agree. "
-            "Cut the component open or remove it."
-        )
-    flips_per_comp = np.bincount(labels, weights=state, minlength=n_comp)
-    size_per_comp = np.bincount(labels, minlength=n_comp)
-    invert = flips_per_comp > size_per_comp / 2
-    flip = state.astype(bool) ^ invert[labels]
-    out = f.copy()
-    out[flip] = out[flip][:, [0, 2, 1]]
-    return out, int(flip.sum())
+def _read_point_text(p: Path) -> NDArray[np.float64]:
+    text = _read_text(p, "point")
+    lines = [re.split(r"#|//", line, maxsplit=1)[0].strip() for line in text.splitlines()]
+    lines = [line for line in lines if line]
+    if not lines:
+        raise MeshError("the file holds only comments or blank lines; no points.")
+    rows = [re.split(r"[\s,;]+", line) for line in lines]
+    if len(rows[0]) == 1 and len(rows) > 1 and len(rows[1]) >= 3:
+        rows = rows[1:]  # .pts: a count line first
+    try:
+        [float(x) for x in rows[0][:3]]
+    except ValueError:
+        rows = rows[1:]  # a header line such as 'x,y,z'
+    if not rows:
+        raise MeshError("the file holds a header but no points.")
+    out = np.empty((len(rows), 3))
+    for k, row in enumerate(rows):
+        try:
+            if len(row) < 3:
+                raise ValueError
+            out[k] = [float(x) for x in row[:3]]
+        except ValueError:
+            raise MeshError(f"point {k} ({' '.join(row)[:60]!r}) does not start with three numbers x y z; the file is corrupt.") from None
+    return out

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Mesh", "MeshError", "validate_topology"]
+__all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows"]
 
 # A face is degenerate when its area is below this fraction of the squared bounding-box diagonal.
 DEGENERATE_AREA_TOL = 1e-14
@@ -298,11 +298,49 @@ def _component_labels(m: Mesh) -> NDArray[np.int64]:
     return _readonly(relabel[labels].astype(np.int64))
 
 
+def degenerate_faces(mesh: Mesh) -> NDArray[np.bool_]:
+    """Mask of the faces with a repeated corner or an area below ``DEGENERATE_AREA_TOL * diagonal**2``.
+
+    The one rule for "zero-area": :class:`Mesh` refuses such faces and
+    :func:`~lbo_notebooks.clean_mesh` removes them.
+
+    Examples
+    --------
+    >>> m = Mesh([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], [[0, 1, 2], [0, 1, 3]], check=False)
+    >>> degenerate_faces(m).tolist()
+    [True, False]
+    """
+    f = mesh.faces
+    repeated = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
+    return repeated | (mesh.face_areas <= DEGENERATE_AREA_TOL * max(mesh.diagonal, np.finfo(float).tiny) ** 2)
+
+
+def unique_rows(a: NDArray[Any]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Group equal rows of a 2-D array: ``first`` row of each group (groups sorted) and ``inverse``.
+
+    A stable lexicographic sort: much faster than ``np.unique(a, axis=0)``, which sorts opaque
+    row records. Used to weld coincident vertices and to find duplicate faces.
+
+    Examples
+    --------
+    >>> first, inverse = unique_rows(np.array([[1, 2], [0, 5], [1, 2]]))
+    >>> first.tolist(), inverse.tolist()
+    ([1, 0], [1, 0, 1])
+    """
+    if len(a) == 0:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    order = np.lexsort(a.T[::-1])
+    s = a[order]
+    new = np.ones(len(a), dtype=bool)
+    new[1:] = np.any(s[1:] != s[:-1], axis=1)
+    inverse = np.empty(len(a), dtype=np.int64)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new].astype(np.int64), inverse
+
+
 def _check_degenerate(m: Mesh) -> None:
     f = m.faces
-    repeated = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
-    tiny = m.face_areas <= DEGENERATE_AREA_TOL * max(m.diagonal, np.finfo(float).tiny) ** 2
-    bad = np.flatnonzero(repeated | tiny)
+    bad = np.flatnonzero(degenerate_faces(m))
     if bad.size:
         raise MeshError(
             f"{bad.size} degenerate (zero-area) faces (first: face {bad[0]} = {f[bad[0]].tolist()}); "
@@ -345,8 +383,9 @@ def validate_topology(mesh: Mesh) -> None:
         bad = mesh.edges[counts > 2]
         raise MeshError(
             f"{len(bad)} non-manifold edges are shared by more than two faces (first: edge "
-            f"{bad[0].tolist()}); the LBO needs an edge-manifold surface. Split the mesh at these "
-            "edges or repair it in a mesh editor."
+            f"{bad[0].tolist()}); the cotangent LBO needs an edge-manifold surface. Load with "
+            "load_mesh(path, clean=True) (or build Mesh(..., check=False)): eigenbasis then uses the robust "
+            "Laplacian, which serves non-manifold meshes."
         )
 
     keys, dcounts = np.unique(_pair_keys(_directed_edges(f), n), return_counts=True)

@@ -173,13 +173,16 @@ def eigenbasis(
     alpha: float = 0.0,
     shift: float | None = None,
     curvature_floor: float | None = None,
+    laplacian: str = "auto",
+    n_neighbors: int = 30,
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
     Parameters
     ----------
-    mesh : Mesh or (stiffness, mass) tuple
-        A mesh, or precomputed sparse operators (so that other metrics can reuse the solver).
+    mesh : Mesh, PointCloud or (stiffness, mass) tuple
+        A mesh, a :class:`~lbo_notebooks.PointCloud`, or precomputed sparse operators (so that
+        other metrics can reuse the solver). One eigenvalue is (near) zero per connected component.
     k : int
         Number of eigenpairs, ``1 <= k <= n_vertices``.
     mass : {"voronoi", "barycentric", "consistent"}
@@ -197,6 +200,16 @@ def eigenbasis(
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
         :mod:`lbo_notebooks.curvature`). Default ``curvature.DEFAULT_FLOOR`` (1e-3).
+    laplacian : {"auto", "cotan", "robust"}
+        ``"auto"``: the cotangent operator, unless the mesh has a defect it cannot serve
+        (non-manifold edges or vertices, zero-area or needle triangles; see
+        :func:`~lbo_notebooks.robust.cotan_defects`); then the robust intrinsic tufted Laplacian
+        (Sharp & Crane 2020) with a :class:`~lbo_notebooks.robust.LaplacianWarning` naming the
+        reasons. ``"cotan"`` refuses such a mesh with :class:`MeshError`; ``"robust"`` always takes
+        the tufted Laplacian (with its own lumped mass). Point clouds always get the robust
+        point-cloud Laplacian.
+    n_neighbors : int
+        Point clouds only: neighbours in each point's local triangulation.
 
     Returns
     -------
@@ -209,6 +222,14 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
+    if not isinstance(mesh, tuple):
+        from .robust import select_operators
+
+        robust = select_operators(mesh, laplacian, mass_kind=mass, alpha=alpha, n_neighbors=n_neighbors)
+        if robust is not None:
+            mesh = robust
+    elif laplacian != "auto":
+        raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
     if isinstance(mesh, Mesh):
         if mass not in MASS_KINDS:
             raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {mass!r}.")

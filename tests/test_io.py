@@ -338,23 +338,34 @@ def test_clean_repairs_the_repairable_defects_and_says_so(tmp_path, case, words,
 
 
 @pytest.mark.parametrize(
-    "case", ["off-non-manifold", "off-moebius", "off-nan", "off-index-out-of-range", "off-absurd-counts", "ply-quad-out-of-range"]
+    "case,words",
+    [("off-nan", "non-finite"), ("off-index-out-of-range", "outside 0..2"), ("off-absurd-counts", "announces"),
+     ("ply-quad-out-of-range", "outside 0..3")],
 )
-def test_clean_still_refuses_what_cannot_be_repaired(tmp_path, case):
+def test_clean_still_refuses_corrupt_data(tmp_path, case, words):
     _, name, content, _ = next(c for c in BROKEN if c[0] == case)
-    with pytest.raises(MeshError):
+    with pytest.raises(MeshError, match=words):
         load_mesh(write(tmp_path / name, content), clean=True)
 
 
-def test_moebius_strip_is_reported_non_orientable():
-    with pytest.raises(MeshError, match="non-orientable"):
-        clean_mesh(moebius())
+def test_moebius_strip_is_kept_as_it_is_and_reported_non_orientable():
+    v, f = moebius()
+    mesh, report = clean_mesh((v, f))
+    assert report.non_orientable_components == 1 and report.faces_flipped == 0
+    np.testing.assert_array_equal(mesh.faces, f)  # no choice of orientations is right: keep the file's
+    assert "1 non-orientable components kept" in str(report)
+    with pytest.raises(MeshError, match="orientation"):
+        Mesh(v, f)  # the checked constructor still refuses it
 
 
-def test_non_manifold_edge_is_named_by_clean():
-    v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]]
-    with pytest.raises(MeshError, match="non-manifold"):
-        clean_mesh((v, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]))
+def test_non_manifold_edge_is_kept_counted_and_the_other_repairs_still_happen():
+    v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [9, 9, 9]]
+    f = [[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 4]]  # three fins on edge 0-1, one duplicate, one unused vertex
+    mesh, report = clean_mesh((v, f))
+    assert (report.non_manifold_edges, report.duplicate_faces, report.unreferenced_vertices) == (1, 1, 1)
+    assert mesh.n_faces == 3 and mesh.n_vertices == 5
+    assert mesh.edge_face_counts.max() == 3
+    assert "1 non-manifold edges kept" in str(report)
 
 
 def test_clean_restores_the_orientation_of_randomly_flipped_faces():
