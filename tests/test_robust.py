@@ -1,0 +1,196 @@
+"""Tests for lbo_notebooks.robust and the laplacian= dispatch of eigenbasis: the tufted Laplacian."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import lbo_notebooks as lbo
+from lbo_notebooks import Mesh, MeshError, shapes
+from lbo_notebooks.operators import mass_matrix, stiffness_matrix
+from lbo_notebooks.robust import (
+    LaplacianWarning,
+    cotan_defects,
+    non_manifold_vertices,
+    robust_operators,
+)
+
+from .test_io import BROKEN, write
+
+L_SPHERE = np.repeat(np.arange(5), 2 * np.arange(5) + 1)  # l of the first 25 sphere eigenvalues
+EXACT_SPHERE = (L_SPHERE * (L_SPHERE + 1)).astype(float)
+
+
+def grid(n: int = 6) -> Mesh:
+    """A regular right-triangle grid of the unit square: every edge is (intrinsic) Delaunay."""
+    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
+    v = np.column_stack([x.ravel(), y.ravel(), np.zeros(n * n)])
+    i = np.arange(n - 1)
+    a = (i[:, None] * n + i[None, :]).ravel()
+    f = np.concatenate([np.column_stack([a, a + 1, a + n + 1]), np.column_stack([a, a + n + 1, a + n])])
+    return Mesh(v, f)
+
+
+def fins_and_pieces(n_pieces: int = 4) -> Mesh:
+    """``n_pieces`` icospheres, each with an extra fin on one edge (a non-manifold edge)."""
+    ball = shapes.icosphere(2)
+    vs, fs, offset = [], [], 0
+    for k in range(n_pieces):
+        a, b = ball.faces[0, 0], ball.faces[0, 1]
+        tip = 1.6 * (ball.vertices[a] + ball.vertices[b]) / 2
+        v = np.concatenate([ball.vertices, tip[None]]) + [3.0 * k, 0, 0]
+        f = np.concatenate([ball.faces, [[a, b, ball.n_vertices]]])
+        vs.append(v)
+        fs.append(f + offset)
+        offset += len(v)
+    return Mesh(np.concatenate(vs), np.concatenate(fs), check=False)
+
+
+def rel_max(a: sp.spmatrix, b: sp.spmatrix) -> float:
+    return float(abs(a - b).max() / abs(b).max())
+
+
+# --- equals the cotangent operator where the mesh is intrinsic Delaunay ---------------------------
+@pytest.mark.parametrize("mesh", [shapes.icosphere(3), grid()], ids=["icosphere", "grid"])
+def test_robust_operator_is_the_cotangent_pair_on_an_intrinsic_delaunay_mesh(mesh):
+    W, A = robust_operators(mesh)
+    eps = np.finfo(float).eps
+    assert rel_max(W, stiffness_matrix(mesh)) < 100 * eps * np.sqrt(mesh.n_vertices)
+    assert rel_max(A, mass_matrix(mesh, "barycentric")) < 100 * eps * np.sqrt(mesh.n_vertices)
+
+
+def test_robust_operator_flips_a_non_delaunay_mesh_to_non_negative_weights():
+    # Squash the grid's diagonal direction: many cotangent weights turn negative, the intrinsic
+    # Delaunay ones never are (the defining property of the intrinsic Delaunay triangulation).
+    m = grid(8)
+    squashed = m.with_vertices(m.vertices @ np.array([[1, 0, 0], [0.9, 0.2, 0], [0, 0, 1]]))
+    W_cot = stiffness_matrix(squashed)
+    W_rob, A_rob = robust_operators(squashed)
+    off = lambda W: (W - sp.diags(W.diagonal())).tocoo().data  # noqa: E731
+    assert off(W_cot).max() > 0.1 * abs(W_cot).max()  # positive off-diagonal = negative edge weight
+    assert off(W_rob).max() <= 1e-12 * abs(W_rob).max()
+    # Same surface, same area and the same constant kernel.
+    np.testing.assert_allclose(A_rob.sum(), squashed.area, rtol=1e-12)
+    assert abs(W_rob @ np.ones(squashed.n_vertices)).max() < 1e-12 * abs(W_rob).max()
+
+
+def test_robust_spectrum_converges_on_the_sphere():
+    errors = []
+    for level in (2, 3, 4):
+        s = lbo.eigenbasis(shapes.icosphere(level), 25, laplacian="robust")
+        errors.append(np.abs(s.values[1:] / EXACT_SPHERE[1:] - 1).max())
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[1] / errors[2] > 3.0  # O(h^2): about 4 per halving of h
+    assert errors[2] < 0.01
+
+
+# --- defects -----------------------------------------------------------------------------------
+def test_non_manifold_vertex_detection():
+    bowtie = Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]], [[0, 1, 2], [0, 3, 4]])
+    assert non_manifold_vertices(bowtie).tolist() == [0]
+    assert non_manifold_vertices(shapes.disk(n_rings=3)).size == 0  # boundary vertices are manifold
+    assert non_manifold_vertices(shapes.icosphere(2)).size == 0
+    assert "1 non-manifold vertex" in cotan_defects(bowtie)[0]
+
+
+def test_needle_triangle_is_a_defect():
+    v = [[0, 0, 0], [1, 0, 0], [0.5, 1e-6, 0], [0.5, -1, 0]]
+    mesh = Mesh(v, [[0, 1, 2], [1, 0, 3]])
+    assert any("needle" in r for r in cotan_defects(mesh))
+    with pytest.warns(LaplacianWarning, match="needle"):
+        lbo.eigenbasis(mesh, 3)
+
+
+def test_auto_uses_robust_with_a_warning_and_one_zero_eigenvalue_per_component():
+    mesh = fins_and_pieces(4)
+    assert mesh.n_components == 4
+    with pytest.warns(LaplacianWarning) as record:
+        s = lbo.eigenbasis(mesh, 8)
+    message = str(record[0].message)
+    assert "4 non-manifold edges" in message and "4 connected components" in message
+    scale = s.values[4]
+    assert np.all(np.abs(s.values[:4]) < 1e-8 * scale)  # one constant per component
+    assert s.values[4] > 0.1  # then real shape: ~2 for a unit sphere
+    explicit = lbo.eigenbasis(mesh, 8, laplacian="robust")
+    np.testing.assert_allclose(explicit.values, s.values, rtol=0, atol=1e-10 * scale)
+    # The Spectrum API works with the robust mass: A-orthonormal vectors, exact reconstruction.
+    gram = s.vectors.T @ (s.mass @ s.vectors)
+    np.testing.assert_allclose(gram, np.eye(8), atol=1e-10)
+    f = s.vectors @ np.arange(1.0, 9.0)
+    assert s.error(f) < 1e-10 * np.sqrt(f @ (s.mass @ f))
+
+
+def test_cotan_on_a_non_manifold_mesh_is_refused_with_the_fix():
+    with pytest.raises(MeshError, match="laplacian='robust'"):
+        lbo.eigenbasis(fins_and_pieces(1), 4, laplacian="cotan")
+
+
+def test_a_clean_mesh_keeps_the_cotangent_path_without_warning():
+    mesh = shapes.icosphere(2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        auto = lbo.eigenbasis(mesh, 9)
+    cotan = lbo.eigenbasis(mesh, 9, laplacian="cotan")
+    np.testing.assert_array_equal(auto.values, cotan.values)
+
+
+@pytest.mark.parametrize(
+    "kwargs,words",
+    [
+        ({"laplacian": "tufted"}, "laplacian must be one of"),
+        ({"laplacian": "robust", "mass": "consistent"}, "own lumped"),
+        ({"laplacian": "robust", "alpha": 0.5}, "alpha"),
+    ],
+)
+def test_bad_laplacian_arguments(kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        lbo.eigenbasis(shapes.icosphere(1), 4, **kwargs)
+
+
+def test_operators_tuple_with_laplacian_is_refused_and_unreferenced_vertices_named():
+    m = shapes.icosphere(1)
+    with pytest.raises(ValueError, match="tuple"):
+        lbo.eigenbasis((stiffness_matrix(m), mass_matrix(m)), 4, laplacian="robust")
+    loose = Mesh(np.concatenate([m.vertices, [[5, 5, 5]]]), m.faces, check=False)
+    with pytest.raises(MeshError, match="clean_mesh"):
+        lbo.eigenbasis(loose, 4, laplacian="robust")
+
+
+def test_robust_operators_do_not_touch_the_mesh_and_return_fresh_copies():
+    m = shapes.icosphere(1)
+    W1, _ = robust_operators(m)
+    W1.data[:] = 0.0
+    W2, _ = robust_operators(m)
+    assert abs(W2).max() > 0
+
+
+# --- the broken-file corpus through the one documented line ---------------------------------------
+@pytest.mark.parametrize("name,content", [c[1:3] for c in BROKEN], ids=[c[0] for c in BROKEN])
+def test_every_broken_file_gets_a_spectrum_or_a_mesh_error(tmp_path, name, content):
+    path = write(tmp_path / name, content)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            mesh = lbo.load_mesh(path, clean=True)
+            s = lbo.eigenbasis(mesh, min(3, mesh.n_vertices))
+    except MeshError as exc:
+        assert name in str(exc)
+        return
+    assert np.all(np.isfinite(s.values)) and np.all(np.diff(s.values) >= 0)
+    zeros = int(np.sum(np.abs(s.values) <= 1e-8 * max(1.0, abs(s.values).max())))
+    assert zeros == min(mesh.n_components, s.k)
+
+
+def test_the_non_manifold_and_moebius_files_now_load_through_the_documented_line(tmp_path):
+    for case in ("off-non-manifold", "off-moebius"):
+        _, name, content, _ = next(c for c in BROKEN if c[0] == case)
+        path = write(tmp_path / name, content)
+        with pytest.raises(MeshError):
+            lbo.load_mesh(path)  # without clean=True: refused, as before
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            s = lbo.eigenbasis(lbo.load_mesh(path, clean=True), 3)
+        assert abs(s.values[0]) < 1e-10 * s.values[-1] and s.values[1] > 0
