@@ -294,7 +294,7 @@ def select_operators(
         _check_robust_options(mass_kind, alpha)
         return point_cloud_operators(shape, n_neighbors=n_neighbors)
     if not isinstance(shape, Mesh):
-        raise ValueError(f"eigenbasis takes a Mesh, a PointCloud or a (stiffness, mass) tuple, got {type(shape).__name__}.")
+        raise ValueError(f"eigenbasis takes a Mesh or a PointCloud or a (stiffness, mass) tuple, got {type(shape).__name__}.")
     _check_referenced(shape)
     if laplacian == "robust":
         _check_robust_options(mass_kind, alpha)
