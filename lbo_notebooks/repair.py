@@ -20,7 +20,7 @@ from .mesh import Mesh, MeshError, degenerate_faces, unique_rows
 __all__ = ["clean_mesh", "clean_arrays", "CleanReport", "triangulate_polygons"]
 
 
-def triangulate_polygons(polygons: Sequence[Sequence[int]]) -> tuple[NDArray[np.int64], int]:
+def triangulate_polygons(polygons: Sequence[Sequence[int]] | NDArray[np.integer]) -> tuple[NDArray[np.int64], int]:
     """Triangles from polygons: a fan from each polygon's first corner; also the polygon count.
 
     Right for convex polygons, which is what exporters write.
@@ -31,6 +31,10 @@ def triangulate_polygons(polygons: Sequence[Sequence[int]]) -> tuple[NDArray[np.
     >>> tris.tolist(), n_polygons
     ([[0, 1, 2], [0, 2, 3], [3, 2, 4]], 1)
     """
+    if isinstance(polygons, np.ndarray) and polygons.ndim == 2 and polygons.shape[1] >= 3:
+        corners = polygons.shape[1]  # all polygons alike: one fan per row, vectorised
+        fans = np.stack([polygons[:, [0, k, k + 1]] for k in range(1, corners - 1)], axis=1)
+        return fans.reshape(-1, 3).astype(np.int64), len(polygons) if corners > 3 else 0
     tris: list[tuple[int, int, int]] = []
     n_poly = 0
     for poly in polygons:

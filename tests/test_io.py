@@ -666,3 +666,45 @@ def test_ply_without_xyz_or_face_list_names_what_is_missing(tmp_path):
     bad_type = _scanner_ply("ascii", material=None).replace(b"property float confidence", b"property quux confidence")
     with pytest.raises(MeshError, match="unreadable PLY header line"):
         load_mesh(write(tmp_path / "badtype.ply", bad_type))
+
+
+@pytest.mark.parametrize("fmt", ["ascii", "binary_little_endian"])
+def test_ply_quads_and_face_scalars_around_the_list(tmp_path, fmt):
+    """All-quad faces (binary: the fixed-length fast path) and face properties before and after
+    the index list (ASCII: the one-call fast path must find the list's columns)."""
+    grid_v = [(x, y, 0.0) for y in range(3) for x in range(3)]
+    quads = [(0, 1, 4, 3), (1, 2, 5, 4), (3, 4, 7, 6), (4, 5, 8, 7)]
+    head = (
+        f"ply\nformat {fmt} 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 4\nproperty uchar flags\nproperty list uchar int vertex_indices\nproperty float quality\n"
+        "end_header\n"
+    ).encode()
+    if fmt == "ascii":
+        body = "".join(f"{x} {y} {z}\n" for x, y, z in grid_v) + "".join(f"7 4 {a} {b} {c} {d} 0.5\n" for a, b, c, d in quads)
+        body = body.encode()
+    else:
+        body = b"".join(struct.pack("<3f", *p) for p in grid_v)
+        body += b"".join(struct.pack("<BB4if", 7, 4, *q, 0.5) for q in quads)
+    path = write(tmp_path / "quads.ply", head + body)
+    mesh, message = _load_clean(path)
+    expected = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
+    np.testing.assert_array_equal(mesh.faces, expected)
+    assert "4 polygons split" in message
+    # The same file with triangles: the face list sits between two scalars.
+    tris = [t for t in expected]
+    if fmt == "ascii":
+        body = "".join(f"{x} {y} {z}\n" for x, y, z in grid_v) + "".join(f"7 3 {a} {b} {c} 0.5\n" for a, b, c in tris)
+        body = body.encode()
+    else:
+        body = b"".join(struct.pack("<3f", *p) for p in grid_v)
+        body += b"".join(struct.pack("<BB3if", 7, 3, *t, 0.5) for t in tris)
+    mesh = load_mesh(write(tmp_path / "tris.ply", head.replace(b"face 4", b"face 8") + body))
+    np.testing.assert_array_equal(mesh.faces, tris)
+
+
+def test_ascii_ply_rows_must_be_one_per_line_as_plyfile_reads_them(tmp_path):
+    # The right amount of numbers, even the right number of lines, but rows broken across lines:
+    # the one-call fast path must not accept what plyfile refuses.
+    for name, body in (("split.ply", "0 0 0 1\n0 0\n0 1 0\n3 0 1 2\n"), ("short.ply", "0 0 0\n1 0 0\n0 1\n3 0 1 2\n")):
+        with pytest.raises(MeshError, match="does not match its header|truncated"):
+            load_mesh(write(tmp_path / name, _ascii_ply(3, 1, body)))
