@@ -433,8 +433,9 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
 def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[NDArray[Any], NDArray[Any] | None]:
     """The ``vertex`` and ``face`` rows, read by plyfile.
 
-    Binary files are memory-mapped (plyfile reads list rows one by one in Python otherwise,
-    ~250x slower), first assuming triangles and then quads; plyfile needs a real file for that,
+    Binary files are memory-mapped (plyfile reads list rows one by one in Python otherwise:
+    about 120x slower on a 200k-triangle scan, see ``benchmarks/ply.py``), first assuming
+    triangles and then quads; plyfile needs a real file for that,
     so a normalised header goes with a copy of the body into a temporary file.
     """
     import tempfile
@@ -482,7 +483,8 @@ def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[ND
 def _ply_ascii_fast(p: Path, body_start: int, elements: list[_PlyElement]) -> _Raw | None:
     """ASCII PLY of scalar rows and triangle faces, parsed in one NumPy call; None if not that case.
 
-    plyfile parses ASCII row by row in Python (about 8x slower on a 100k-vertex scan); this
+    plyfile parses ASCII row by row in Python (about 8x slower on a 100k-vertex scan,
+    ``benchmarks/ply.py``); this
     covers what most files hold, with one row per line as plyfile demands. Anything else (polygons, lists outside the faces, a count that does not match the header)
     goes to plyfile, which reads it or names the problem.
     """
