@@ -126,27 +126,27 @@ def cotan_defects(mesh: Mesh) -> list[str]:
     """
     from .operators import corner_angles
 
-    def plural(n: int, word: str) -> str:
-        return f"{n} {word}{'' if n == 1 else 's'}"
+    def plural(n: int, one: str, many: str) -> str:
+        return f"{n} {one if n == 1 else many}"
 
     reasons = []
     n_edges = int(np.count_nonzero(mesh.edge_face_counts > 2))
     if n_edges:
-        reasons.append(f"{plural(n_edges, 'non-manifold edge')} (shared by more than two faces)")
+        reasons.append(f"{plural(n_edges, 'non-manifold edge', 'non-manifold edges')} (shared by more than two faces)")
     n_vertices = len(non_manifold_vertices(mesh))
     if n_vertices:
-        reasons.append(f"{plural(n_vertices, 'non-manifold vertex')} (faces meeting only at a point)".replace("vertexs", "vertices"))
+        reasons.append(f"{plural(n_vertices, 'non-manifold vertex', 'non-manifold vertices')} (faces meeting only at a point)")
     scale = max(mesh.diagonal, np.finfo(float).tiny) ** 2
     flat = mesh.face_areas <= 1e-14 * scale
     n_flat = int(np.count_nonzero(flat))
     if n_flat:
-        reasons.append(f"{plural(n_flat, 'zero-area face')}")
+        reasons.append(plural(n_flat, "zero-area face", "zero-area faces"))
     if n_flat < mesh.n_faces:
         with np.errstate(invalid="ignore", divide="ignore"):
             angles = corner_angles(mesh)
         n_needle = int(np.count_nonzero((angles.min(axis=1) < NEEDLE_ANGLE) & ~flat))
         if n_needle:
-            reasons.append(f"{plural(n_needle, 'needle triangle')} (a corner angle below {NEEDLE_ANGLE:g} rad)")
+            reasons.append(f"{plural(n_needle, 'needle triangle', 'needle triangles')} (a corner angle below {NEEDLE_ANGLE:g} rad)")
     return reasons
 
 

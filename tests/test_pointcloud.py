@@ -186,3 +186,34 @@ def test_load_points_argument_errors(tmp_path):
     with pytest.raises(ValueError, match=r"\.xyz") as info:
         load_points(tmp_path / "a.las")
     assert not isinstance(info.value, MeshError)
+
+
+@pytest.mark.parametrize("ext,binary", [(".xyz", None), (".ply", True), (".ply", False)])
+def test_randomly_corrupted_point_files_load_or_raise_mesh_error(tmp_path, ext, binary):
+    """Truncated, overwritten or padded bytes: a valid cloud or a MeshError, never another exception."""
+    mesh = shapes.icosphere(1)
+    if ext == ".xyz":
+        source = "".join(f"{x!r} {y!r} {z!r} 0 0 1\n" for x, y, z in mesh.vertices).encode()
+    else:
+        source = save_mesh(mesh, tmp_path / f"src{ext}", binary=binary).read_bytes()
+    rng = np.random.default_rng(11 + bool(binary))
+    for k in range(24):
+        data = bytearray(source)
+        if k % 3 == 0:
+            data = data[: rng.integers(len(data))]
+        elif k % 3 == 1:
+            for _ in range(rng.integers(1, 8)):
+                data[rng.integers(len(data))] = rng.integers(256)
+        else:
+            at = rng.integers(len(data))
+            data[at:at] = bytes(rng.integers(0, 256, rng.integers(1, 20), dtype=np.uint8))
+        path = tmp_path / f"c{k}{ext}"
+        path.write_bytes(bytes(data))
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                cloud = load_points(path, clean=bool(k % 2))
+        except MeshError as exc:
+            assert path.name in str(exc)
+            continue
+        assert np.all(np.isfinite(cloud.points)) and cloud.n_points >= 5
