@@ -238,7 +238,7 @@ def _read_obj(p: Path, need_faces: bool = True) -> RawMesh:
     if not face_lines and not need_faces:
         return RawMesh(_parse_vertex_lines(vertex_lines, 0), np.zeros((0, 3), np.int64), 0, 0)
     if not face_lines:
-        raise MeshError("no face ('f a b c') lines found: the file is a point cloud or line set, not a surface.")
+        raise MeshError("no face ('f a b c') lines found: the file is a point cloud or line set, not a surface. Read its points with lbo.load_points.")
     vertices = _parse_vertex_lines(vertex_lines, 0)
     block = "\n".join(face_lines)
     if "-" not in block and "#" not in block:

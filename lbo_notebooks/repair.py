@@ -124,7 +124,7 @@ class CleanReport:
         if self.n_components > 1:
             notes += (
                 f"; {self.n_components} connected components, so the spectrum starts with "
-                f"{self.n_components} zero eigenvalues"
+                f"{self.n_components} zero eigenvalues (keep_largest_component=True keeps one)"
             )
         return (
             f"{done} ({self.n_vertices_in} -> {self.n_vertices_out} vertices, "
@@ -133,8 +133,8 @@ class CleanReport:
 
     @property
     def noteworthy(self) -> bool:
-        """True when the mesh changed or kept a defect the user should hear about."""
-        return self.changed or bool(self.non_manifold_edges or self.non_orientable_components)
+        """True when the mesh changed, kept a defect, or has several components (several zero eigenvalues)."""
+        return self.changed or bool(self.non_manifold_edges or self.non_orientable_components) or self.n_components > 1
 
 
 MeshLike = Union[Mesh, tuple[ArrayLike, Any]]

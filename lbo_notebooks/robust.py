@@ -55,7 +55,8 @@ Laplacian = Literal["auto", "cotan", "robust"]
 LAPLACIANS: tuple[str, ...] = ("auto", "cotan", "robust")
 
 #: A triangle with a corner angle below this (radians) is a needle: its cotangent weight exceeds
-#: 1e4 and the cotangent operator's low eigenvalues lose digits; intrinsic flips remove it.
+#: 1e4, so the stiffness matrix mixes entries of wildly different size (badly conditioned);
+#: intrinsic Delaunay flips remove such weights.
 NEEDLE_ANGLE = 1e-4
 
 #: robust-laplacian's default: edge lengths are padded by this fraction of the mean edge length

@@ -708,3 +708,16 @@ def test_ascii_ply_rows_must_be_one_per_line_as_plyfile_reads_them(tmp_path):
     for name, body in (("split.ply", "0 0 0 1\n0 0\n0 1 0\n3 0 1 2\n"), ("short.ply", "0 0 0\n1 0 0\n0 1\n3 0 1 2\n")):
         with pytest.raises(MeshError, match="does not match its header|truncated"):
             load_mesh(write(tmp_path / name, _ascii_ply(3, 1, body)))
+
+
+def test_clean_load_of_a_mesh_in_pieces_says_how_many_zero_eigenvalues_to_expect(tmp_path):
+    mesh = two_pieces_with_boundary()
+    path = save_mesh(mesh, tmp_path / "pieces.ply")
+    with pytest.warns(MeshRepairWarning, match="2 connected components, so the spectrum starts with 2 zero eigenvalues"):
+        loaded = load_mesh(path, clean=True)
+    assert loaded == mesh  # nothing to repair: the warning is only the note
+    values = eigenbasis(loaded, 4).values
+    assert np.all(np.abs(values[:2]) < 1e-9 * values[3]) and values[2] > 1e-3 * values[3]
+    with pytest.warns(MeshRepairWarning, match="1 smaller components removed") as caught:
+        largest = load_mesh(path, clean=True, keep_largest_component=True)
+    assert largest.n_components == 1 and "connected components" not in str(caught[0].message)
