@@ -284,6 +284,15 @@ def select_operators(
     (:class:`LaplacianWarning`) naming the reasons; ``"cotan"`` refuses a mesh with defects;
     ``"robust"`` always takes the tufted Laplacian. A :class:`~lbo_notebooks.PointCloud` always
     gets :func:`point_cloud_operators`.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> select_operators(shapes.icosphere(1), "auto", mass_kind="voronoi", alpha=0.0, n_neighbors=30) is None
+    True
+    >>> W, A = select_operators(shapes.icosphere(1), "robust", mass_kind="voronoi", alpha=0.0, n_neighbors=30)
+    >>> W.shape
+    (42, 42)
     """
     from .pointcloud import PointCloud
 
@@ -327,4 +336,8 @@ def _check_robust_options(mass_kind: str, alpha: float) -> None:
             "cotangent operator only. Leave mass at its default or pass laplacian='cotan'."
         )
     if alpha != 0.0:
-        raise ValueError("alpha (the scale-invariant metric) needs the cotangent operator; pass laplacian='cotan'.")
+        raise ValueError(
+            "alpha (the scale-invariant metric of notebook 06) is built on the cotangent operator, which cannot "
+            "serve this shape (a point cloud, laplacian='robust', or a mesh with the defects cotan_defects lists); "
+            "use alpha=0, or repair the mesh into an edge-manifold one with well-shaped triangles."
+        )
