@@ -28,16 +28,14 @@ True
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from .mesh import Mesh, MeshError
-
-if TYPE_CHECKING:
-    from .pointcloud import PointCloud
+from .pointcloud import PointCloud
 
 __all__ = [
     "LAPLACIANS",
@@ -203,7 +201,7 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
 
 
 def point_cloud_operators(
-    cloud: "PointCloud", *, n_neighbors: int = 30, mollify_factor: float = MOLLIFY_FACTOR
+    cloud: PointCloud, *, n_neighbors: int = 30, mollify_factor: float = MOLLIFY_FACTOR
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """The point-cloud Laplacian of Sharp & Crane (2020): ``(stiffness, mass)``, CSR float64.
 
@@ -219,8 +217,6 @@ def point_cloud_operators(
     >>> W.shape, bool(abs(A.sum() / (4 * np.pi) - 1) < 0.05)
     ((642, 642), True)
     """
-    from .pointcloud import PointCloud
-
     if not isinstance(cloud, PointCloud):
         raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
     if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, (int, np.integer)) or not 3 <= n_neighbors < cloud.n_points:
@@ -294,8 +290,6 @@ def select_operators(
     >>> W.shape
     (42, 42)
     """
-    from .pointcloud import PointCloud
-
     if laplacian not in LAPLACIANS:
         raise ValueError(f"laplacian must be one of {LAPLACIANS}, got {laplacian!r}.")
     if isinstance(shape, PointCloud):
