@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .mesh import MeshError
 from .spectrum import Spectrum
 
 __all__ = ["hks", "wks", "gps", "hks_times", "wks_energies"]
@@ -42,7 +43,7 @@ def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
     if spectrum.k < minimum:
         raise ValueError(f"this descriptor needs at least {minimum} eigenpairs; compute eigenbasis(mesh, k) with k >= {minimum}.")
     if spectrum.values[1] <= 0:
-        raise ValueError(
+        raise MeshError(
             "the second eigenvalue is not positive: the mesh has several connected components. "
             "Keep the largest one with lbo_notebooks.clean_mesh(mesh, keep_largest_component=True)."
         )

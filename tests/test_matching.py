@@ -79,6 +79,10 @@ def test_descriptor_bad_input():
         wks(s, [0.0, 1.0])
     with pytest.raises(ValueError, match="between 2"):
         gps(s, 11)
+    a = lbo.shapes.icosphere(1)
+    two = lbo.Mesh(np.vstack([a.vertices, a.vertices + 3.0]), np.vstack([a.faces, a.faces + a.n_vertices]))
+    with pytest.raises(lbo.MeshError, match="components"):
+        wks(lbo.eigenbasis(two, 10))
 
 
 # --- functional maps -------------------------------------------------------------------------
