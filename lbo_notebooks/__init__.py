@@ -36,6 +36,9 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "geodesics": ("geodesic_distances", "farthest_point_sampling", "GeodesicSolver"),
     "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
     "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta", "reconstruction_error", "principal_angles"),
+    "descriptors": ("hks", "wks", "gps"),
+    "functional_maps": ("estimate_map", "map_from_points", "points_from_map", "zoomout"),
+    "matching": ("match", "matching_error", "error_curve"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust", "formats"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}

@@ -1,0 +1,88 @@
+"""Benchmark: ``lbo_notebooks.match`` against pyFM's default pipeline, same pairs, one run.
+
+Pairs are procedural creatures sharing a triangulation, so the true map is known; every target is
+shuffled (random vertex order) before matching, so neither method can use vertex indices. Both
+methods get the same meshes (pyFM's ``TriMesh`` with its own cotangent Laplacian and spectrum).
+
+pyFM (PyPI ``pyfmaps``) default pipeline, as in its README and MATH.md section 8: WKS
+(100 energies, every 5th kept), 35 x 35 map fitted with w_descr=1, w_lap=1e-2, w_dcomm=1e-1,
+w_orient=1e-1 (L-BFGS), nearest-neighbour point map; then, as a second row, its ZoomOut
+(nit=10, step=1, its default). Ours: ``match`` with its defaults (30 x 30 map solved in closed
+form, ZoomOut to 80).
+
+A second table matches pairs with a rescaled part using eigenbases of the metric |K|^alpha g
+(alpha = 0, 0.4, 1), everything else in ``match`` unchanged (notebook 09, section 4).
+
+Error: mean geodesic error on the source / sqrt(area) (heat-method distances). Times are wall
+times of the whole pipeline including eigenbases, on a shared machine: read the ratios.
+Run:
+
+    python benchmarks/matching.py
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from lbo_notebooks import Mesh, creature, match, matching_error
+
+PAIRS = [
+    ("dog", "standing", "walking", None),
+    ("horse", "standing", "sitting", None),
+    ("dog", "standing", "walking", {"head": 1.6}),
+]
+N_VERTICES = 4000
+SCALING_PAIRS = [("horse", 3000, {"head": 1.6}), ("horse", 2000, {"head": 1.6}), ("dog", 3000, {"legs": 1.4})]
+
+
+def shuffled(mesh: Mesh, seed: int) -> tuple[Mesh, np.ndarray]:
+    perm = np.random.default_rng(seed).permutation(mesh.n_vertices)
+    return Mesh(mesh.vertices[perm], np.argsort(perm)[mesh.faces]), perm
+
+
+def pyfm(source: Mesh, target: Mesh, zoomout: bool) -> np.ndarray:
+    from pyFM.functional import FunctionalMapping
+    from pyFM.mesh import TriMesh
+
+    model = FunctionalMapping(TriMesh(source.vertices, source.faces), TriMesh(target.vertices, target.faces))
+    model.preprocess(n_descr=100, descr_type="WKS", subsample_step=5, verbose=False)
+    model.fit(K=(35, 35), w_descr=1e0, w_lap=1e-2, w_dcomm=1e-1, w_orient=1e-1, verbose=False)
+    if zoomout:
+        model.zoomout_refine(nit=10, step=1, verbose=False)
+    return np.asarray(model.get_p2p(n_jobs=1))
+
+
+def main() -> None:
+    methods = {
+        "lbo.match (defaults)": lambda s, t: match(s, t),
+        "pyFM default": lambda s, t: pyfm(s, t, zoomout=False),
+        "pyFM default + ZoomOut": lambda s, t: pyfm(s, t, zoomout=True),
+    }
+    print(f"creatures of ~{N_VERTICES} vertices, targets shuffled; error = mean geodesic error / sqrt(area)")
+    print(f"{'pair':42s} {'method':24s} {'error':>8s} {'time (s)':>9s} {'time / ours':>12s}")
+    for i, (species, pose_a, pose_b, parts) in enumerate(PAIRS):
+        source = creature(species, pose_a, n_vertices=N_VERTICES)
+        target, perm = shuffled(creature(species, pose_b, parts, n_vertices=N_VERTICES), seed=i)
+        name = f"{species} {pose_a} -> {pose_b}" + (f" {parts}" if parts else "")
+        base = None
+        for label, fn in methods.items():
+            start = time.perf_counter()
+            p2p = fn(source, target)
+            seconds = time.perf_counter() - start
+            base = seconds if base is None else base
+            err = matching_error(source, p2p, perm).mean()
+            print(f"{name:42s} {label:24s} {err:8.4f} {seconds:9.2f} {seconds / base:12.2f}", flush=True)
+
+    print("\nsemi-local scaling, standing -> walking with a rescaled part; mean error / sqrt(area) by alpha")
+    print(f"{'species':8s} {'n':>5s} {'parts':18s} {'alpha=0':>8s} {'alpha=0.4':>10s} {'alpha=1':>8s}")
+    for i, (species, n, parts) in enumerate(SCALING_PAIRS):
+        source = creature(species, "standing", n_vertices=n)
+        target, perm = shuffled(creature(species, "walking", parts, n_vertices=n), seed=i)
+        errs = [matching_error(source, match(source, target, alpha=a), perm).mean() for a in (0.0, 0.4, 1.0)]
+        print(f"{species:8s} {source.n_vertices:5d} {str(parts):18s} {errs[0]:8.4f} {errs[1]:10.4f} {errs[2]:8.4f}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,316 @@
+"""Functional maps: a correspondence between two shapes as a small matrix in the spectral domain.
+
+A point map ``p2p`` sending every target vertex ``i`` to a source vertex ``p2p[i]`` pulls functions
+back from source to target, ``(Pi f)[i] = f[p2p[i]]``. In A-orthonormal eigenbases (``Phi_1`` on
+the source, ``Phi_2`` on the target) it becomes the ``k_2 x k_1`` matrix
+
+    C = Phi_2.T A_2 Pi Phi_1                    (:func:`map_from_points`),
+
+which takes source coefficients to target coefficients (Ovsjanikov et al. 2012). For an isometry
+``C`` is nearly diagonal: eigenfunctions go to eigenfunctions, up to sign and to mixing inside
+clusters of nearly equal eigenvalues.
+
+Estimating ``C`` from descriptors (:func:`estimate_map`) minimises the quadratic energy
+
+    ||C D_1 - D_2||^2                                   descriptors preserved
+    + w_lap ||C Lam_1 - Lam_2 C||^2                     commutes with the Laplacian (isometry)
+    + w_comm sum_f ||C Omega_1^f - Omega_2^f C||^2      commutes with multiplication by descriptors
+    + w_orient sum_f ||C O_1^f - O_2^f C||^2            preserves orientation (Ren et al. 2018)
+
+with ``D = Phi.T A F`` the descriptor coefficients, ``Omega^f = Phi.T A diag(f) Phi`` and
+``O^f[i, j] = int phi_i (n x grad f) . grad phi_j dA`` (:func:`orientation_operators`). The last
+term separates a shape from its mirror image, which every intrinsic descriptor confuses. The
+energy is quadratic in ``C``, so it is minimised exactly by one dense linear solve of size
+``k_1 k_2`` (no iterative optimiser, no initial guess).
+
+A point map is recovered from ``C`` by nearest neighbours (:func:`points_from_map`), and ZoomOut
+(Melzi et al. 2019, :func:`zoomout`) alternates the two conversions while growing ``k``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike, NDArray
+from scipy.spatial import cKDTree
+
+from .mesh import Mesh
+from .spectrum import Spectrum
+
+__all__ = [
+    "map_from_points",
+    "points_from_map",
+    "estimate_map",
+    "zoomout",
+    "face_gradients",
+    "orientation_operators",
+    "multiplication_operators",
+]
+
+
+def _check_spectrum(spectrum: Spectrum, name: str) -> Spectrum:
+    if not isinstance(spectrum, Spectrum):
+        raise ValueError(f"{name} must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}.")
+    return spectrum
+
+
+def _check_k(k: int, spectrum: Spectrum, name: str = "k") -> int:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= spectrum.k:
+        raise ValueError(
+            f"{name} must be an integer between 1 and the number of eigenpairs computed ({spectrum.k}), got {k!r}; "
+            "compute more eigenpairs with eigenbasis(mesh, k)."
+        )
+    return int(k)
+
+
+def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64]:
+    arr = np.asarray(p2p)
+    if arr.shape != (n_target,) or not np.issubdtype(arr.dtype, np.integer):
+        raise ValueError(
+            f"p2p must be an integer array of shape ({n_target},): one source vertex per target vertex; "
+            f"got dtype {arr.dtype} and shape {arr.shape}."
+        )
+    if arr.size and (arr.min() < 0 or arr.max() >= n_source):
+        raise ValueError(f"p2p holds vertex indices outside 0..{n_source - 1} (the source has {n_source} vertices).")
+    return arr.astype(np.int64)
+
+
+def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_source: int | None = None, k_target: int | None = None) -> NDArray[np.float64]:
+    """The functional map ``C = Phi_2.T A_2 Pi Phi_1`` of a point map, shape (k_target, k_source).
+
+    Parameters
+    ----------
+    p2p : int array, shape (n_target,)
+        ``p2p[i]`` is the source vertex matched to target vertex ``i``.
+    source, target : Spectrum
+    k_source, k_target : int, optional
+        Number of basis functions on each side (default: all computed).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.ellipsoid(subdivisions=3), 6)
+    >>> C = map_from_points(np.arange(s.n_vertices), s, s)
+    >>> bool(np.allclose(C, np.eye(6), atol=1e-10))      # identity map -> identity matrix
+    True
+    """
+    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
+    k1 = source.k if k_source is None else _check_k(k_source, source, "k_source")
+    k2 = target.k if k_target is None else _check_k(k_target, target, "k_target")
+    p = _check_p2p(p2p, target.n_vertices, source.n_vertices)
+    return target.vectors[:, :k2].T @ (target.mass @ source.vectors[p, :k1])
+
+
+def points_from_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray[np.int64]:
+    """Point map of a functional map: nearest neighbours in the spectral embedding.
+
+    A delta at source vertex ``j`` has coefficients ``Phi_1[j]``; ``C`` carries them to
+    ``C Phi_1[j]``, and target vertex ``i`` is matched to the source vertex whose image is nearest
+    to its own coefficients ``Phi_2[i]`` (rows of ``Phi_2`` against rows of ``Phi_1 C.T``).
+
+    Returns
+    -------
+    ndarray of int, shape (n_target,)
+        ``p2p[i]``, the source vertex of target vertex ``i``.
+    """
+    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
+    C = np.asarray(C, dtype=np.float64)
+    if C.ndim != 2 or C.shape[0] > target.k or C.shape[1] > source.k or not np.all(np.isfinite(C)):
+        raise ValueError(
+            f"C must be a finite (k_target, k_source) matrix with k_target <= {target.k} and k_source <= {source.k}, "
+            f"got shape {C.shape}."
+        )
+    k2, k1 = C.shape
+    tree = cKDTree(source.vectors[:, :k1] @ C.T)
+    return tree.query(target.vectors[:, :k2], k=1)[1].astype(np.int64)
+
+
+def zoomout(
+    C: ArrayLike, source: Spectrum, target: Spectrum, *, k_final: int | None = None, step: int = 1
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """ZoomOut refinement (Melzi et al. 2019): grow ``C`` from (k, k) to (k_final, k_final).
+
+    Each iteration converts ``C`` to a point map and the point map back to a functional map
+    ``step`` sizes larger. The high frequencies this adds are what makes the point map precise.
+
+    Returns
+    -------
+    C : ndarray, shape (k_final, k_final)
+    p2p : ndarray of int, shape (n_target,)
+        The point map of the final ``C``.
+    """
+    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
+    C = np.asarray(C, dtype=np.float64)
+    k_max = min(source.k, target.k)
+    k_final = k_max if k_final is None else _check_k(k_final, source if source.k <= target.k else target, "k_final")
+    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
+        raise ValueError(f"step must be a positive integer, got {step!r}.")
+    k = min(C.shape)
+    if k > k_final:
+        raise ValueError(f"C is already {C.shape}, larger than k_final={k_final}.")
+    while True:
+        p2p = points_from_map(C, source, target)
+        if k >= k_final:
+            return C, p2p
+        k = min(k + step, k_final)
+        C = map_from_points(p2p, source, target, k_source=k, k_target=k)
+
+
+def face_gradients(mesh: Mesh, f: ArrayLike) -> NDArray[np.float64]:
+    """Gradient of piecewise-linear vertex functions on every face, shape (m, 3) or (m, 3, c).
+
+    ``grad f = sum_i f_i (n x e_i) / (2 area)`` with ``e_i`` the edge opposite corner ``i``,
+    traversed counter-clockwise.
+    """
+    F = mesh.faces
+    arr = np.asarray(f, dtype=np.float64)
+    if arr.shape[0] != mesh.n_vertices or arr.ndim not in (1, 2):
+        raise ValueError(f"f must have shape ({mesh.n_vertices},) or ({mesh.n_vertices}, c), got {arr.shape}.")
+    V = mesh.vertices
+    n = mesh.face_normals
+    scale = 1.0 / (2.0 * mesh.face_areas)
+    grad = 0.0
+    for i in range(3):
+        e = V[F[:, (i + 2) % 3]] - V[F[:, (i + 1) % 3]]
+        rot = np.cross(n, e) * scale[:, None]  # (m, 3)
+        fi = arr[F[:, i]]
+        grad = grad + (rot[:, :, None] * fi[:, None, :] if arr.ndim == 2 else rot * fi[:, None])
+    return np.asarray(grad)
+
+
+def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike, k: int) -> NDArray[np.float64]:
+    """``O^f[i, j] = int phi_i (n x grad f) . grad phi_j dA`` for every descriptor column, (p, k, k).
+
+    ``(n x grad f) . grad g = n . (grad f x grad g)`` is the signed area form ``df ^ dg``: it
+    changes sign under a reflection and is conformally invariant, so the operator is the same in
+    every metric ``|K|^alpha g`` (only ``phi`` changes). Face values are spread to the three
+    corners with weight ``area / 3``, the lumped mass.
+    """
+    spectrum = _check_spectrum(spectrum, "spectrum")
+    k = _check_k(k, spectrum)
+    D = np.asarray(descriptors, dtype=np.float64)
+    if D.ndim != 2 or D.shape[0] != mesh.n_vertices:
+        raise ValueError(f"descriptors must have shape ({mesh.n_vertices}, p), got {D.shape}.")
+    Phi = spectrum.vectors[:, :k]
+    grad_phi = face_gradients(mesh, Phi)  # (m, 3, k)
+    rotated = np.cross(mesh.face_normals[:, :, None], face_gradients(mesh, D), axis=1)  # (m, 3, p)
+    corner_sum = Phi[mesh.faces].sum(axis=1) * (mesh.face_areas / 3.0)[:, None]  # (m, k)
+    m, p = rotated.shape[0], rotated.shape[2]
+    field = np.matmul(rotated.transpose(0, 2, 1), grad_phi)  # (m, p, k): (n x grad f) . grad phi_j
+    return (corner_sum.T @ field.reshape(m, p * k)).reshape(k, p, k).transpose(1, 0, 2)
+
+
+def multiplication_operators(spectrum: Spectrum, descriptors: ArrayLike, k: int) -> NDArray[np.float64]:
+    """``Omega^f = Phi.T A diag(f) Phi`` for every descriptor column, shape (p, k, k)."""
+    spectrum = _check_spectrum(spectrum, "spectrum")
+    k = _check_k(k, spectrum)
+    D = np.asarray(descriptors, dtype=np.float64)
+    Phi = spectrum.vectors[:, :k]
+    APhi = np.asarray(spectrum.mass @ Phi)
+    return np.stack([(APhi * D[:, [c]]).T @ Phi for c in range(D.shape[1])])
+
+
+def _commutator_normal(X: NDArray[np.float64], Y: NDArray[np.float64], sign: float = -1.0) -> NDArray[np.float64]:
+    """Normal matrix of ``sum_p ||C X_p + sign * Y_p C||^2`` in column-major ``vec(C)``.
+
+    With ``vec(C X) = (X.T kron I) vec C`` and ``vec(Y C) = (I kron Y) vec C``:
+    ``L.T L = X X.T kron I + I kron Y.T Y + sign (X kron Y + X.T kron Y.T)``.
+    """
+    p, k1, _ = X.shape
+    k2 = Y.shape[1]
+    XX = np.einsum("pab,pcb->ac", X, X)
+    YY = np.einsum("pba,pbc->ac", Y, Y)
+    cross = np.einsum("pab,pce->acbe", X, Y) + np.einsum("pba,pec->acbe", X, Y)
+    H = np.kron(XX, np.eye(k2)) + np.kron(np.eye(k1), YY) + sign * cross.reshape(k1 * k2, k1 * k2)
+    return H
+
+
+def _unit_columns(D: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
+    norms = np.sqrt(np.einsum("np,np->p", D, mass @ D))
+    return D / np.where(norms > 0, norms, 1.0)
+
+
+def estimate_map(
+    source_mesh: Mesh,
+    target_mesh: Mesh,
+    source: Spectrum,
+    target: Spectrum,
+    source_descriptors: ArrayLike,
+    target_descriptors: ArrayLike,
+    *,
+    k: int = 30,
+    laplacian_weight: float = 1e-2,
+    commutativity_weight: float = 1e-1,
+    orientation_weight: float = 1e-1,
+    n_operators: int = 20,
+) -> NDArray[np.float64]:
+    """Functional map ``C`` (k x k) minimising the quadratic energy of the module docstring.
+
+    Parameters
+    ----------
+    source_mesh, target_mesh : Mesh
+        The shapes (the orientation term needs their normals and face gradients).
+    source, target : Spectrum
+        Their eigenbases (any metric; at least ``k`` eigenpairs).
+    source_descriptors, target_descriptors : array, shape (n_source, p) and (n_target, p)
+        Corresponding descriptor columns (e.g. :func:`~lbo_notebooks.descriptors.wks`). Each
+        column is scaled to unit A-norm on its shape.
+    k : int, default 30
+    laplacian_weight : float, default 1e-2
+        Weight of the Laplacian commutativity term; the eigenvalue differences are normalised
+        to unit Frobenius norm, so the weight does not depend on the shapes' size.
+    commutativity_weight, orientation_weight : float, default 0.1
+        Weights of the descriptor-commutativity and orientation-preserving terms, computed for
+        ``n_operators`` descriptor columns evenly spread over ``p``. ``0`` switches a term off.
+
+    Returns
+    -------
+    ndarray, shape (k, k)
+        Takes source coefficients to target coefficients.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis, wks
+    >>> m = shapes.bumpy_sphere(3)              # no symmetry, so the self-map is unique
+    >>> s = eigenbasis(m, 20)
+    >>> C = estimate_map(m, m, s, s, wks(s), wks(s), k=10)
+    >>> bool(np.abs(C - np.eye(10)).max() < 1e-6)
+    True
+    """
+    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
+    k = _check_k(k, source)
+    k = _check_k(k, target)
+    D1 = np.asarray(source_descriptors, dtype=np.float64)
+    D2 = np.asarray(target_descriptors, dtype=np.float64)
+    if D1.ndim != 2 or D2.ndim != 2 or D1.shape[1] != D2.shape[1]:
+        raise ValueError(f"descriptors must be 2-D with the same number of columns, got {D1.shape} and {D2.shape}.")
+    if D1.shape[0] != source.n_vertices or D2.shape[0] != target.n_vertices:
+        raise ValueError("descriptors must have one row per vertex of their shape (source first, then target).")
+    if not (np.all(np.isfinite(D1)) and np.all(np.isfinite(D2))):
+        raise ValueError("descriptors contain NaN or inf.")
+    for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
+        if not (np.isscalar(w) and np.isfinite(w) and w >= 0):
+            raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
+    if isinstance(n_operators, bool) or not isinstance(n_operators, (int, np.integer)) or n_operators < 1:
+        raise ValueError(f"n_operators must be a positive integer, got {n_operators!r}.")
+    D1, D2 = _unit_columns(D1, source.mass), _unit_columns(D2, target.mass)
+    A = source.project(D1, k)  # (k, p)
+    B = target.project(D2, k)
+
+    H = np.kron(A @ A.T, np.eye(k))
+    rhs = (B @ A.T).ravel(order="F")
+    lam_diff = (source.values[None, :k] - target.values[:k, None]) ** 2  # [i, j] = (lam1_j - lam2_i)^2
+    lam_diff /= np.linalg.norm(lam_diff)
+    H += laplacian_weight * np.diag(lam_diff.ravel(order="F"))
+
+    pick = np.unique(np.linspace(0, D1.shape[1] - 1, min(n_operators, D1.shape[1])).round().astype(int))
+    if commutativity_weight > 0:
+        X = multiplication_operators(source, D1[:, pick], k)
+        Y = multiplication_operators(target, D2[:, pick], k)
+        H += commutativity_weight * _commutator_normal(X, Y)
+    if orientation_weight > 0:
+        X = orientation_operators(source_mesh, source, D1[:, pick], k)
+        Y = orientation_operators(target_mesh, target, D2[:, pick], k)
+        H += orientation_weight * _commutator_normal(X, Y)
+    vec = np.linalg.solve(H, rhs)
+    return vec.reshape(k, k, order="F")
