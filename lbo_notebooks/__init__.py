@@ -30,7 +30,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "operators": ("stiffness_matrix", "mass_matrix"),
     "spectrum": ("Spectrum", "eigenbasis"),
     "plotting": ("plot_mesh",),
-    "creatures": ("creature", "creature_poses", "creature_parts", "pose_distortion"),
+    "creatures": ("creature", "creature_poses", "creature_parts", "pose_distortion", "vertex_strain", "joint_bands"),
     "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "a_orthonormalize", "witness_function"),
     "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling", "GeodesicSolver"),

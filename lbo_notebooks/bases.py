@@ -37,6 +37,7 @@ __all__ = [
     "eigen_basis",
     "random_smooth_basis",
     "random_smooth_functions",
+    "sample_functions",
     "pca_basis",
     "umbrella_basis",
     "identity_mass_basis",
@@ -113,6 +114,46 @@ def random_smooth_functions(mesh: Mesh, count: int, *, seed: int = 0, width: flo
     lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
     g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(count)))
     return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if count else g
+
+
+def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> tuple[NDArray[np.float64], list[str]]:
+    """Eight functions to test the representation bound on: smooth, kinked and random.
+
+    Columns: the coordinates ``x, y, z``; a heat kernel (four implicit heat steps
+    ``(A + t W) u_{k+1} = A u_k`` with ``t = heat_time * area`` from a unit spike at the vertex of
+    largest ``x``: not a finite combination of eigenfunctions); the geodesic distance from that
+    vertex (heat method; Lipschitz, with a kink at the source); and three
+    :func:`random_smooth_functions`. Voronoi mass.
+
+    Returns
+    -------
+    F : ndarray (n_vertices, 8)
+    labels : list of str
+        ``["x", "y", "z", "heat kernel", "geodesic distance", "random 1", "random 2", "random 3"]``
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> F, labels = sample_functions(shapes.icosphere(2), seed=1)
+    >>> F.shape, labels[3]
+    ((162, 8), 'heat kernel')
+    """
+    from .geodesics import geodesic_distances
+
+    if not isinstance(mesh, Mesh):
+        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
+    if not (np.isscalar(heat_time) and np.isfinite(heat_time) and heat_time > 0):
+        raise ValueError(f"heat_time must be a positive fraction of the area, got {heat_time!r}.")
+    W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    source = int(np.argmax(mesh.vertices[:, 0]))
+    heat = np.zeros(mesh.n_vertices)
+    heat[source] = 1.0
+    step = spla.splu((A + heat_time * mesh.area * W).tocsc())
+    for _ in range(4):
+        heat = step.solve(np.asarray(A @ heat))
+    distance = geodesic_distances(mesh, [source])[0]
+    F = np.column_stack([mesh.vertices, heat, distance, random_smooth_functions(mesh, 3, seed=seed)])
+    return F, ["x", "y", "z", "heat kernel", "geodesic distance", "random 1", "random 2", "random 3"]
 
 
 def random_smooth_basis(

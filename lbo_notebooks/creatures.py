@@ -33,7 +33,10 @@ from numpy.typing import NDArray
 
 from .mesh import Mesh
 
-__all__ = ["creature", "creature_poses", "creature_parts", "pose_distortion", "SPECIES", "POSES", "JOINTS", "PARTS"]
+__all__ = [
+    "creature", "creature_poses", "creature_parts", "pose_distortion", "vertex_strain", "joint_bands",
+    "SPECIES", "POSES", "JOINTS", "PARTS",
+]
 
 SPECIES: tuple[str, ...] = ("dog", "horse")
 
@@ -881,3 +884,50 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
         "edge_p99": float(np.percentile(rel, 99)),
         "geodesic_mean": float(np.mean(np.abs(d1[iu] / d0[iu] - 1.0))),
     }
+
+
+def vertex_strain(rest: Mesh, posed: Mesh) -> NDArray[np.float64]:
+    """Per vertex, the largest relative length change ``|l1 / l0 - 1|`` of the edges at it.
+
+    ``rest`` and ``posed`` must share one triangulation (two poses of one creature). Zero for a
+    rigid motion; a local picture of where a pose departs from an isometry
+    (:func:`pose_distortion` gives the global statistics).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> m = shapes.icosphere(1)
+    >>> float(vertex_strain(m, m.with_vertices(2 * m.vertices)).max().round(12))   # scaling by 2: +100%
+    1.0
+    """
+    if not isinstance(rest, Mesh) or not isinstance(posed, Mesh):
+        raise ValueError("rest and posed must be lbo_notebooks.Mesh objects.")
+    if rest.n_vertices != posed.n_vertices or not np.array_equal(rest.faces, posed.faces):
+        raise ValueError("rest and posed must share one triangulation (same faces); pass two poses of one creature.")
+    e = rest.edges
+    l0 = np.linalg.norm(rest.vertices[e[:, 0]] - rest.vertices[e[:, 1]], axis=1)
+    l1 = np.linalg.norm(posed.vertices[e[:, 0]] - posed.vertices[e[:, 1]], axis=1)
+    rel = np.abs(l1 / l0 - 1.0)
+    out = np.zeros(rest.n_vertices)
+    np.maximum.at(out, e[:, 0], rel)
+    np.maximum.at(out, e[:, 1], rel)
+    return out
+
+
+def joint_bands(species: str = "dog", n_vertices: int = 10_000) -> NDArray[np.bool_]:
+    """Vertex mask of the joint bands: where some joint weight ``phi_j`` is strictly between 0 and 1.
+
+    Outside the bands every vertex moves rigidly with one bone in every pose; only inside them
+    can a pose stretch the surface. Same vertex order as :func:`creature`.
+
+    Examples
+    --------
+    >>> bands = joint_bands("dog", n_vertices=3000)
+    >>> bool(0.05 < bands.mean() < 0.95)
+    True
+    """
+    template = _template(_check_species(species), _check_n_vertices(n_vertices))
+    w = template.weights
+    mask = np.any((w > 0.0) & (w < 1.0), axis=0)
+    mask.setflags(write=False)
+    return mask

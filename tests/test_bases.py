@@ -135,3 +135,30 @@ def test_competitor_bases_and_bad_input(blob):
         bases.eigen_basis((stiffness_matrix(m), mass_matrix(m)), 5)
     with pytest.raises(ValueError, match="width"):
         bases.random_smooth_basis(m, 5, width=-1.0)
+
+
+def test_sample_functions_satisfy_the_bound_and_are_what_they_say():
+    from lbo_notebooks.geodesics import geodesic_distances
+    from lbo_notebooks.optimality import error_bound, representation_error
+
+    m = shapes.icosphere(3)
+    s = eigenbasis(m, 40)
+    F, labels = bases.sample_functions(m, seed=2)
+    assert F.shape == (m.n_vertices, 8) and len(labels) == 8
+    assert np.array_equal(F[:, :3], m.vertices)
+    source = int(np.argmax(m.vertices[:, 0]))
+    assert np.allclose(F[:, 4], geodesic_distances(m, [source])[0])
+    heat = F[:, 3]
+    # Implicit heat steps conserve the integral A-mass of the unit spike and keep it positive,
+    # peaked at the source.
+    A = s.mass
+    assert abs(np.sum(A @ heat) - A[source, source]) < 1e-10 * A[source, source]
+    assert heat.min() > 0 and int(np.argmax(heat)) == source
+    for n in (1, 5, 20, 39):
+        assert np.all(representation_error(s, F, n) <= error_bound(s, F, n) * (1 + 1e-9))
+    again, _ = bases.sample_functions(m, seed=2)
+    assert np.array_equal(again, F)
+    with pytest.raises(ValueError, match="heat_time"):
+        bases.sample_functions(m, heat_time=-1.0)
+    with pytest.raises(ValueError, match="Mesh"):
+        bases.sample_functions(m.vertices)

@@ -228,3 +228,27 @@ def test_poses_are_read_only() -> None:
         C.POSES["new"] = {}  # type: ignore[index]
     with pytest.raises(TypeError):
         C.POSES["walking"]["neck"] = (0.0, 0.0, 0.0)  # type: ignore[index]
+
+
+def test_vertex_strain_oracles_and_rigid_bones(family: tuple[str, dict[str, Mesh]]) -> None:
+    species, poses = family
+    rest = poses["standing"]
+    # Oracles: a rigid motion gives zero, a uniform scaling by 1.1 gives exactly 10% everywhere.
+    R = np.linalg.qr(np.random.default_rng(0).normal(size=(3, 3)))[0]
+    assert C.vertex_strain(rest, rest.with_vertices(rest.vertices @ R.T + 1.0)).max() < 1e-12
+    assert np.allclose(C.vertex_strain(rest, rest.with_vertices(1.1 * rest.vertices)), 0.1, rtol=1e-9)
+    # Outside the joint bands (and their one-ring) every pose moves the body rigidly.
+    bands = C.joint_bands(species, n_vertices=N)
+    e = rest.edges
+    near = bands.copy()
+    near[e[bands[e[:, 0]] | bands[e[:, 1]]].ravel()] = True
+    assert 0 < (~near).sum() and bands.any()
+    for name, m in poses.items():
+        strain = C.vertex_strain(rest, m)
+        assert strain[~near].max() < 1e-10, name
+        if name != "standing":
+            assert strain[bands].max() > 1e-3, name  # the bands are where the pose bends
+    with pytest.raises(ValueError, match="triangulation"):
+        C.vertex_strain(rest, C.creature("horse" if species == "dog" else "dog", n_vertices=N))
+    with pytest.raises(ValueError, match="Mesh"):
+        C.vertex_strain(rest, rest.vertices)  # type: ignore[arg-type]
