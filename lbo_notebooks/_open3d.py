@@ -71,7 +71,8 @@ def import_open3d() -> ModuleType:
         if exc.name not in (None, "open3d"):
             raise _explain(exc) from exc
         raise ImportError(
-            "open3d is not installed; mesh files are read and written through it. "
+            "open3d is not installed; it decimates large meshes for display and writes binary "
+            "mesh files. "
             "Install it with `pip install open3d` (it is a dependency of lbo-notebooks)."
         ) from exc
     except (ImportError, OSError) as exc:
