@@ -1,5 +1,7 @@
 """The git clean filter (scripts/strip_notebook.py) that keeps run notebooks out of git."""
 
+import doctest
+import importlib.util
 import json
 import shutil
 import subprocess
@@ -65,3 +67,11 @@ def test_git_status_stays_clean_after_a_run(tmp_path):
     assert git("status", "--porcelain") == ""
     assert git("show", ":n.ipynb").encode("utf-8") == NOTEBOOKS[0].read_bytes()
     assert b'"output_type": "stream"' in (tmp_path / "n.ipynb").read_bytes()  # the outputs stay on disk
+
+
+def test_docstring_examples():
+    spec = importlib.util.spec_from_file_location("strip_notebook", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    result = doctest.testmod(module)
+    assert result.attempted > 0 and result.failed == 0
