@@ -8,6 +8,7 @@
 #   ./make.sh site    execute the notebooks and write a static HTML site into build/site
 #   ./make.sh bench   print the benchmark tables (benchmarks/*.py)
 #   ./make.sh install only install
+#   ./make.sh pull    update a clone in which notebooks have been run (see README, "Course staff")
 #
 # Works from a bare Debian 12 machine with Python >= 3.10: missing system libraries are
 # installed with apt-get when we are root (or through sudo); otherwise the exact command is printed.
@@ -49,11 +50,26 @@ python_env() {
   "$VENV/bin/python" -m pip install -q --upgrade pip
   log "installing lbo_notebooks and its dependencies ($1)"
   "$VENV/bin/python" -m pip install -q -e ".$1"
-  # dash (pulled in by open3d) ships a JupyterLab extension that makes JupyterLab show a
-  # "Build Recommended" pop-up; nothing needs building, so switch the check off.
-  local labconfig="$VENV/etc/jupyter/labconfig"
-  mkdir -p "$labconfig"
-  printf '{\n  "buildCheck": false,\n  "buildAvailable": false\n}\n' > "$labconfig/page_config.json"
+  # JupyterLab settings shared with Binder: no "Build Recommended" pop-up (dash, pulled in by
+  # open3d, ships an extension that triggers it) and no "official Jupyter news?" question.
+  mkdir -p "$VENV/etc/jupyter/labconfig"
+  cp binder/page_config.json "$VENV/etc/jupyter/labconfig/page_config.json"
+  git_filter
+}
+
+# Notebooks run in JupyterLab get outputs written into them by autosave; this clean filter
+# makes git see them as committed (scripts/strip_notebook.py, .gitattributes). Idempotent; does
+# nothing outside a git checkout.
+git_filter() {
+  command -v git >/dev/null 2>&1 && git rev-parse --is-inside-work-tree >/dev/null 2>&1 || return 0
+  git config filter.strip-notebook.clean "python3 scripts/strip_notebook.py"
+}
+
+# BLAS threads for every kernel and test worker started from here (README, "Threads"): one, unless
+# the caller set them. The notebooks' dense problems are small, and more OpenBLAS threads than
+# free cores (Binder's CPU quota, a busy laptop, two pytest workers) makes them many times slower.
+one_blas_thread() {
+  export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
 }
 
 case "${1:-}" in
@@ -61,17 +77,18 @@ case "${1:-}" in
     system_packages; python_env "[test]" ;;
   lab)
     system_packages; python_env ""
+    one_blas_thread
+    root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)  # containers run as root; JupyterLab refuses it otherwise
     log "starting JupyterLab on notebooks/ (Ctrl-C to stop)"
-    exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks "${@:2}" ;;
+    exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"
     log "running unit tests and every notebook (nbval)"
-    # Two pytest workers on two cores: one BLAS thread each (oversubscribed OpenBLAS is ~30x
-    # slower on the small dense problems the tests solve).
-    export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
+    one_blas_thread
     exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules --durations=15 tests notebooks lbo_notebooks "${@:2}" ;;
   site)
     system_packages; python_env "[test]"
+    one_blas_thread
     exec "$VENV/bin/python" scripts/build_site.py "${@:2}" ;;
   browser)
     system_packages; python_env "[test]"
@@ -80,13 +97,19 @@ case "${1:-}" in
       { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; } \
         || { log "install the browser with: sudo apt-get install -y chromium"; exit 1; }
     fi
-    export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
+    one_blas_thread
     LBO_BROWSER_TESTS=1 exec "$VENV/bin/python" -m pytest -p no:dash tests/browser -v "${@:2}" ;;
   binder)
     exec scripts/binder_parity.sh "${@:2}" ;;
   bench)
-    system_packages; python_env "[test]"
+    system_packages; python_env "[test]"; one_blas_thread
     for b in benchmarks/*.py; do log "$b"; "$VENV/bin/python" "$b"; done ;;
+  pull)
+    # `git status` trusts file sizes, so a notebook with outputs looks changed until `git add`
+    # refreshes its entry (the filter stores nothing new); then `git pull` can update it.
+    git_filter
+    git add -u -- notebooks
+    exec git pull "${@:2}" ;;
   *)
-    echo "usage: ./make.sh {lab|test|browser|binder|site|bench|install} [extra arguments]" >&2; exit 2 ;;
+    echo "usage: ./make.sh {lab|test|browser|binder|site|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
 esac

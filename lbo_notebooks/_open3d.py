@@ -9,6 +9,7 @@ the missing library and the ``apt-get`` command that installs it.
 
 from __future__ import annotations
 
+import os
 import re
 from types import ModuleType
 
@@ -27,8 +28,19 @@ _LIBRARY = re.compile(r"(lib[\w.+-]*\.so[\w.]*)")
 
 
 def _load() -> ModuleType:
-    import open3d
-
+    # Inside a Jupyter kernel open3d's __init__ prints "Jupyter environment detected. Enabling
+    # Open3D WebVisualizer." and starts a WebRTC visualiser whose comm JupyterLab cannot open
+    # ("Exception opening new comm" in the browser console). We draw with plotly, so switch that
+    # hook off through the variable open3d reads, unless the user has set it, and restore it.
+    key = "OPEN3D_DISABLE_WEB_VISUALIZER"
+    previous = os.environ.get(key)
+    if previous is None:
+        os.environ[key] = "true"
+    try:
+        import open3d
+    finally:
+        if previous is None:
+            os.environ.pop(key, None)
     return open3d
 
 
@@ -59,7 +71,8 @@ def import_open3d() -> ModuleType:
         if exc.name not in (None, "open3d"):
             raise _explain(exc) from exc
         raise ImportError(
-            "open3d is not installed; mesh files are read and written through it. "
+            "open3d is not installed; it decimates large meshes for display and writes binary "
+            "mesh files. "
             "Install it with `pip install open3d` (it is a dependency of lbo-notebooks)."
         ) from exc
     except (ImportError, OSError) as exc:

@@ -664,7 +664,7 @@ def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArr
     >>> from lbo_notebooks import shapes, eigenbasis
     >>> mesh = shapes.bumpy_sphere(3)
     >>> s = eigenbasis(mesh, 642)
-    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8)
+    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8 * abs(mesh.vertices).max())
     True
     """
     A = sp.csr_matrix(mass, dtype=np.float64)

@@ -58,7 +58,8 @@ page_config="$work/venv/etc/jupyter/labconfig/page_config.json"
 "$VPY" -m pip install -q pytest nbval
 log "running the notebooks with nbval ($(elapsed) so far)"
 status=0
+# Through binder/start, as on Binder, so the kernels get the environment it sets.
 PATH="$work/venv/bin:$PATH" VIRTUAL_ENV="$work/venv" \
-  "$VPY" -m pytest -p no:dash -p no:cacheprovider --nbval-lax -q "${@:-notebooks}" || status=$?
+  bash binder/start "$VPY" -m pytest -p no:dash -p no:cacheprovider --nbval-lax -q "${@:-notebooks}" || status=$?
 log "done in $(elapsed) (exit $status)"
 exit $status

@@ -54,7 +54,7 @@ def test_exact_is_euclidean_on_a_flat_convex_domain():
     src = [0, 40, m.n_vertices - 1]
     d = geodesic_distances(m, src, "exact")
     euclid = np.linalg.norm(m.vertices[src][:, None, :] - m.vertices[None, :, :], axis=2)
-    assert np.abs(d - euclid).max() < 1e-9
+    assert np.abs(d - euclid).max() < 1e-9 * euclid.max()
     heat = geodesic_distances(m, src, "heat")
     assert np.abs(heat - euclid).max() < 0.1 * m.diagonal
 
@@ -63,7 +63,7 @@ def test_exact_distances_are_symmetric_and_zero_at_sources(sphere3):
     src = [3, 50, 211]
     d = geodesic_distances(sphere3, src, "exact")
     block = d[:, src]
-    assert np.allclose(block, block.T, atol=1e-10)
+    assert np.allclose(block, block.T, rtol=0, atol=1e-10 * block.max())
     assert np.all(np.diag(block) == 0) and np.all(d >= 0)
 
 

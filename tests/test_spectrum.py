@@ -16,7 +16,7 @@ def sphere5():
 
 
 def test_sphere_first_36_eigenvalues_within_half_a_percent(sphere5):
-    assert abs(sphere5.values[0]) < 1e-8
+    assert abs(sphere5.values[0]) < 1e-8 * sphere5.values[1]
     assert np.max(np.abs(sphere5.values[1:] / SPHERE[1:] - 1)) < 5e-3
 
 
@@ -113,7 +113,8 @@ def test_vertex_permutation_permutes_rows():
 def test_one_zero_eigenvalue_per_component_and_constant_first():
     s = shapes.icosphere(2)
     two = Mesh(np.vstack([s.vertices, s.vertices + 3]), np.vstack([s.faces, s.faces + s.n_vertices]))
-    assert np.sum(np.abs(eigenbasis(two, 6).values) < 1e-8) == 2
+    values = eigenbasis(two, 6).values
+    assert np.sum(np.abs(values) < 1e-8 * values[-1]) == 2
     spec = eigenbasis(s, 4)
     np.testing.assert_allclose(spec.vectors[:, 0], 1 / np.sqrt(s.area), rtol=1e-8)
 
@@ -129,10 +130,10 @@ def test_project_reconstruct_error():
     resid = f - r
     np.testing.assert_allclose(spec.error(f, 10), np.sqrt(np.einsum("ij,ij->j", resid, spec.mass @ resid)))
     # Residual is A-orthogonal to the basis; errors decrease with n; a basis vector is exact.
-    np.testing.assert_allclose(spec.vectors[:, :10].T @ (spec.mass @ resid), 0, atol=1e-10)
+    np.testing.assert_allclose(spec.vectors[:, :10].T @ (spec.mass @ resid), 0, atol=1e-10 * spec.error(f, 0).max())
     errs = [spec.error(f[:, 0], n) for n in (1, 5, 20, 60)]
     assert all(x > y for x, y in zip(errs, errs[1:]))
-    assert spec.error(spec.vectors[:, 7], 8) < 1e-10
+    assert spec.error(spec.vectors[:, 7], 8) < 1e-10  # relative: the vector has unit A-norm
     assert spec.error(f[:, 0], 0) == pytest.approx(np.sqrt(f[:, 0] @ spec.mass @ f[:, 0]))
 
 
