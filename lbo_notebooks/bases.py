@@ -30,8 +30,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
-from .optimality import a_orthonormalize
-from .spectrum import check_operators, eigenbasis
+from .inner_product import a_orthonormalize, check_operators
+from .spectrum import eigenbasis
 
 __all__ = [
     "eigen_basis",

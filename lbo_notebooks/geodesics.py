@@ -33,6 +33,9 @@ __all__ = [
     "METHODS",
     "check_connected",
     "distance_matrix_bytes",
+    "check_method",
+    "check_memory",
+    "geodesic_solver",
 ]
 
 GeodesicMethod = Literal["heat", "exact", "fmm"]
@@ -67,7 +70,8 @@ def distance_matrix_bytes(rows: int, cols: int) -> int:
     return 8 * int(rows) * int(cols)
 
 
-def _check_method(method: Any) -> str:
+def check_method(method: Any) -> str:
+    """``method`` checked to be one of :data:`METHODS` (a ``ValueError`` naming them otherwise)."""
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}.")
     return str(method)
@@ -134,7 +138,7 @@ class GeodesicSolver:
 
     def __init__(self, mesh: Mesh, method: GeodesicMethod = "heat", *, heat_time: float = 1.0) -> None:
         check_connected(mesh)
-        self.method = _check_method(method)
+        self.method = check_method(method)
         if not (np.isscalar(heat_time) and np.isfinite(heat_time) and heat_time > 0):
             raise ValueError(f"heat_time must be a positive number (a multiple of h^2), got {heat_time!r}.")
         self.mesh = mesh
@@ -204,7 +208,7 @@ class GeodesicSolver:
         """
         src = _check_sources(sources, self.n_vertices)
         need = distance_matrix_bytes(src.size, self.n_vertices)
-        _check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
+        check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
         out = np.empty((src.size, self.n_vertices), dtype=np.float64)
         for i, s in enumerate(_progress(src, src.size, progress, f"geodesics ({self.method})")):
             out[i] = self.distance(int(s))
@@ -218,7 +222,11 @@ def available_memory() -> int:
     return int(psutil.virtual_memory().available)
 
 
-def _check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
+def check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
+    """Raise ``MemoryError`` naming ``what`` and ``hint`` when ``need`` bytes exceed ``budget``.
+
+    ``budget=None`` means half of the memory available now.
+    """
     if budget is None:
         budget = 0.5 * available_memory()
         where = "half of the memory available now"
@@ -233,9 +241,9 @@ def _check_memory(need: int, budget: float | None, what: str, hint: str = "use f
         )
 
 
-def _solver(mesh: Mesh, method: str) -> GeodesicSolver:
+def geodesic_solver(mesh: Mesh, method: str) -> GeodesicSolver:
     """The solver of ``mesh`` for ``method``, built once and cached on the mesh."""
-    method = _check_method(method)
+    method = check_method(method)
     if not isinstance(mesh, Mesh):
         raise ValueError(f"expected a Mesh, got {type(mesh).__name__}.")
     return mesh.cached(f"geodesic_solver_{method}", lambda m: GeodesicSolver(m, method))
@@ -280,7 +288,7 @@ def geodesic_distances(
     >>> bool(abs(d.max() - np.pi) < 0.02)   # the antipode is half a great circle away
     True
     """
-    return _solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
+    return geodesic_solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
 
 
 def farthest_point_sampling(
@@ -329,7 +337,7 @@ def farthest_point_sampling(
     >>> int(s[0]), bool(np.linalg.norm(sphere.vertices[s].sum(axis=0)) < 1e-9)  # antipodes
     (0, True)
     """
-    solver = _solver(mesh, method)
+    solver = geodesic_solver(mesh, method)
     n = mesh.n_vertices
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
         raise ValueError(
@@ -338,7 +346,7 @@ def farthest_point_sampling(
         )
     start = int(_check_sources(start, n)[0])
     count = int(count)
-    _check_memory(distance_matrix_bytes(count, n), None, f"{count} distance fields on {n} vertices")
+    check_memory(distance_matrix_bytes(count, n), None, f"{count} distance fields on {n} vertices")
     samples = np.empty(count, dtype=np.int64)
     fields = np.empty((count, n), dtype=np.float64)
     nearest = np.full(n, np.inf)

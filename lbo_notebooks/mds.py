@@ -28,13 +28,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from .geodesics import (
     GeodesicMethod,
-    _check_memory,
-    _check_method,
-    _solver,
     check_connected,
+    check_memory,
+    check_method,
     distance_matrix_bytes,
     farthest_point_sampling,
+    geodesic_solver,
 )
+from .inner_product import fix_signs, start_vector, use_dense
 from .mesh import Mesh
 from .spectrum import Spectrum, eigenbasis
 
@@ -60,14 +61,6 @@ def _check_dim(dim: Any, limit: int, what: str) -> int:
     if dim >= limit:
         raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
     return int(dim)
-
-
-def _fix_signs(X: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Make the entry of largest magnitude of each column positive (deterministic output)."""
-    if X.size == 0:
-        return X
-    peak = X[np.argmax(np.abs(X), axis=0), np.arange(X.shape[1])]
-    return X * np.where(peak < 0, -1.0, 1.0)
 
 
 def _as_embedding(Z: ArrayLike, name: str) -> NDArray[np.float64]:
@@ -144,11 +137,10 @@ def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
 def _top_eigs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Largest ``dim`` eigenpairs of a symmetric matrix, descending."""
     n = B.shape[0]
-    if n <= 400 or dim + 1 >= n // 2:
+    if use_dense(n) or dim + 1 >= n // 2:
         vals, vecs = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
     else:
-        v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))  # deterministic Lanczos start
-        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=v0)
+        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=start_vector(n))
     order = np.argsort(vals)[::-1]
     return vals[order], vecs[:, order]
 
@@ -186,7 +178,7 @@ def classical_mds(
     Returns
     -------
     ndarray, shape (n, dim)
-        Centred; column signs fixed (largest entry positive).
+        Centred; column signs fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
     Examples
     --------
@@ -201,10 +193,10 @@ def classical_mds(
         check_connected(mesh, "classical MDS on geodesic distances")
         n = mesh.n_vertices
         _check_dim(dim, n, "the number of vertices")
-        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+        check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
                       "simplify the mesh (fewer vertices)")
-        D2 = _solver(mesh, _check_method(method)).distances(
+        D2 = geodesic_solver(mesh, check_method(method)).distances(
             np.arange(n), progress=progress, memory_budget=float("inf")
         )
         np.square(D2, out=D2)  # our own buffer: square in place
@@ -218,7 +210,7 @@ def classical_mds(
             raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
         if np.any(D < 0):
             raise ValueError("distances must be non-negative.")
-        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+        check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} points (two more {n} x {n} float64 matrices)",
                       "use fewer points")
         D2 = np.square(D)  # a new buffer: the caller's matrix is never modified
@@ -234,7 +226,7 @@ def classical_mds(
     vals, vecs = _top_eigs(B, dim)
     del B
     X = vecs * np.sqrt(np.maximum(vals, 0.0))
-    return _fix_signs(X - X.mean(axis=0))
+    return fix_signs(X - X.mean(axis=0))
 
 
 # --- landmark MDS -----------------------------------------------------------------------------
@@ -327,7 +319,7 @@ def landmark_mds(
         )
     pinv = vecs / np.sqrt(vals)  # (q, dim): columns of L^#.T
     X = -0.5 * (sq - mean_col[:, None]).T @ pinv
-    return _fix_signs(X - X.mean(axis=0))
+    return fix_signs(X - X.mean(axis=0))
 
 
 # --- spectral MDS -----------------------------------------------------------------------------
@@ -410,7 +402,7 @@ def spectral_mds(
     t0 = time.perf_counter()
     check_connected(mesh, "spectral MDS")
     n = mesh.n_vertices
-    method = _check_method(method)
+    method = check_method(method)
     if isinstance(n_eigs, bool) or not isinstance(n_eigs, (int, np.integer)) or not 2 <= n_eigs <= n:
         raise ValueError(f"n_eigs must be an integer between 2 and the number of vertices ({n}), got {n_eigs!r}.")
     n_eigs = int(n_eigs)
@@ -461,7 +453,7 @@ def spectral_mds(
     G, U = np.linalg.eigh(0.5 * (small + small.T))
     G, U = G[::-1], U[:, ::-1]
     X = Q @ (U[:, :dim] * np.sqrt(np.maximum(G[:dim], 0.0)))
-    X = _fix_signs(X - X.mean(axis=0))
+    X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
         return X

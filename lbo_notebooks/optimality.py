@@ -26,7 +26,9 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .spectrum import Spectrum, check_operators
+from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
+from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
+from .spectrum import Spectrum
 
 __all__ = [
     "representation_error",
@@ -39,37 +41,16 @@ __all__ = [
     "witness_function",
 ]
 
-# Below this many vertices worst_case_ratio(method="auto") uses a dense generalized eigensolver.
-DENSE_LIMIT = 400
-
 Method = Literal["auto", "dense", "sparse"]
 
 
 # --- input checks ----------------------------------------------------------------------------
-def _check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[np.float64]:
-    arr = np.asarray(f, dtype=np.float64)
-    if arr.ndim not in (1, 2) or arr.shape[0] != n_vertices:
-        raise ValueError(
-            f"{name} must have shape ({n_vertices},) or ({n_vertices}, c): one value per vertex; "
-            f"got {arr.shape}."
-        )
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or inf; replace them before measuring errors.")
-    return arr
-
-
 def _check_spectrum(spectrum: Spectrum) -> Spectrum:
     if not isinstance(spectrum, Spectrum):
         raise ValueError(
             f"spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}."
         )
     return spectrum
-
-
-def _check_symmetric(M: sp.csr_matrix, name: str) -> None:
-    scale = abs(M).max() if M.nnz else 0.0
-    if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
-        raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
 
 
 def _check_basis(basis: ArrayLike, n_vertices: int) -> NDArray[np.float64]:
@@ -113,7 +94,7 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     """
     if not sp.issparse(stiffness) or stiffness.shape[0] != stiffness.shape[1]:
         raise ValueError("stiffness must be a square scipy.sparse matrix (see operators.stiffness_matrix).")
-    arr = _check_functions(f, stiffness.shape[0])
+    arr = check_functions(f, stiffness.shape[0])
     out = np.einsum("i...,i...->...", arr, stiffness @ arr)
     return float(out) if arr.ndim == 1 else np.asarray(out)
 
@@ -175,118 +156,6 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64]
 
 
 # --- A-orthonormal bases -------------------------------------------------------------------------
-_BLOCK = 32
-
-
-def _a_norms(X: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
-    return np.sqrt(np.maximum(np.einsum("ij,ij->j", X, mass @ X), 0.0))
-
-
-def _project_out(
-    Q: NDArray[np.float64], X: NDArray[np.float64], mass: sp.spmatrix, norms: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """In place ``X -= Q Q.T A X``, repeated while a pass removes more than half of a column's
-    norm ("twice is enough", with a guard for nearly dependent columns). Returns the new norms."""
-    for _ in range(4):
-        X -= Q @ (Q.T @ (mass @ X))
-        new = _a_norms(X, mass)
-        if np.all((new > 0.5 * norms) | (new == 0.0)):
-            return new
-        norms = new
-    return norms
-def a_orthonormalize(
-    vectors: ArrayLike,
-    mass: sp.spmatrix,
-    *,
-    prepend: ArrayLike | None = None,
-    drop_dependent: bool = False,
-    rtol: float = 1e-8,
-) -> NDArray[np.float64]:
-    """A-orthonormal basis of the span of the columns, in column order (Gram–Schmidt in ``<.,.>_A``).
-
-    Each column is orthogonalised against the previous ones by classical Gram–Schmidt, repeated
-    while a pass removes more than half of its norm ("twice is enough", with a guard), so the
-    result satisfies ``Q.T @ A @ Q = I`` to round-off even for ill-conditioned input.
-
-    Parameters
-    ----------
-    vectors : array (n_vertices, m)
-    mass : sparse (n_vertices, n_vertices)
-        The mass matrix ``A`` defining the inner product.
-    prepend : array (n_vertices,) or (n_vertices, p), optional
-        Columns placed first (e.g. ``numpy.ones(n)`` for "the constant function first").
-    drop_dependent : bool
-        Skip columns that are numerically in the span of the previous ones instead of raising.
-    rtol : float
-        A column is dependent when less than ``rtol`` of its A-norm survives orthogonalisation.
-
-    Returns
-    -------
-    ndarray (n_vertices, r), a fresh array (the input is not modified).
-
-    Raises
-    ------
-    ValueError
-        If a column is (numerically) dependent and ``drop_dependent`` is False: the basis is
-        rank-deficient.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, mass_matrix
-    >>> m = shapes.icosphere(2)
-    >>> A = mass_matrix(m)
-    >>> Q = a_orthonormalize(m.vertices, A, prepend=np.ones(m.n_vertices))
-    >>> Q.shape, bool(np.allclose(Q.T @ A @ Q, np.eye(4)))
-    ((162, 4), True)
-    """
-    if not sp.issparse(mass) or mass.shape[0] != mass.shape[1]:
-        raise ValueError("mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
-    nv = mass.shape[0]
-    cols = np.asarray(vectors, dtype=np.float64)
-    if cols.ndim == 1:
-        cols = cols[:, None]
-    if prepend is not None:
-        pre = np.asarray(prepend, dtype=np.float64)
-        pre = pre[:, None] if pre.ndim == 1 else pre
-        if pre.ndim != 2 or pre.shape[0] != nv:
-            raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
-        cols = np.hstack([pre, cols]) if cols.ndim == 2 and cols.shape[0] == nv else cols
-    if cols.ndim != 2 or cols.shape[0] != nv:
-        raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
-    if not np.all(np.isfinite(cols)):
-        raise ValueError("vectors contain NaN or inf.")
-    if not (np.isfinite(rtol) and 0 < rtol < 1):
-        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
-    Q = np.empty((nv, cols.shape[1]))
-    r = 0
-    for lo in range(0, cols.shape[1], _BLOCK):
-        # Block Gram-Schmidt against the columns accepted so far (BLAS-3), then column by column
-        # inside the block.
-        X = cols[:, lo : lo + _BLOCK].copy()
-        norm0 = _a_norms(X, mass)
-        if r:
-            _project_out(Q[:, :r], X, mass, norm0)
-        r_block = r
-        for j in range(X.shape[1]):
-            v = X[:, j : j + 1]
-            before = float(_a_norms(v, mass)[0])
-            norm = float(_project_out(Q[:, r_block:r], v, mass, np.array([before]))[0]) if r > r_block else before
-            if r and 0.0 < norm < 1e-3 * before:
-                # Heavy cancellation: refresh orthogonality against everything accepted so far.
-                norm = float(_project_out(Q[:, :r], v, mass, np.array([norm]))[0])
-            if norm0[j] == 0.0 or norm <= rtol * norm0[j]:
-                if drop_dependent:
-                    continue
-                raise ValueError(
-                    f"the basis is rank-deficient: column {lo + j} is (numerically) a combination of "
-                    "the previous columns; remove it or pass drop_dependent=True."
-                )
-            Q[:, r] = v[:, 0] / norm
-            r += 1
-    return Q[:, :r]
-
-
 def kernel_basis(stiffness: sp.spmatrix) -> NDArray[np.float64]:
     """The kernel of ``W``: one indicator column per connected component (shape (n, p)).
 
@@ -369,10 +238,9 @@ def _worst_case_sparse(
     left = spla.LinearOperator((n, n), matvec=lambda x: A @ np.ravel(x) - AQ @ (AQ.T @ np.ravel(x)), dtype=np.float64)
     right = spla.LinearOperator((n, n), matvec=solver.matvec, dtype=np.float64)
     right_inv = spla.LinearOperator((n, n), matvec=solver.solve, dtype=np.float64)
-    # A fixed start vector makes ARPACK deterministic; tol=0 asks for machine precision.
-    v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
+    # tol=0 asks for machine precision.
     values, vectors = spla.eigsh(
-        left, k=1, M=right, Minv=right_inv, which="LA", v0=v0, tol=0.0, ncv=min(n - 1, 24)
+        left, k=1, M=right, Minv=right_inv, which="LA", v0=start_vector(n), tol=0.0, ncv=min(n - 1, 24)
     )
     return float(values[0]), vectors[:, 0]
 
@@ -448,12 +316,9 @@ def worst_case_ratio(
     inf
     """
     W, A = check_operators(stiffness, mass)
-    _check_symmetric(W, "stiffness")
-    _check_symmetric(A, "mass")
     n = W.shape[0]
     arr = _check_basis(basis, n)
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+    dense = use_dense(n, method)
     Q = a_orthonormalize(arr, A)
     kernel = kernel_basis(W)
     # Is the kernel of W (the constants) inside V? Relative A-norm of what V misses.
@@ -462,39 +327,13 @@ def worst_case_ratio(
     if np.any(missed > 1e-16):  # a relative A-norm above 1e-8
         if return_function:
             f = residual[:, int(np.argmax(missed))]
-            return float("inf"), f / np.sqrt(float(f @ (A @ f)))
+            return float("inf"), fix_signs(f / np.sqrt(float(f @ (A @ f))), A)
         return float("inf")
-    use_dense = method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
-    value, f = (_worst_case_dense if use_dense else _worst_case_sparse)(Q, W, A, kernel)
+    value, f = (_worst_case_dense if dense else _worst_case_sparse)(Q, W, A, kernel)
     if not return_function:
         return value
     r = f - Q @ (Q.T @ (A @ f))
-    f = f / np.sqrt(float(r @ (A @ r)))
-    peak = f[np.argmax(np.abs(f))]
-    return value, f * (1.0 if peak >= 0 else -1.0)
-
-
-def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
-    """The **trap**: ``sup over r A-orthogonal to V of ||r||_A^2 / (r @ W @ r)``.
-
-    This uses ``W`` itself on the complement of V instead of the Schur complement, i.e. it only
-    looks at functions with no component in V. It is ``1 / min_rayleigh_quotient(W, A,
-    orthogonal_to=basis)`` (Courant–Fischer's quantity), a *lower* bound on
-    :func:`worst_case_ratio`, and equal to it only when ``W`` maps V into ``A V`` (e.g. V spanned by
-    eigenvectors). Kept to show the difference; do not use it as the worst-case constant.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
-    >>> B = s.vectors[:, :10] + 0.05 * np.random.default_rng(0).normal(size=(162, 10))
-    >>> bool(complement_ratio(B, s.stiffness, s.mass) < worst_case_ratio(B, s.stiffness, s.mass))
-    True
-    """
-    from .minmax import min_rayleigh_quotient
-
-    return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
+    return value, fix_signs(f / np.sqrt(float(r @ (A @ r))), A)
 
 
 def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
@@ -507,7 +346,7 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
 
     Returns
     -------
-    ndarray (n_vertices,), A-normalised (``f @ A @ f = 1``), sign fixed (largest entry positive).
+    ndarray (n_vertices,), A-normalised (``f @ A @ f = 1``), sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
     Examples
     --------
@@ -528,5 +367,4 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     coupling = Q.T @ (spectrum.mass @ spectrum.vectors[:, : n + 1])  # (n, n + 1)
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c
-    f /= np.sqrt(float(f @ (spectrum.mass @ f)))
-    return f if f[np.argmax(np.abs(f))] >= 0 else -f
+    return fix_signs(f / np.sqrt(float(f @ (spectrum.mass @ f))), spectrum.mass)

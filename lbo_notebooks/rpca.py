@@ -54,7 +54,18 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .spectrum import check_operators, eigenbasis, fix_signs
+from .inner_product import (
+    a_orthonormalize,
+    check_operators,
+    default_shift,
+    fix_signs,
+    principal_angles,
+    reconstruct,
+    reconstruction_error,
+    start_vector,
+    use_dense,
+)
+from .spectrum import eigenbasis
 
 __all__ = [
     "RegularizedPCA",
@@ -69,12 +80,9 @@ __all__ = [
 
 Method = Literal["auto", "dense", "sparse"]
 
-# Below this many vertices method="auto" uses dense scipy.linalg.eigh (exact and fast enough).
-DENSE_LIMIT = 1500
 # Residual (relative backward error) at which a data eigenpair counts as converged.
 _DATA_TOL = 1e-12
 _MAX_ROUNDS = 8
-_SPLIT = 1e-2
 
 
 # --- small linear-algebra helpers --------------------------------------------------------------
@@ -83,50 +91,6 @@ def _factor(M: sp.spmatrix) -> spla.SuperLU:
     return spla.splu(
         sp.csc_matrix(M), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
     )
-
-
-def _extend(S: NDArray[np.float64], V: NDArray[np.float64], A: sp.csr_matrix, drop: float = 1e-8) -> NDArray[np.float64]:
-    """Append to the A-orthonormal columns ``S`` an A-orthonormal basis of ``V``'s new directions.
-
-    Each column is scaled to unit A-norm; directions whose part A-orthogonal to ``S`` (and to the
-    other columns) is below ``drop`` are discarded: rank-deficient data, or directions already in
-    the subspace. Gram-eigenvector orthonormalisation is repeated so that round-off does not
-    accumulate (the first pass has condition number at most ``1 / drop``).
-    """
-    V = np.array(V, dtype=np.float64, copy=True)
-    if V.shape[1] == 0:
-        return S
-    norms = np.sqrt(np.maximum(np.einsum("ij,ij->j", V, A @ V), 0.0))
-    V = V[:, norms > 0] / norms[norms > 0]
-    for _ in range(3):
-        if V.shape[1] == 0:
-            return S
-        if S.shape[1]:
-            V -= S @ (S.T @ (A @ V))
-            V -= S @ (S.T @ (A @ V))
-        gram = V.T @ (A @ V)
-        w, E = np.linalg.eigh((gram + gram.T) / 2)
-        keep = w > (drop**2 if _ == 0 else 0.5)
-        V = (V @ E[:, keep]) / np.sqrt(w[keep])
-    return np.hstack([S, V])
-
-
-def _a_orthonormal(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
-    """An A-orthonormal basis of ``span V`` (columns rotated; rank-deficient input allowed)."""
-    return _extend(np.zeros((V.shape[0], 0)), V, A)
-
-
-def _a_orthonormal_ordered(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
-    """A-orthonormalise nearly A-orthonormal, full-rank columns *without* mixing them.
-
-    Cholesky QR twice: column j only combines with columns before it, so eigenvectors that are
-    already orthonormal up to round-off keep their order and meaning.
-    """
-    for _ in range(2):
-        gram = V.T @ (A @ V)
-        chol = np.linalg.cholesky((gram + gram.T) / 2)
-        V = scipy.linalg.solve_triangular(chol, V.T, lower=True).T
-    return V
 
 
 def _rayleigh_ritz(
@@ -138,6 +102,16 @@ def _rayleigh_ritz(
     w, E = np.linalg.eigh((G + G.T) / 2)
     order = np.argsort(w)[::-1][:k]
     return w[order], S @ E[:, order]
+
+
+@dataclass(frozen=True)
+class _ShiftedFactor:
+    """A sparse LU of ``mu W + shift A`` with the Woodbury pieces for ``- U U.T``."""
+
+    shift: float
+    factor: spla.SuperLU
+    solved: NDArray[np.float64]  # factor^-1 U
+    capacitance: NDArray[np.float64]  # I - U.T factor^-1 U
 
 
 # --- input checks ------------------------------------------------------------------------------
@@ -282,9 +256,8 @@ class RegularizedPCA:
         gram = X.T @ U
         self.data_values = np.sort(np.linalg.eigvalsh((gram + gram.T) / 2))[::-1]
         self.data_values.setflags(write=False)
-        # The split-point shift: small against the smoothness eigenvalues at every scale
-        # (the first nonzero one is of order 4 pi / area), like spectrum.eigenbasis's shift.
-        self._t0 = _SPLIT * 4.0 * np.pi / self.area
+        # The split-point shift: small against the smoothness eigenvalues at every scale.
+        self._t0 = default_shift(A)
         self._base_factor: spla.SuperLU | None = None
         self._base_solved: NDArray[np.float64] | None = None
 
@@ -330,7 +303,7 @@ class RegularizedPCA:
         method : {"auto", "dense", "sparse"}
             ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
             ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
-            ``"auto"`` picks dense below 1,500 vertices.
+            ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
 
         Returns
         -------
@@ -340,11 +313,8 @@ class RegularizedPCA:
         if (mu is None) == (beta is None):
             raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
         mu = self.mu_from_beta(beta, m) if beta is not None else _check_mu(mu)
-        if method not in ("auto", "dense", "sparse"):
-            raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
         n, c = self.data.shape
-        if method == "auto":
-            method = "dense" if n <= DENSE_LIMIT else "sparse"
+        method = "dense" if use_dense(n, method) else "sparse"
         if method == "sparse" and 2 * m + c + 2 > n:
             method = "dense"  # Lanczos needs room: m close to n is a small-mesh problem anyway
         if np.isinf(mu):
@@ -368,7 +338,7 @@ class RegularizedPCA:
     # mu = 0: PCA first, then the smoothest functions A-orthogonal to the data (the mu -> 0 limit)
     def _solve_pca_limit(self, m: int, method: str) -> RPCAResult:
         W, A, U = self.stiffness, self.mass, self._U
-        Q = _a_orthonormal(np.array(self.data), A)  # basis of span X (rank r)
+        Q = a_orthonormalize(self.data, A, drop_dependent=True)  # basis of span X (rank r)
         QU = Q.T @ U
         w, E = np.linalg.eigh(QU @ QU.T)
         order = np.argsort(w)[::-1]
@@ -429,7 +399,7 @@ class RegularizedPCA:
         rest = np.zeros((self.n_vertices, 0))
         if m > kk:
             rest = self._complement_lanczos(m - kk, data_vectors, mu=mu, Y0=Y0)
-        S = _a_orthonormal(np.hstack([data_vectors, rest]), A)
+        S = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
         values, P = _rayleigh_ritz(S, U, W, mu, m)
         if P.shape[1] < m:  # pragma: no cover - would mean a lost direction
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
@@ -439,41 +409,38 @@ class RegularizedPCA:
         """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
         W, A, U, X = self.stiffness, self.mass, self._U, self.data
         c = U.shape[1]
-        S = _a_orthonormal(np.hstack([X, Y0]), A)
+        S = a_orthonormalize(np.hstack([X, Y0]), A, drop_dependent=True)
         theta, P = _rayleigh_ritz(S, U, W, mu, k)
         # One factorisation per data eigenvalue, at its current Ritz estimate (Ritz values are lower
         # bounds; below tau we keep the tau factor, whose block Y0 is already in the subspace).
-        solvers: list[tuple[float, spla.SuperLU, NDArray[np.float64], NDArray[np.float64]]] = []
-        blocks = []
-        for s in theta:
-            if s <= tau * (1 + 1e-8):
+        factors: list[_ShiftedFactor] = []
+        for shift in theta:
+            if shift <= tau * (1 + 1e-8):
                 continue
-            F = _factor(mu * W + s * A)
-            Y = F.solve(np.array(U))
-            C = np.eye(c) - U.T @ Y
-            solvers.append((float(s), F, Y, C))
-            blocks.append(Y)
-        if blocks:
-            S = _extend(S, np.hstack(blocks), A)
+            factor = _factor(mu * W + shift * A)
+            solved = factor.solve(np.array(U))
+            factors.append(_ShiftedFactor(float(shift), factor, solved, np.eye(c) - U.T @ solved))
+        if factors:
+            S = a_orthonormalize(np.hstack([f.solved for f in factors]), A, prepend=S, drop_dependent=True)
             theta, P = _rayleigh_ritz(S, U, W, mu, k)
 
         def shifted_solve(j: int, b: NDArray[np.float64]) -> NDArray[np.float64]:
-            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor nearest to theta[j].
-            s, F, Y, C = min(solvers, key=lambda t: abs(np.log(t[0] / max(theta[j], tau))))
-            z = F.solve(b)
+            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor whose shift is nearest theta[j].
+            near = min(factors, key=lambda f: abs(np.log(f.shift / max(theta[j], tau))))
+            z = near.factor.solve(b)
             try:
-                return z + Y @ np.linalg.solve(C, U.T @ z)
-            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: Y already holds the vector
+                return z + near.solved @ np.linalg.solve(near.capacitance, U.T @ z)
+            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: solved already holds the vector
                 return z
 
         scale = abs(theta[0]) + mu * abs(W).sum(axis=1).max() + 1.0
         for _ in range(_MAX_ROUNDS):
             R = U @ (U.T @ P) - mu * (W @ P) - (A @ P) * theta
             res = np.linalg.norm(R, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", P, A @ P)) * max(1.0, np.abs(A).max()))
-            if np.all(res < _DATA_TOL) or not solvers:
+            if np.all(res < _DATA_TOL) or not factors:
                 break
             new = np.column_stack([shifted_solve(j, A @ P[:, j]) for j in range(k)])
-            S = _extend(S, new, A)
+            S = a_orthonormalize(new, A, prepend=S, drop_dependent=True)
             theta, P = _rayleigh_ritz(S, U, W, mu, k)
         return P
 
@@ -528,10 +495,10 @@ class RegularizedPCA:
             return project(inner(project_t(y)))
 
         op = spla.LinearOperator((n, n), matvec=opinv, dtype=np.float64)
-        v0 = project(1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64)))
+        v0 = project(start_vector(n))
         values, vectors = spla.eigsh(L, k=count, M=A, sigma=sigma, which="LM", OPinv=op, v0=v0)
         order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
-        return _a_orthonormal_ordered(project(vectors[:, order]), A)
+        return a_orthonormalize(project(vectors[:, order]), A)
 
     def sweep(self, m: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
         """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation."""
@@ -636,130 +603,6 @@ def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, cente
     return (mu / unit) / (1.0 + mu / unit)
 
 
-# --- evaluation protocol -------------------------------------------------------------------------
-def _check_basis(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
-    P = np.asarray(basis, dtype=np.float64)
-    n = mass.shape[0]
-    if P.ndim != 2 or P.shape[0] != n:
-        raise ValueError(f"basis must have shape ({n}, m), one column per basis function; got {P.shape}.")
-    if not np.all(np.isfinite(P)):
-        raise ValueError("basis contains NaN or inf.")
-    gram = P.T @ (mass @ P)
-    if not np.allclose(gram, np.eye(P.shape[1]), atol=1e-8):
-        raise ValueError(
-            "basis is not A-orthonormal (basis.T @ mass @ basis != I); the projection P P.T A would "
-            "be wrong. A-orthonormalise it first (e.g. spectrum vectors or regularized_pca output)."
-        )
-    return P
-
-
-def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
-    """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
-
-    The A-weighted centroid of each column is removed, the rest projected with
-    ``P P.T A``, and the centroid added back, as in the protocol of MATH.md section 5.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> mesh = shapes.bumpy_sphere(3)
-    >>> s = eigenbasis(mesh, 642)
-    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8)
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_basis(basis, A)
-    Y = _check_data(target, A.shape[0])
-    a = _area_weights(A)
-    centroid = (a @ Y) / a.sum()
-    Yc = Y - centroid
-    out = P @ (P.T @ (A @ Yc)) + centroid
-    return out[:, 0] if np.ndim(target) == 1 else out
-
-
-def reconstruction_error(
-    basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
-) -> float | NDArray[np.float64]:
-    """Relative A-norm reconstruction error ``sqrt(sum_c ||x_c - x̂_c||_A^2 / sum_c ||x_c||_A^2)``.
-
-    A-weighted centroids are removed from each column first (MATH.md section 5), so a basis
-    without the constant function is not penalised for translation.
-
-    Parameters
-    ----------
-    basis : array_like, shape (n, m)
-        A-orthonormal basis.
-    mass : scipy.sparse matrix
-    targets : (n, d) array, or a list/tuple of them
-        One shape (e.g. vertex coordinates of a pose) or several.
-
-    Returns
-    -------
-    float for one target, ndarray of floats for a sequence.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> mesh = shapes.bumpy_sphere(3)
-    >>> s = eigenbasis(mesh, 50)
-    >>> e = reconstruction_error(s.vectors, s.mass, mesh.vertices)
-    >>> bool(0 < e < 0.1)
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_basis(basis, A)
-    many = isinstance(targets, (list, tuple))  # a sequence of shapes; an array is one shape
-    items = list(targets) if many else [targets]
-    a = _area_weights(A)
-    errors = []
-    for target in items:
-        Y = _check_data(target, A.shape[0])
-        Yc = Y - (a @ Y) / a.sum()
-        R = Yc - P @ (P.T @ (A @ Yc))
-        num = float(np.einsum("ij,ij->", R, A @ R))
-        den = float(np.einsum("ij,ij->", Yc, A @ Yc))
-        if den <= 0:
-            raise ValueError("a target is constant (zero after removing its centroid); its relative error is undefined.")
-        errors.append(np.sqrt(max(num, 0.0) / den))
-    return np.array(errors) if many else errors[0]
-
-
-def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
-    """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
-
-    Both are A-orthonormalised first. Equal spans give all angles ~0; the largest angle measures
-    how far two bases are from spanning the same space.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> s = eigenbasis(shapes.icosphere(2), 4)
-    >>> rotated = s.vectors @ np.linalg.qr(np.arange(16.0).reshape(4, 4) + np.eye(4))[0]
-    >>> bool(principal_angles(s.vectors, rotated, s.mass).max() < 1e-6)
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    n = A.shape[0]
-    Pa, Qa = (np.asarray(x, dtype=np.float64) for x in (P, Q))
-    for name, x in (("P", Pa), ("Q", Qa)):
-        if x.ndim != 2 or x.shape[0] != n:
-            raise ValueError(f"{name} must have shape ({n}, k); got {x.shape}.")
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"{name} contains NaN or inf.")
-    Pa, Qa = _a_orthonormal(Pa, A), _a_orthonormal(Qa, A)
-    if Qa.shape[1] > Pa.shape[1]:
-        Pa, Qa = Qa, Pa  # angles are symmetric; let Q be the smaller space
-    k = Qa.shape[1]
-    cos = np.clip(np.linalg.svd(Pa.T @ (A @ Qa), compute_uv=False), 0.0, 1.0)  # descending
-    # arccos is inaccurate for small angles: take their sines from the residual of Q off span P.
-    R = Qa - Pa @ (Pa.T @ (A @ Qa))
-    diag = A.diagonal()
-    if abs(A - sp.diags(diag)).max() == 0:  # lumped mass: an exact square root
-        sin = np.linalg.svd(np.sqrt(diag)[:, None] * R, compute_uv=False)[::-1]
-    else:
-        g = R.T @ (A @ R)
-        sin = np.sqrt(np.clip(np.linalg.eigvalsh((g + g.T) / 2), 0.0, None))
-    sin = np.clip(np.sort(sin)[:k], 0.0, 1.0)  # ascending
-    angles = np.where(cos > np.sqrt(0.5), np.arcsin(sin), np.arccos(cos))
-    return np.sort(angles)
+# --- evaluation protocol ----------------------------------------------------------------------
+# reconstruct, reconstruction_error and principal_angles work for any A-orthonormal basis: they
+# live in lbo_notebooks.inner_product and are re-exported here.

@@ -17,15 +17,13 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from .inner_product import a_orthonormalize, check_functions, check_operators, default_shift, fix_signs, start_vector, use_dense
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 
 __all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
 
 Operators = tuple[sp.spmatrix, sp.spmatrix]
-
-# Below this many vertices a dense generalized eigensolver is faster and exact.
-DENSE_LIMIT = 600
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,15 +74,7 @@ class Spectrum:
 
     # --- the A-inner-product algebra -------------------------------------------------------
     def _check_f(self, f: ArrayLike) -> NDArray[np.float64]:
-        arr = np.asarray(f, dtype=np.float64)
-        if arr.ndim not in (1, 2) or arr.shape[0] != self.n_vertices:
-            raise ValueError(
-                f"f must have shape ({self.n_vertices},) or ({self.n_vertices}, c): one value per "
-                f"vertex; got {arr.shape}."
-            )
-        if not np.all(np.isfinite(arr)):
-            raise ValueError("f contains NaN or inf; the projection would be meaningless.")
-        return arr
+        return check_functions(f, self.n_vertices)
 
     def _check_n(self, n: int | None) -> int:
         if n is None:
@@ -116,53 +106,6 @@ class Spectrum:
         sq = np.einsum("i...,i...->...", r, self.mass @ r)
         out = np.sqrt(np.maximum(sq, 0.0))
         return float(out) if arr.ndim == 1 else out
-
-
-def check_operators(stiffness: sp.spmatrix, mass: sp.spmatrix) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-    """Validate a (stiffness, mass) pair and return both as CSR float64."""
-    if not (sp.issparse(stiffness) and sp.issparse(mass)):
-        raise ValueError("stiffness and mass must be scipy.sparse matrices (see operators.stiffness_matrix).")
-    W, A = sp.csr_matrix(stiffness, dtype=np.float64), sp.csr_matrix(mass, dtype=np.float64)
-    n = W.shape[0]
-    if W.shape != (n, n) or A.shape != (n, n):
-        raise ValueError(f"stiffness {W.shape} and mass {A.shape} must be square and of the same size.")
-    if not (np.all(np.isfinite(W.data)) and np.all(np.isfinite(A.data))):
-        raise ValueError("stiffness or mass contains NaN or inf; check the mesh for degenerate faces.")
-    for name, M in (("stiffness", W), ("mass", A)):
-        scale = abs(M).max() if M.nnz else 0.0
-        if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
-            raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
-    if np.any(A.diagonal() <= 0):
-        raise ValueError("the mass matrix has a non-positive diagonal entry; it must be positive definite.")
-    return W, A
-
-
-def fix_signs(vectors: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
-    """Flip columns so that their signs are deterministic.
-
-    A column gets the sign that makes its A-weighted third moment ``sum_i a_i v_i^3`` positive;
-    when that moment vanishes (odd functions on symmetric shapes), the entry of largest magnitude
-    is made positive instead. Both rules commute with vertex permutations.
-    """
-    v = np.array(vectors, dtype=np.float64, copy=True)
-    a = np.asarray(mass.sum(axis=1)).ravel()
-    moment = a @ v**3
-    scale = a @ np.abs(v) ** 3
-    # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
-    # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
-    mag = np.abs(v)
-    first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
-    peak = v[first_peak, np.arange(v.shape[1])]
-    sign = np.where(np.abs(moment) > 1e-6 * scale, np.sign(moment), np.sign(peak))
-    sign[sign == 0] = 1.0
-    return v * sign
-
-
-def _default_shift(A: sp.csr_matrix) -> float:
-    # The first nonzero eigenvalue of a surface of area S is of order 4 pi / S (2 on the unit
-    # sphere), so this shift is small against the spectrum at every scale yet keeps W + s A
-    # positive definite (W alone is singular: constants are in its kernel).
-    return 1e-2 * 4.0 * np.pi / float(A.sum())
 
 
 def eigenbasis(
@@ -234,22 +177,18 @@ def eigenbasis(
         raise ValueError(f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}.")
     k = int(k)
     if shift is None:
-        shift = _default_shift(A)
+        shift = default_shift(A)
     elif not (np.isfinite(shift) and shift > 0):
         raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
 
-    if n <= DENSE_LIMIT or 2 * k + 1 > n:
+    if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        # A fixed start vector makes ARPACK deterministic.
-        v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
-        values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=v0)
+        values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n))
         order = np.argsort(values)
         values, vectors = values[order], vectors[:, order]
-        # ARPACK returns M-orthonormal vectors up to round-off; one Rayleigh-Ritz-free
-        # re-orthonormalisation keeps Phi.T A Phi = I to machine precision.
-        gram = vectors.T @ (A @ vectors)
-        chol = np.linalg.cholesky(gram)
-        vectors = np.linalg.solve(chol, vectors.T).T
+        # ARPACK returns M-orthonormal vectors up to round-off; re-orthonormalising in order
+        # (no mixing) keeps Phi.T A Phi = I to machine precision.
+        vectors = a_orthonormalize(vectors, A)
     vectors = fix_signs(vectors, A)
     return Spectrum(values=np.ascontiguousarray(values), vectors=np.ascontiguousarray(vectors), stiffness=W, mass=A)

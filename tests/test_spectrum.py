@@ -66,17 +66,13 @@ def test_vectors_are_mass_orthonormal_not_euclidean_orthonormal():
     assert np.all(np.diff(spec.values) >= 0)
 
 
-def test_dense_and_sparse_paths_agree():
+def test_dense_and_sparse_paths_agree(monkeypatch):
     m = shapes.bumpy_sphere(3)  # 642 vertices: above DENSE_LIMIT, so the sparse path
     sparse = eigenbasis(m, 20)
-    import lbo_notebooks.spectrum as spectrum_module
+    import lbo_notebooks.inner_product as inner_product
 
-    old = spectrum_module.DENSE_LIMIT
-    spectrum_module.DENSE_LIMIT = 10**9
-    try:
-        dense = eigenbasis(m, 20)
-    finally:
-        spectrum_module.DENSE_LIMIT = old
+    monkeypatch.setattr(inner_product, "DENSE_LIMIT", 10**9)
+    dense = eigenbasis(m, 20)
     np.testing.assert_allclose(sparse.values, dense.values, rtol=1e-9, atol=1e-9)
     # Non-degenerate eigenvectors agree including sign (deterministic sign rule).
     np.testing.assert_allclose(sparse.vectors[:, :8], dense.vectors[:, :8], atol=1e-6)
