@@ -47,6 +47,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._deprecation import renamed
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, corner_angles, mass_matrix
 
@@ -269,11 +270,12 @@ def conformal_factor(
     raise ValueError(f"where must be 'vertex' or 'face', got {where!r}.")
 
 
+@renamed({"kind": "mass_kind"})
 def metric_mass_matrix(
     mesh: Mesh,
     alpha: float,
     *,
-    kind: MassKind = "voronoi",
+    mass_kind: MassKind = "voronoi",
     floor: float = DEFAULT_FLOOR,
 ) -> sp.csr_matrix:
     """Mass matrix of the metric ``|K|^alpha g``; the stiffness ``W`` is unchanged.
@@ -282,10 +284,10 @@ def metric_mass_matrix(
     ----------
     mesh : Mesh
     alpha : float in [0, 1]
-        ``0`` returns exactly ``mass_matrix(mesh, kind)``; ``1`` is the scale-invariant metric,
+        ``0`` returns exactly ``mass_matrix(mesh, mass_kind)``; ``1`` is the scale-invariant metric,
         whose spectrum does not change when the shape is scaled. In general the eigenvalues
         scale as ``s^(-2 (1 - alpha))``.
-    kind : {"voronoi", "barycentric", "consistent"}
+    mass_kind : {"voronoi", "barycentric", "consistent"}
         Lumped kinds scale each vertex's area by ``rho_i^alpha``; ``"consistent"`` scales each
         triangle's local matrix by ``rho_t^alpha`` (see the module notes).
     floor : float > 0, default 1e-3
@@ -309,12 +311,12 @@ def metric_mass_matrix(
     _check_mesh(mesh)
     alpha = _check_alpha(alpha)
     floor = _check_floor(floor)
-    if kind not in MASS_KINDS:
-        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {kind!r}.")
-    base = mass_matrix(mesh, kind)
+    if mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    base = mass_matrix(mesh, mass_kind)
     if alpha == 0.0:
         return base
-    if kind == "consistent":
+    if mass_kind == "consistent":
         f, n = mesh.faces, mesh.n_vertices
         weight = mesh.face_areas * conformal_factor(mesh, alpha, floor=floor, where="face")
         local = np.array([[2, 1, 1], [1, 2, 1], [1, 1, 2]], dtype=np.float64).ravel() / 12.0

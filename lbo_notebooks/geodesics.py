@@ -24,6 +24,7 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import renamed
 from .mesh import Mesh, MeshError
 
 __all__ = [
@@ -291,12 +292,13 @@ def geodesic_distances(
     return geodesic_solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
 
 
+@renamed({"count": "k"}, keyword_only=("start", "method"), n_positional=2)
 def farthest_point_sampling(
     mesh: Mesh,
-    count: int,
+    k: int,
+    *,
     start: int = 0,
     method: GeodesicMethod = "heat",
-    *,
     return_distances: bool = False,
     progress: bool | None = None,
 ) -> NDArray[np.int64] | tuple[NDArray[np.int64], NDArray[np.float64]]:
@@ -305,28 +307,28 @@ def farthest_point_sampling(
     Starting from ``start``, each new sample is the vertex farthest (in geodesic distance) from
     all samples chosen so far. The samples cover the surface evenly (a 2-approximation of the
     best covering radius). The result is *nested*: the first ``c`` samples of a run with
-    ``count > c`` are exactly the samples of a run with ``count = c``.
+    ``k > c`` are exactly the samples of a run with ``k = c``.
 
     Parameters
     ----------
     mesh : Mesh
         A connected mesh.
-    count : int
-        Number of samples, ``1 <= count <= n_vertices``.
+    k : int
+        Number of samples, ``1 <= k <= n_vertices``.
     start : int, default 0
         The first sample.
     method : {"heat", "exact", "fmm"}
         Geodesic method (see :func:`geodesic_distances`).
     return_distances : bool, default False
-        Also return the distance fields of the samples, shape (count, n), which sampling computes
+        Also return the distance fields of the samples, shape (k, n), which sampling computes
         anyway (spectral and landmark MDS reuse them).
     progress : bool, optional
         tqdm progress bar; by default shown only for at least 500 samples.
 
     Returns
     -------
-    samples : ndarray of int, shape (count,)
-    distances : ndarray, shape (count, n)
+    samples : ndarray of int, shape (k,)
+    distances : ndarray, shape (k, n)
         Only with ``return_distances=True``: ``distances[i]`` is the field of ``samples[i]``.
 
     Examples
@@ -339,19 +341,19 @@ def farthest_point_sampling(
     """
     solver = geodesic_solver(mesh, method)
     n = mesh.n_vertices
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
         raise ValueError(
-            f"count must be an integer between 1 and the number of vertices ({n}), got {count!r}; "
+            f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}; "
             "you cannot pick more samples than the mesh has vertices."
         )
     start = int(_check_sources(start, n)[0])
-    count = int(count)
-    check_memory(distance_matrix_bytes(count, n), None, f"{count} distance fields on {n} vertices")
-    samples = np.empty(count, dtype=np.int64)
-    fields = np.empty((count, n), dtype=np.float64)
+    k = int(k)
+    check_memory(distance_matrix_bytes(k, n), None, f"{k} distance fields on {n} vertices")
+    samples = np.empty(k, dtype=np.int64)
+    fields = np.empty((k, n), dtype=np.float64)
     nearest = np.full(n, np.inf)
     current = start
-    for i in _progress(range(count), count, progress, f"farthest-point sampling ({method})"):
+    for i in _progress(range(k), k, progress, f"farthest-point sampling ({method})"):
         samples[i] = current
         fields[i] = solver.distance(current)
         np.minimum(nearest, fields[i], out=nearest)

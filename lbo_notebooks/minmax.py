@@ -26,6 +26,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import moved, renamed
 from .inner_product import (
     a_orthonormalize,
     check_functions,
@@ -232,16 +233,17 @@ def min_rayleigh_quotient(
     return ConstrainedRayleigh(W, A).minimum(orthogonal_to, return_vector=return_vector)
 
 
+@renamed({"codim": "k"})
 def random_subspace(
-    n_vertices: int, codim: int, *, seed: int = 0, pool: ArrayLike | None = None
+    n_vertices: int, k: int, *, seed: int = 0, pool: ArrayLike | None = None
 ) -> NDArray[np.float64]:
-    """Constraints of a random codimension-``codim`` subspace (for :func:`min_rayleigh_quotient`).
+    """Constraints of a random codimension-``k`` subspace (for :func:`min_rayleigh_quotient`).
 
     Parameters
     ----------
     n_vertices : int
-    codim : int
-        Codimension n (number of constraint vectors), ``0 <= codim < n_vertices``.
+    k : int
+        Codimension (number of constraint vectors), ``0 <= k < n_vertices``.
     seed : int
         Seed for ``numpy.random.default_rng``.
     pool : array (n_vertices, m), optional
@@ -251,7 +253,7 @@ def random_subspace(
 
     Returns
     -------
-    ndarray (n_vertices, codim): the subspace is ``{f : C.T @ A @ f = 0}``.
+    ndarray (n_vertices, k): the subspace is ``{f : C.T @ A @ f = 0}``.
 
     Examples
     --------
@@ -260,23 +262,24 @@ def random_subspace(
     """
     if isinstance(n_vertices, bool) or not isinstance(n_vertices, (int, np.integer)) or n_vertices < 1:
         raise ValueError(f"n_vertices must be a positive integer, got {n_vertices!r}.")
-    if isinstance(codim, bool) or not isinstance(codim, (int, np.integer)) or not 0 <= codim < n_vertices:
-        raise ValueError(f"codim must be an integer in 0..{n_vertices - 1}, got {codim!r}.")
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < n_vertices:
+        raise ValueError(f"k must be an integer in 0..{n_vertices - 1}, got {k!r}.")
     rng = np.random.default_rng(seed)
     if pool is None:
-        return rng.normal(size=(int(n_vertices), int(codim)))
+        return rng.normal(size=(int(n_vertices), int(k)))
     P = np.asarray(pool, dtype=np.float64)
     if P.ndim != 2 or P.shape[0] != n_vertices or not np.all(np.isfinite(P)):
         raise ValueError(f"pool must be a finite array of shape ({n_vertices}, m), got {P.shape}.")
-    if P.shape[1] < codim:
-        raise ValueError(f"pool has {P.shape[1]} columns; it needs at least codim = {codim} to span a codim-{codim} constraint set.")
-    return P @ rng.normal(size=(P.shape[1], int(codim)))
+    if P.shape[1] < k:
+        raise ValueError(f"pool has {P.shape[1]} columns; it needs at least k = {k} to span a codimension-{k} constraint set.")
+    return P @ rng.normal(size=(P.shape[1], int(k)))
 
 
-def optimal_subspace(spectrum: Spectrum, n: int) -> NDArray[np.float64]:
-    """Constraints of the optimal codimension-n subspace: the first n eigenvectors.
+@renamed({"n": "k"})
+def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
+    """Constraints of the optimal codimension-k subspace: the first k eigenvectors.
 
-    Its minimum Rayleigh quotient is ``lam[n]``, attained at ``phi_n`` (Courant–Fischer).
+    Its minimum Rayleigh quotient is ``lam[k]``, attained at ``phi_k`` (Courant–Fischer).
 
     Examples
     --------
@@ -288,9 +291,9 @@ def optimal_subspace(spectrum: Spectrum, n: int) -> NDArray[np.float64]:
     """
     if not isinstance(spectrum, Spectrum):
         raise ValueError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}.")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 0 <= n < spectrum.k:
-        raise ValueError(f"n must be an integer with 0 <= n < k = {spectrum.k} (lam[n] must be known), got {n!r}.")
-    return np.array(spectrum.vectors[:, : int(n)])
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < spectrum.k:
+        raise ValueError(f"k must be an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known), got {k!r}.")
+    return np.array(spectrum.vectors[:, : int(k)])
 
 
 # --- the 3 x 3 picture -----------------------------------------------------------------------------
@@ -371,13 +374,5 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
     return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
 
 
-_MOVED_TO_PLOTTING = ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")
-
-
-def __getattr__(name: str) -> Any:
-    # The 3-D figure and its slider live in plotting (no plotly code in this module).
-    if name in _MOVED_TO_PLOTTING:
-        from . import plotting
-
-        return getattr(plotting, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# The 3-D figure and its slider moved to plotting (no plotly code in this module).
+__getattr__ = moved(__name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")})

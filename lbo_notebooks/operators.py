@@ -13,6 +13,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._deprecation import renamed
 from .mesh import Mesh
 
 __all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS"]
@@ -112,13 +113,14 @@ def _voronoi_corner_areas(mesh: Mesh) -> NDArray[np.float64]:
     return corner
 
 
-def mass_matrix(mesh: Mesh, kind: MassKind = "voronoi") -> sp.csr_matrix:
-    """Mass matrix ``A`` (n x n, CSR) of the given kind.
+@renamed({"kind": "mass_kind"})
+def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
+    """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
 
     Parameters
     ----------
     mesh : Mesh
-    kind : {"voronoi", "barycentric", "consistent"}
+    mass_kind : {"voronoi", "barycentric", "consistent"}
         ``"voronoi"``: lumped mixed Voronoi areas (Meyer et al. 2003); ``"barycentric"``: lumped,
         a third of each incident triangle; ``"consistent"``: the full P1 Gram matrix
         ``|t|/12 [[2,1,1],[1,2,1],[1,1,2]]``. All three sum to the surface area.
@@ -130,12 +132,12 @@ def mass_matrix(mesh: Mesh, kind: MassKind = "voronoi") -> sp.csr_matrix:
     >>> float(mass_matrix(m).sum())
     2.0
     """
-    if kind not in MASS_KINDS:
-        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {kind!r}.")
+    if mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
 
     def compute(m: Mesh) -> sp.csr_matrix:
         f, n = m.faces, m.n_vertices
-        if kind == "consistent":
+        if mass_kind == "consistent":
             area = m.face_areas
             rows = np.repeat(f, 3, axis=1).ravel()
             cols = np.tile(f, (1, 3)).ravel()
@@ -145,11 +147,11 @@ def mass_matrix(mesh: Mesh, kind: MassKind = "voronoi") -> sp.csr_matrix:
             A.sum_duplicates()
             A.sort_indices()
             return A
-        if kind == "barycentric":
+        if mass_kind == "barycentric":
             corner = np.repeat(m.face_areas[:, None] / 3.0, 3, axis=1)
         else:
             corner = _voronoi_corner_areas(m)
         diag = np.bincount(f.ravel(), weights=corner.ravel(), minlength=n)
         return sp.diags(diag).tocsr()
 
-    return mesh.cached(f"mass_{kind}", compute).copy()
+    return mesh.cached(f"mass_{mass_kind}", compute).copy()

@@ -26,6 +26,7 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import renamed
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
 from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
 from .spectrum import Spectrum
@@ -99,16 +100,17 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     return float(out) if arr.ndim == 1 else np.asarray(out)
 
 
-def representation_error(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
-    """Squared A-norm error ``||f - Phi_n Phi_n.T A f||_A^2`` of the n-term eigen-expansion.
+@renamed({"n": "k"})
+def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
+    """Squared A-norm error ``||f - Phi_k Phi_k.T A f||_A^2`` of the k-term eigen-expansion.
 
     Parameters
     ----------
     spectrum : Spectrum
-        Eigenbasis with at least ``n`` eigenpairs.
+        Eigenbasis with at least ``k`` eigenpairs.
     f : array (n_vertices,) or (n_vertices, c)
-    n : int
-        Number of eigenfunctions kept, ``0 <= n <= spectrum.k``.
+    k : int
+        Number of eigenfunctions kept, ``0 <= k <= spectrum.k``.
 
     Returns
     -------
@@ -122,15 +124,16 @@ def representation_error(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np
     >>> representation_error(s, x, 8) < 1e-20, round(representation_error(s, x, 4), 10)
     (True, 1.0)
     """
-    err = _check_spectrum(spectrum).error(f, n)
+    err = _check_spectrum(spectrum).error(f, k)
     return err**2 if isinstance(err, float) else np.asarray(err) ** 2
 
 
-def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
-    """The theorem's bound ``(f @ W @ f) / lam[n]`` on :func:`representation_error`.
+@renamed({"n": "k"})
+def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
+    """The theorem's bound ``(f @ W @ f) / lam[k]`` on :func:`representation_error`.
 
-    ``lam[n]`` is the first eigenvalue *not* in the expansion (the paper's lambda_{n+1}), so the
-    spectrum must hold ``k > n`` eigenpairs. ``n = 0`` is excluded: ``lam[0] = 0``, and without the
+    ``lam[k]`` is the first eigenvalue *not* in the expansion (the paper's lambda_{k+1}), so the
+    spectrum must hold more than ``k`` eigenpairs (``spectrum.k > k``). ``k = 0`` is excluded: ``lam[0] = 0``, and without the
     constant function no finite bound exists.
 
     Examples
@@ -142,16 +145,16 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64]
     True
     """
     spectrum = _check_spectrum(spectrum)
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise ValueError(f"n must be an integer number of eigenfunctions, got {n!r}.")
-    if not 1 <= n < spectrum.k:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+        raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+    if not 1 <= k < spectrum.k:
         raise ValueError(
-            f"error_bound needs lam[n] with 1 <= n < k = {spectrum.k}; got n = {n}. "
-            "Compute the spectrum with k > n eigenpairs."
+            f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "
+            "Compute the spectrum with more than k eigenpairs."
         )
-    lam = float(spectrum.values[int(n)])
+    lam = float(spectrum.values[int(k)])
     if not lam > 0:
-        raise ValueError(f"lam[{n}] = {lam:.3g} is not positive: the surface has more than {n} components.")
+        raise ValueError(f"lam[{k}] = {lam:.3g} is not positive: the surface has more than {k} components.")
     return dirichlet_energy(spectrum.stiffness, f) / lam
 
 
@@ -247,19 +250,20 @@ def _worst_case_sparse(
 
 @overload
 def worst_case_ratio(
-    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[False] = ...
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[False] = ...
 ) -> float: ...
 @overload
 def worst_case_ratio(
-    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[True]
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[True]
 ) -> tuple[float, NDArray[np.float64]]: ...
+@renamed({"return_function": "return_vector"})
 def worst_case_ratio(
     basis: ArrayLike,
     stiffness: sp.spmatrix,
     mass: sp.spmatrix,
     *,
     method: Method = "auto",
-    return_function: bool = False,
+    return_vector: bool = False,
 ) -> float | tuple[float, NDArray[np.float64]]:
     """Exact worst-case constant ``C(V) = sup_f ||f - P_V f||_A^2 / (f @ W @ f)`` of a basis.
 
@@ -294,12 +298,12 @@ def worst_case_ratio(
         applied by a sparse LU of ``W`` with one vertex pinned, corrected by the constant; no dense
         n_vertices x n_vertices matrix is formed. ``"auto"`` picks dense below
         ``DENSE_LIMIT`` vertices.
-    return_function : bool
+    return_vector : bool
         Also return a worst-case function ``f`` (scaled so that ``||f - P_V f||_A = 1``).
 
     Returns
     -------
-    float, or (float, ndarray (n_vertices,)) with ``return_function``.
+    float, or (float, ndarray (n_vertices,)) with ``return_vector``.
 
     Raises
     ------
@@ -325,12 +329,12 @@ def worst_case_ratio(
     residual = kernel - Q @ (Q.T @ (A @ kernel))
     missed = np.einsum("ik,ik->k", residual, A @ residual) / np.einsum("ik,ik->k", kernel, A @ kernel)
     if np.any(missed > 1e-16):  # a relative A-norm above 1e-8
-        if return_function:
+        if return_vector:
             f = residual[:, int(np.argmax(missed))]
             return float("inf"), fix_signs(f / np.sqrt(float(f @ (A @ f))), A)
         return float("inf")
     value, f = (_worst_case_dense if dense else _worst_case_sparse)(Q, W, A, kernel)
-    if not return_function:
+    if not return_vector:
         return value
     r = f - Q @ (Q.T @ (A @ f))
     return value, fix_signs(f / np.sqrt(float(r @ (A @ r))), A)

@@ -1,14 +1,14 @@
 """Regularized PCA: principal components married to the Dirichlet energy (paper, section 6).
 
 Given training functions ``X`` (n x c, e.g. the x, y, z coordinates of two poses that share a
-triangulation), regularized PCA looks for an A-orthonormal basis ``P`` (n x m) that represents the
+triangulation), regularized PCA looks for an A-orthonormal basis ``P`` (n x k) that represents the
 data well *and* is smooth:
 
     minimise  sum_i ||P P.T A x_i - x_i||_A^2 + mu * sum_j P_j.T W P_j   subject to  P.T A P = I.
 
 The objective equals ``const - trace(P.T (A X X.T A - mu W) P)``, so the minimiser is the set of
-``m`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (MATH.md section 5).
-``mu -> infinity`` gives the first ``m`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
+``k`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (MATH.md section 5).
+``mu -> infinity`` gives the first ``k`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
 PCA directions first, and then (the data have rank at most c) the smoothest functions A-orthogonal
 to the data.
 
@@ -20,13 +20,13 @@ single shift-invert Lanczos run cannot resolve both ends. :class:`RegularizedPCA
    counts the eigenvalues above the split point ``tau = mu t0`` exactly from a c x c matrix;
 2. finds those few "data" eigenpairs by a rational Krylov / inverse-iteration Rayleigh–Ritz,
    with one shift (one sparse factorisation) per data eigenvalue;
-3. finds the remaining ``m - k`` eigenpairs by shift-invert Lanczos at ``tau`` on the
+3. finds the remaining ``k - n_data`` eigenpairs by shift-invert Lanczos at ``tau`` on the
    A-orthogonal complement of the data eigenvectors (Woodbury solves with the step-1 factor);
 4. finishes with one Rayleigh–Ritz over both sets.
 
 Cost: one sparse factorisation of ``W + t0 A``, one per data eigenvalue above the split (at most
 c, the number of data columns), and a Lanczos run as long as :func:`~lbo_notebooks.eigenbasis`'s;
-memory O(n (m + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, m = 100, one BLAS thread):
+memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
 about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
 
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
@@ -37,8 +37,8 @@ A raw ``mu`` depends on the units of the data and of the mesh. The dimensionless
 
     maximise  (1 - beta) trace(P.T B P) / s_B  -  beta trace(P.T W P) / lam_ref,
 
-with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi m /
-area`` Weyl's estimate of the m-th Laplace–Beltrami eigenvalue, i.e.
+with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi k /
+area`` Weyl's estimate of the k-th Laplace–Beltrami eigenvalue, i.e.
 ``mu = beta / (1 - beta) * s_B / lam_ref`` (:func:`mu_from_beta`). ``beta = 0`` is PCA,
 ``beta = 1`` the eigenbasis, and the same ``beta`` means the same balance on every shape and scale.
 """
@@ -54,6 +54,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import renamed, warn
 from .inner_product import (
     a_orthonormalize,
     check_operators,
@@ -129,12 +130,12 @@ def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
     return np.array(X, copy=True)
 
 
-def _check_m(m: int, n: int) -> int:
-    if isinstance(m, bool) or not isinstance(m, (int, np.integer)):
-        raise ValueError(f"m must be an integer number of basis functions, got {m!r}.")
-    if not 1 <= m <= n:
-        raise ValueError(f"m must be between 1 and the number of vertices ({n}), got {m}.")
-    return int(m)
+def _check_k(k: int, n: int) -> int:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+        raise ValueError(f"k must be an integer number of basis functions, got {k!r}.")
+    if not 1 <= k <= n:
+        raise ValueError(f"k must be between 1 and the number of vertices ({n}), got {k}.")
+    return int(k)
 
 
 def _check_mu(mu: float) -> float:
@@ -179,10 +180,10 @@ class RPCAResult:
 
     Attributes
     ----------
-    basis : ndarray, shape (n, m)
+    basis : ndarray, shape (n, k)
         A-orthonormal columns, ordered by decreasing ``values``; signs fixed by
         :func:`~lbo_notebooks.spectrum.fix_signs`.
-    values : ndarray, shape (m,)
+    values : ndarray, shape (k,)
         Generalized eigenvalues ``sigma`` of ``(A X X.T A - mu W) p = sigma A p``, descending.
         At ``mu = 0`` the directions beyond the rank of the data all have ``sigma = 0`` and are
         ordered by smoothness (the ``mu -> 0`` limit). At ``mu = inf`` every direction with
@@ -203,11 +204,18 @@ class RPCAResult:
         self.values.setflags(write=False)
 
     @property
-    def m(self) -> int:
+    def k(self) -> int:
+        """Number of basis functions."""
         return int(self.basis.shape[1])
 
+    @property
+    def m(self) -> int:
+        """Deprecated spelling of :attr:`k`."""
+        warn("RPCAResult.m is deprecated: use RPCAResult.k instead.")
+        return self.k
+
     def __repr__(self) -> str:
-        return f"RPCAResult(m={self.m}, mu={self.mu:.4g}, n_data={self.n_data})"
+        return f"RPCAResult(k={self.k}, mu={self.mu:.4g}, n_data={self.n_data})"
 
 
 # --- the solver ----------------------------------------------------------------------------------
@@ -270,32 +278,36 @@ class RegularizedPCA:
         """``s_B``: the largest eigenvalue of ``(A X X.T A, A)``, i.e. of ``X.T A X``."""
         return float(max(self.data_values[0], 0.0))
 
-    def reference_eigenvalue(self, m: int) -> float:
-        """Weyl's estimate ``4 pi m / area`` of the m-th Laplace–Beltrami eigenvalue."""
-        return 4.0 * np.pi * _check_m(m, self.n_vertices) / self.area
+    @renamed({"m": "k"})
+    def reference_eigenvalue(self, k: int) -> float:
+        """Weyl's estimate ``4 pi k / area`` of the k-th Laplace–Beltrami eigenvalue."""
+        return 4.0 * np.pi * _check_k(k, self.n_vertices) / self.area
 
-    def mu_from_beta(self, beta: float, m: int) -> float:
+    @renamed({"m": "k"})
+    def mu_from_beta(self, beta: float, k: int) -> float:
         """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
-        return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(m))
+        return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(k))
 
-    def beta_from_mu(self, mu: float, m: int) -> float:
+    @renamed({"m": "k"})
+    def beta_from_mu(self, mu: float, k: int) -> float:
         """Inverse of :meth:`mu_from_beta`."""
         mu = _check_mu(mu)
         if np.isinf(mu):
             return 1.0
         if self.top_data_value <= 0.0:
             raise ValueError("the data are identically zero (after centring), so beta has no meaning.")
-        r = mu * self.reference_eigenvalue(m) / self.top_data_value
+        r = mu * self.reference_eigenvalue(k) / self.top_data_value
         return r / (1.0 + r)
 
     # ---- solving ----
-    def solve(self, m: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
-        """The regularized PCA basis of size ``m`` for weight ``mu`` (or dimensionless ``beta``).
+    @renamed({"m": "k"})
+    def solve(self, k: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
+        """The regularized PCA basis of size ``k`` for weight ``mu`` (or dimensionless ``beta``).
 
         Parameters
         ----------
-        m : int
-            Number of basis functions, ``1 <= m <= n``.
+        k : int
+            Number of basis functions, ``1 <= k <= n``.
         mu : float, optional
             Raw weight ``>= 0`` (``inf`` allowed: the eigenbasis). Give exactly one of mu, beta.
         beta : float in [0, 1], optional
@@ -309,25 +321,25 @@ class RegularizedPCA:
         -------
         RPCAResult
         """
-        m = _check_m(m, self.n_vertices)
+        k = _check_k(k, self.n_vertices)
         if (mu is None) == (beta is None):
             raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
-        mu = self.mu_from_beta(beta, m) if beta is not None else _check_mu(mu)
+        mu = self.mu_from_beta(beta, k) if beta is not None else _check_mu(mu)
         n, c = self.data.shape
         method = "dense" if use_dense(n, method) else "sparse"
-        if method == "sparse" and 2 * m + c + 2 > n:
-            method = "dense"  # Lanczos needs room: m close to n is a small-mesh problem anyway
+        if method == "sparse" and 2 * k + c + 2 > n:
+            method = "dense"  # Lanczos needs room: k close to n is a small-mesh problem anyway
         if np.isinf(mu):
-            return self._solve_infinite(m)
+            return self._solve_infinite(k)
         if mu == 0.0:
-            return self._solve_pca_limit(m, method)
+            return self._solve_pca_limit(k, method)
         if method == "dense":
-            return self._solve_dense(m, mu)
-        return self._solve_sparse(m, mu)
+            return self._solve_dense(k, mu)
+        return self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis
-    def _solve_infinite(self, m: int) -> RPCAResult:
-        spectrum = eigenbasis((self.stiffness, self.mass), m)
+    def _solve_infinite(self, k: int) -> RPCAResult:
+        spectrum = eigenbasis((self.stiffness, self.mass), k)
         P = np.array(spectrum.vectors)
         kernel = spectrum.values <= 1e-9 * max(float(spectrum.values[-1]), 1e-300)
         PU = P.T @ self._U
@@ -336,7 +348,7 @@ class RegularizedPCA:
         return RPCAResult(basis=P, values=values, mu=float("inf"), n_data=0)
 
     # mu = 0: PCA first, then the smoothest functions A-orthogonal to the data (the mu -> 0 limit)
-    def _solve_pca_limit(self, m: int, method: str) -> RPCAResult:
+    def _solve_pca_limit(self, k: int, method: str) -> RPCAResult:
         W, A, U = self.stiffness, self.mass, self._U
         Q = a_orthonormalize(self.data, A, drop_dependent=True)  # basis of span X (rank r)
         QU = Q.T @ U
@@ -346,28 +358,28 @@ class RegularizedPCA:
         positive = w > 1e-12 * max(float(w[0]) if w.size else 0.0, 1e-300)
         r = int(positive.sum())
         pca = Q @ E[:, :r]
-        if m <= r:
-            basis, values = pca[:, :m], w[:m]
+        if k <= r:
+            basis, values = pca[:, :k], w[:k]
         else:
             Q_all = Q  # deflate the whole span of the data, not only its top directions
             if method == "dense":
                 Z = scipy.linalg.null_space((A @ Q_all).T)
                 Zw = Z.T @ (W @ Z)
                 Za = Z.T @ (A @ Z)
-                _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, m - r - 1])
+                _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, k - r - 1])
                 rest = Z @ Y  # already A-orthonormal: Y.T (Z.T A Z) Y = I
             else:
-                rest = self._complement_lanczos(m - r, Q_all, mu=None)
+                rest = self._complement_lanczos(k - r, Q_all, mu=None)
             basis = np.hstack([pca, rest])
-            values = np.concatenate([w[:r], np.zeros(m - r)])
-        return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, m))
+            values = np.concatenate([w[:r], np.zeros(k - r)])
+        return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, k))
 
-    def _solve_dense(self, m: int, mu: float) -> RPCAResult:
+    def _solve_dense(self, k: int, mu: float) -> RPCAResult:
         n = self.n_vertices
         U = self._U
         L = U @ U.T - mu * self.stiffness.toarray()
         Ad = self.mass.toarray()
-        values, vectors = scipy.linalg.eigh((L + L.T) / 2, (Ad + Ad.T) / 2, subset_by_index=[n - m, n - 1])
+        values, vectors = scipy.linalg.eigh((L + L.T) / 2, (Ad + Ad.T) / 2, subset_by_index=[n - k, n - 1])
         values, vectors = values[::-1], vectors[:, ::-1]
         tau = mu * self._t0
         return RPCAResult(
@@ -383,7 +395,7 @@ class RegularizedPCA:
         assert self._base_solved is not None
         return self._base_factor, self._base_solved
 
-    def _solve_sparse(self, m: int, mu: float) -> RPCAResult:
+    def _solve_sparse(self, k: int, mu: float) -> RPCAResult:
         W, A, U = self.stiffness, self.mass, self._U
         tau = mu * self._t0
         F0, Z0 = self._base()
@@ -391,19 +403,19 @@ class RegularizedPCA:
         H = U.T @ Y0
         # Sylvester's law of inertia on [[-M, U], [U.T, -I]]: the number of eigenvalues of the
         # pencil above tau equals the number of eigenvalues of U.T M^-1 U above 1.
-        k = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
-        kk = min(k, m)
+        n_above = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
+        n_data = min(n_above, k)
         data_vectors = np.zeros((self.n_vertices, 0))
-        if kk:
-            data_vectors = self._data_eigenpairs(kk, mu, tau, Y0)
+        if n_data:
+            data_vectors = self._data_eigenpairs(n_data, mu, tau, Y0)
         rest = np.zeros((self.n_vertices, 0))
-        if m > kk:
-            rest = self._complement_lanczos(m - kk, data_vectors, mu=mu, Y0=Y0)
+        if k > n_data:
+            rest = self._complement_lanczos(k - n_data, data_vectors, mu=mu, Y0=Y0)
         S = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
-        values, P = _rayleigh_ritz(S, U, W, mu, m)
-        if P.shape[1] < m:  # pragma: no cover - would mean a lost direction
+        values, P = _rayleigh_ritz(S, U, W, mu, k)
+        if P.shape[1] < k:  # pragma: no cover - would mean a lost direction
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
-        return RPCAResult(basis=fix_signs(P, A), values=values, mu=mu, n_data=kk)
+        return RPCAResult(basis=fix_signs(P, A), values=values, mu=mu, n_data=n_data)
 
     def _data_eigenpairs(self, k: int, mu: float, tau: float, Y0: NDArray[np.float64]) -> NDArray[np.float64]:
         """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
@@ -500,21 +512,23 @@ class RegularizedPCA:
         order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
         return a_orthonormalize(project(vectors[:, order]), A)
 
-    def sweep(self, m: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
+    @renamed({"m": "k"})
+    def sweep(self, k: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
         """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation."""
         if (betas is None) == (mus is None):
             raise ValueError("give exactly one of betas or mus.")
         if betas is not None:
-            return [self.solve(m, beta=b) for b in betas]
-        return [self.solve(m, mu) for mu in mus]  # type: ignore[union-attr]
+            return [self.solve(k, beta=b) for b in betas]
+        return [self.solve(k, mu) for mu in mus]  # type: ignore[union-attr]
 
 
 # --- functional interface ----------------------------------------------------------------------
+@renamed({"m": "k"})
 def regularized_pca(
     data: ArrayLike,
     stiffness: sp.spmatrix,
     mass: sp.spmatrix,
-    m: int,
+    k: int,
     mu: float | None = None,
     *,
     beta: float | None = None,
@@ -522,7 +536,7 @@ def regularized_pca(
     return_values: bool = False,
     method: Method = "auto",
 ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """A-orthonormal basis of the ``m`` top generalized eigenvectors of ``(A X X.T A - mu W, A)``.
+    """A-orthonormal basis of the ``k`` top generalized eigenvectors of ``(A X X.T A - mu W, A)``.
 
     This is the exact minimiser of ``sum_i ||P P.T A x_i - x_i||_A^2 + mu sum_j P_j.T W P_j``
     over ``P.T A P = I``. No n x n matrix is formed unless ``method="dense"``.
@@ -533,8 +547,8 @@ def regularized_pca(
         Training functions ``X``, one per column.
     stiffness, mass : scipy.sparse matrix
         ``W`` and ``A``.
-    m : int
-        Number of basis functions, ``1 <= m <= n``.
+    k : int
+        Number of basis functions, ``1 <= k <= n``.
     mu : float, optional
         Raw weight, ``>= 0``; ``0`` is PCA (then the smoothest functions A-orthogonal to the data),
         ``inf`` the Laplace–Beltrami eigenbasis.
@@ -548,8 +562,8 @@ def regularized_pca(
 
     Returns
     -------
-    basis : ndarray, shape (n, m)
-    values : ndarray, shape (m,), only if ``return_values``
+    basis : ndarray, shape (n, k)
+    values : ndarray, shape (k,), only if ``return_values``
 
     Examples
     --------
@@ -561,16 +575,17 @@ def regularized_pca(
     >>> P.shape
     (642, 10)
     """
-    result = RegularizedPCA(data, stiffness, mass, center=center).solve(m, mu, beta=beta, method=method)
+    result = RegularizedPCA(data, stiffness, mass, center=center).solve(k, mu, beta=beta, method=method)
     basis = np.array(result.basis)
     return (basis, np.array(result.values)) if return_values else basis
 
 
-def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+@renamed({"m": "k"})
+def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
 
     ``mu = beta / (1 - beta) * s_B / lam_ref``: ``s_B`` is the largest eigenvalue of ``X.T A X``
-    (the top data eigenvalue) and ``lam_ref = 4 pi m / area`` is Weyl's estimate of the m-th
+    (the top data eigenvalue) and ``lam_ref = 4 pi k / area`` is Weyl's estimate of the k-th
     Laplace–Beltrami eigenvalue. Both scale with the shape, so ``beta`` does not. ``beta = 1``
     gives ``inf``.
 
@@ -591,15 +606,16 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, cen
         X = _centred(X, A)
     gram = X.T @ (A @ X)
     s_B = float(np.linalg.eigvalsh((gram + gram.T) / 2)[-1])
-    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_m(m, A.shape[0]) / float(A.sum()))
+    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_k(k, A.shape[0]) / float(A.sum()))
 
 
-def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+@renamed({"m": "k"})
+def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Inverse of :func:`mu_from_beta`."""
     mu = _check_mu(mu)
     if np.isinf(mu):
         return 1.0
-    unit = mu_from_beta(0.5, data, mass, m, center=center)  # = s_B / lam_ref
+    unit = mu_from_beta(0.5, data, mass, k, center=center)  # = s_B / lam_ref
     return (mu / unit) / (1.0 + mu / unit)
 
 

@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from .inner_product import a_orthonormalize, check_functions, check_operators, default_shift, fix_signs, start_vector, use_dense
+from ._deprecation import renamed
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 
@@ -76,43 +77,47 @@ class Spectrum:
     def _check_f(self, f: ArrayLike) -> NDArray[np.float64]:
         return check_functions(f, self.n_vertices)
 
-    def _check_n(self, n: int | None) -> int:
-        if n is None:
+    def _check_n(self, k: int | None) -> int:
+        if k is None:
             return self.k
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-            raise ValueError(f"n must be an integer number of eigenfunctions, got {n!r}.")
-        if not 0 <= n <= self.k:
-            raise ValueError(f"n must be between 0 and k={self.k} (the eigenpairs computed), got {n}.")
-        return int(n)
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+            raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+        if not 0 <= k <= self.k:
+            raise ValueError(f"k must be between 0 and k={self.k} (the eigenpairs computed), got {k}.")
+        return int(k)
 
-    def project(self, f: ArrayLike, n: int | None = None) -> NDArray[np.float64]:
-        """Coefficients ``Phi_n.T @ (A @ f)`` of ``f`` in the first ``n`` eigenfunctions.
+    @renamed({"n": "k"})
+    def project(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
+        """Coefficients ``Phi_n.T @ (A @ f)`` of ``f`` in the first ``k`` eigenfunctions.
 
-        ``f`` is (n_vertices,) or (n_vertices, c); the result is (n,) or (n, c).
+        ``f`` is (n_vertices,) or (n_vertices, c); the result is (k,) or (k, c).
         """
         arr = self._check_f(f)
-        n = self._check_n(n)
-        return self.vectors[:, :n].T @ (self.mass @ arr)
+        k = self._check_n(k)
+        return self.vectors[:, :k].T @ (self.mass @ arr)
 
-    def reconstruct(self, f: ArrayLike, n: int | None = None) -> NDArray[np.float64]:
-        """The A-orthogonal projection of ``f`` onto the span of the first ``n`` eigenfunctions."""
-        n = self._check_n(n)
-        return self.vectors[:, :n] @ self.project(f, n)
+    @renamed({"n": "k"})
+    def reconstruct(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
+        """The A-orthogonal projection of ``f`` onto the span of the first ``k`` eigenfunctions."""
+        k = self._check_n(k)
+        return self.vectors[:, :k] @ self.project(f, k)
 
-    def error(self, f: ArrayLike, n: int | None = None) -> NDArray[np.float64] | float:
-        """A-norm of ``f - reconstruct(f, n)``: a float for 1-D ``f``, an array per column for 2-D."""
+    @renamed({"n": "k"})
+    def error(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64] | float:
+        """A-norm of ``f - reconstruct(f, k)``: a float for 1-D ``f``, an array per column for 2-D."""
         arr = self._check_f(f)
-        r = arr - self.reconstruct(arr, n)
+        r = arr - self.reconstruct(arr, k)
         sq = np.einsum("i...,i...->...", r, self.mass @ r)
         out = np.sqrt(np.maximum(sq, 0.0))
         return float(out) if arr.ndim == 1 else out
 
 
+@renamed({"mass": "mass_kind"})
 def eigenbasis(
     mesh: Union[Mesh, Operators],
     k: int,
     *,
-    mass: MassKind = "voronoi",
+    mass_kind: MassKind = "voronoi",
     alpha: float = 0.0,
     shift: float | None = None,
     curvature_floor: float | None = None,
@@ -125,7 +130,7 @@ def eigenbasis(
         A mesh, or precomputed sparse operators (so that other metrics can reuse the solver).
     k : int
         Number of eigenpairs, ``1 <= k <= n_vertices``.
-    mass : {"voronoi", "barycentric", "consistent"}
+    mass_kind : {"voronoi", "barycentric", "consistent"}
         Mass matrix kind when ``mesh`` is a :class:`Mesh`.
     alpha : float in [0, 1]
         Exponent of the metric ``|K|^alpha g`` (notebook 06). ``0`` is exactly the regular metric;
@@ -153,18 +158,18 @@ def eigenbasis(
     True
     """
     if isinstance(mesh, Mesh):
-        if mass not in MASS_KINDS:
-            raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {mass!r}.")
+        if mass_kind not in MASS_KINDS:
+            raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
         if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
             raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}.")
         W = stiffness_matrix(mesh)
         if float(alpha) == 0.0:
-            A = mass_matrix(mesh, mass)
+            A = mass_matrix(mesh, mass_kind)
         else:
             from .curvature import DEFAULT_FLOOR, metric_mass_matrix
 
             floor = DEFAULT_FLOOR if curvature_floor is None else curvature_floor
-            A = metric_mass_matrix(mesh, float(alpha), kind=mass, floor=floor)
+            A = metric_mass_matrix(mesh, float(alpha), mass_kind=mass_kind, floor=floor)
     elif isinstance(mesh, tuple) and len(mesh) == 2:
         if alpha != 0.0:
             raise ValueError("alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.")

@@ -144,7 +144,7 @@ def test_fps_covers_evenly(sphere3):
 
 @pytest.mark.parametrize("count", [0, 643, 2.0, True])
 def test_fps_bad_count(sphere3, count):
-    with pytest.raises(ValueError, match="count must be an integer between 1 and"):
+    with pytest.raises(ValueError, match="k must be an integer between 1 and"):
         farthest_point_sampling(sphere3, count)
 
 

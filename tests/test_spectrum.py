@@ -33,7 +33,7 @@ def test_sphere_convergence_is_second_order(mass):
     # Skip l=1: superconvergent with lumped mass (MATH.md).
     errors = []
     for s in (2, 3, 4):
-        values = eigenbasis(shapes.icosphere(s), 36, mass=mass).values
+        values = eigenbasis(shapes.icosphere(s), 36, mass_kind=mass).values
         errors.append(np.max(np.abs(values[4:] / SPHERE[4:] - 1)))
     rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:])) # h halves per subdivision
     assert np.all(rates > 1.8), rates
@@ -41,8 +41,8 @@ def test_sphere_convergence_is_second_order(mass):
 
 def test_lumped_lies_below_and_consistent_above_on_the_sphere():
     m = shapes.icosphere(3)
-    lumped = eigenbasis(m, 36, mass="voronoi").values[4:]
-    consistent = eigenbasis(m, 36, mass="consistent").values[4:]
+    lumped = eigenbasis(m, 36, mass_kind="voronoi").values[4:]
+    consistent = eigenbasis(m, 36, mass_kind="consistent").values[4:]
     assert np.all(lumped < SPHERE[4:]) and np.all(consistent > SPHERE[4:])
 
 
@@ -157,8 +157,8 @@ def test_bad_inputs():
         spec.project(np.full(m.n_vertices, np.nan))
     with pytest.raises(ValueError, match="between 0 and k"):
         spec.reconstruct(np.ones(m.n_vertices), 11)
-    with pytest.raises(ValueError, match="mass kind"):
-        eigenbasis(m, 5, mass="lumped")
+    with pytest.raises(ValueError, match="mass_kind must be one of"):
+        eigenbasis(m, 5, mass_kind="lumped")
     with pytest.raises(ValueError, match="alpha"):
         eigenbasis(m, 5, alpha=2.0)
     with pytest.raises(ValueError, match="shift"):
