@@ -27,13 +27,14 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "io": ("load_mesh", "save_mesh", "clean_mesh"),
     "operators": ("stiffness_matrix", "mass_matrix"),
     "spectrum": ("Spectrum", "eigenbasis"),
+    "inner_product": ("a_orthonormalize", "fix_signs", "principal_angles", "reconstruction_error"),
     "plotting": ("plot_mesh",),
     "creatures": ("creature", "creature_poses", "creature_parts", "pose_distortion"),
-    "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "a_orthonormalize", "witness_function"),
+    "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "witness_function"),
     "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling", "GeodesicSolver"),
     "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
-    "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta", "reconstruction_error", "principal_angles"),
+    "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
