@@ -7,7 +7,8 @@ dependency). Two rules:
 
 * no cycle between modules (``a`` imports ``b`` imports ... ``a``);
 * no private name (``_x``) imported from another module; private *modules* such as
-  ``_open3d`` are allowed, they exist to be imported inside the package.
+  ``_open3d`` are allowed, they exist to be imported inside the package;
+* every relative import resolves to a module of the package (a moved module is caught here).
 
 Usage: ``python scripts/import_graph.py [package_dir]``. Exit status 1 on a violation.
 """
@@ -34,7 +35,7 @@ def resolve(current: str, is_package: bool, level: int, target: str | None) -> s
 
 
 def graph(root: Path) -> tuple[dict[str, set[str]], list[str]]:
-    """Edges module -> imported modules (inside the package) and the private-name violations."""
+    """Edges module -> imported modules (inside the package) and the bad imports (private or unresolved)."""
     files = {module_name(p, root): p for p in sorted(root.rglob("*.py"))}
     edges: dict[str, set[str]] = {name: set() for name in files}
     private: list[str] = []
@@ -49,6 +50,8 @@ def graph(root: Path) -> tuple[dict[str, set[str]], list[str]]:
                 dep = sub if sub in files else target  # "from . import x" imports module x
                 if dep in files and dep != name:
                     edges[name].add(dep)
+                elif dep not in files:
+                    private.append(f"{name} imports {alias.name} from {target}, which is not a module of the package")
                 if dep == target and alias.name.startswith("_") and not alias.name.startswith("__"):
                     private.append(f"{name} imports private name {alias.name} from {target}")
     return edges, private
@@ -80,8 +83,8 @@ def main(argv: list[str]) -> int:
     for cycle in found:
         print("CYCLE: " + " -> ".join(cycle))
     for line in private:
-        print("PRIVATE: " + line)
-    print(f"{len(edges)} modules, {sum(map(len, edges.values()))} imports, {len(found)} cycles, {len(private)} private imports")
+        print("BAD IMPORT: " + line)
+    print(f"{len(edges)} modules, {sum(map(len, edges.values()))} imports, {len(found)} cycles, {len(private)} bad imports")
     return 1 if found or private else 0
 
 
