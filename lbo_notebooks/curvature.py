@@ -3,7 +3,7 @@
 The metric ``g_alpha = |K|^alpha g`` (Aflalo, Kimmel, Raviv 2013) interpolates between the regular
 metric (``alpha = 0``) and a scale-invariant one (``alpha = 1``). In two dimensions the Dirichlet
 energy is conformally invariant, so the cotangent stiffness ``W`` does not change: **only the mass
-changes** (MATH.md section 3). This module computes that mass; :func:`lbo_notebooks.eigenbasis`
+changes** (docs/maths.md, "Scale-invariant metrics"). This module computes that mass; :func:`lbo_notebooks.eigenbasis`
 uses it when called with ``alpha != 0``.
 
 Regularisation (why ``|K|`` needs one, and which one)

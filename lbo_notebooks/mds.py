@@ -50,7 +50,7 @@ __all__ = [
     "SMDS_DEFAULTS",
 ]
 
-#: Defaults of :func:`spectral_mds`. MATH.md section 4: on 3-5k-vertex meshes about 150
+#: Defaults of :func:`spectral_mds`. docs/maths.md, "Multidimensional scaling": on 3-5k-vertex meshes about 150
 #: eigenfunctions and 300 samples were needed for a Gram error under 2%; mu is dimensionless.
 SMDS_DEFAULTS: dict[str, float] = {"n_samples": 300, "k": 150, "mu": 0.05}
 
@@ -325,7 +325,7 @@ def landmark_mds(
 
 # --- spectral MDS -----------------------------------------------------------------------------
 def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64]) -> float:
-    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (MATH.md section 4).
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (docs/maths.md, "Multidimensional scaling").
 
     ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and ``lam`` with 1/length^2;
     dividing them out makes ``mu`` dimensionless, so one default works for any shape, size,

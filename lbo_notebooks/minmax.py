@@ -1,6 +1,6 @@
 """The min–max (Courant–Fischer) principle for ``W phi = lam A phi``, made computable.
 
-Discrete Courant–Fischer (MATH.md section 2)::
+Discrete Courant–Fischer (docs/maths.md, "Min–max")::
 
     lam[n] = max over subspaces L of codimension n of  min over f in L of (f W f) / (f A f)
 

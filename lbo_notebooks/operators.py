@@ -1,6 +1,6 @@
 """Discrete Laplace–Beltrami operator: cotangent stiffness ``W`` and mass ``A`` (P1 elements).
 
-Conventions (see MATH.md section 1): ``W`` is positive semidefinite, ``W @ 1 = 0`` and
+Conventions (see docs/maths.md, "Operators"): ``W`` is positive semidefinite, ``W @ 1 = 0`` and
 ``f @ W @ f`` is the Dirichlet energy of the piecewise-linear function with vertex values ``f``.
 The eigenproblem is ``W phi = lam A phi``.
 """

@@ -11,8 +11,8 @@ Dirichlet energy better than the first n eigenfunctions of the Laplace–Beltram
 
 The exact ``C(V)`` minimises the energy over the part of ``f`` that lies *in* ``V`` (a Schur
 complement). Using ``W`` itself on the A-orthogonal complement of ``V`` instead is a classic trap:
-it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See MATH.md
-section 2.
+it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See docs/maths.md,
+section "Optimality".
 """
 
 from __future__ import annotations
@@ -278,7 +278,7 @@ def worst_case_ratio(
     ``numpy.ones(n)`` among the columns (e.g. ``a_orthonormalize(..., prepend=ones)``) to get a
     finite constant.
 
-    How it is computed (MATH.md section 2): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
+    How it is computed (docs/maths.md, "Optimality"): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
     V, the error is ``||r||_A^2`` and the smallest energy over ``v`` is the Schur complement
     ``r @ S @ r``, ``S = W - W Q (Q.T W Q)^+ Q.T W``. Equivalently ``C(V)`` is the largest eigenvalue
     of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,

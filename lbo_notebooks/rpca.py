@@ -7,7 +7,7 @@ data well *and* is smooth:
     minimise  sum_i ||P P.T A x_i - x_i||_A^2 + mu * sum_j P_j.T W P_j   subject to  P.T A P = I.
 
 The objective equals ``const - trace(P.T (A X X.T A - mu W) P)``, so the minimiser is the set of
-``k`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (MATH.md section 5).
+``k`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (docs/maths.md, "Regularized PCA").
 ``mu -> infinity`` gives the first ``k`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
 PCA directions first, and then (the data have rank at most c) the smoothest functions A-orthogonal
 to the data.

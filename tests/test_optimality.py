@@ -45,7 +45,7 @@ def perturbed_eigenbasis(spectrum, n, eps, seed=0):
 
 
 def schur_oracle(basis, W, A):
-    """Independent dense evaluation of C(V) from the Schur complement (MATH.md section 2)."""
+    """Independent dense evaluation of C(V) from the Schur complement (docs/maths.md, "Optimality")."""
     Wd, Ad = W.toarray(), A.toarray()
     Q = scipy.linalg.orth(basis)
     S = Wd - Wd @ Q @ np.linalg.pinv(Q.T @ Wd @ Q) @ Q.T @ Wd

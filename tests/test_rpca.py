@@ -2,7 +2,7 @@
 
 Oracles: dense ``scipy.linalg.eigh`` of the n x n pencil (the closed form), the Laplace–Beltrami
 eigenbasis (mu -> inf), PCA of the data plus the smoothest A-orthogonal functions (mu -> 0), the
-objective identity of MATH.md section 5, and random feasible perturbations (optimality).
+objective identity of docs/maths.md, "Regularized PCA", and random feasible perturbations (optimality).
 """
 
 from __future__ import annotations

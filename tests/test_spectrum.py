@@ -30,7 +30,7 @@ def test_sphere_multiplicities(sphere5):
 
 @pytest.mark.parametrize("mass", ["voronoi", "consistent"])
 def test_sphere_convergence_is_second_order(mass):
-    # Skip l=1: superconvergent with lumped mass (MATH.md).
+    # Skip l=1: superconvergent with lumped mass (docs/maths.md, "Operators").
     errors = []
     for s in (2, 3, 4):
         values = eigenbasis(shapes.icosphere(s), 36, mass_kind=mass).values
