@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import renamed
-from .mesh import Mesh, MeshError
+from .mesh import Mesh, MeshError, per_mesh
 
 __all__ = [
     "GeodesicSolver",
@@ -247,7 +247,12 @@ def geodesic_solver(mesh: Mesh, method: str) -> GeodesicSolver:
     method = check_method(method)
     if not isinstance(mesh, Mesh):
         raise ValueError(f"expected a Mesh, got {type(mesh).__name__}.")
-    return mesh.cached(f"geodesic_solver_{method}", lambda m: GeodesicSolver(m, method))
+    return _solver(mesh, method)
+
+
+@per_mesh
+def _solver(mesh: Mesh, method: str) -> GeodesicSolver:
+    return GeodesicSolver(mesh, method)
 
 
 def geodesic_distances(
