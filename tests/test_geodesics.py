@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, MeshError, shapes
-from lbo_notebooks.geodesics import GeodesicSolver, farthest_point_sampling, geodesic_distances
+from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
 
 
 def great_circle(mesh: Mesh, sources: list[int]) -> np.ndarray:
