@@ -68,6 +68,15 @@ def _constant_first(mesh: Mesh, A: sp.csr_matrix, functions: NDArray[np.float64]
     return Q[:, :k]
 
 
+def _identity_mass_eigenbasis(
+    mesh: Mesh, k: int, mass_kind: MassKind, operator: Callable[[Mesh], sp.spmatrix]
+) -> NDArray[np.float64]:
+    """Eigenvectors of ``operator(mesh) x = mu x`` (no area weights), then A-orthonormalised."""
+    k, A = _check(mesh, k, mass_kind)
+    identity = sp.identity(mesh.n_vertices, format="csr")
+    return _constant_first(mesh, A, _smallest_eigenvectors(operator(mesh), identity, k), k)
+
+
 def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np.float64]:
     """Eigenvectors 1..k-1 of ``W x = mu M x`` (the constant, eigenvector 0, is dropped)."""
     return np.asarray(eigenbasis((W, M), k).vectors[:, 1:])
@@ -221,9 +230,7 @@ def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> ND
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
     True
     """
-    k, A = _check(mesh, k, mass_kind)
-    L = _umbrella_laplacian(mesh)
-    return _constant_first(mesh, A, _smallest_eigenvectors(L, sp.identity(mesh.n_vertices, format="csr"), k), k)
+    return _identity_mass_eigenbasis(mesh, k, mass_kind, _umbrella_laplacian)
 
 
 @renamed({"n": "k", "mass": "mass_kind"})
@@ -242,9 +249,7 @@ def identity_mass_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") 
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
     True
     """
-    k, A = _check(mesh, k, mass_kind)
-    W = stiffness_matrix(mesh)
-    return _constant_first(mesh, A, _smallest_eigenvectors(W, sp.identity(mesh.n_vertices, format="csr"), k), k)
+    return _identity_mass_eigenbasis(mesh, k, mass_kind, stiffness_matrix)
 
 
 def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
