@@ -375,4 +375,6 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
 
 
 # The 3-D figure and its slider moved to plotting (no plotly code in this module).
-__getattr__ = moved(__name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")})
+__getattr__ = moved(
+    __name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")}
+)

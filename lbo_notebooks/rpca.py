@@ -95,14 +95,14 @@ def _factor(M: sp.spmatrix) -> spla.SuperLU:
 
 
 def _rayleigh_ritz(
-    S: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
+    basis: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns ``S``."""
-    SU = S.T @ U
-    G = SU @ SU.T - mu * (S.T @ (W @ S))
-    w, E = np.linalg.eigh((G + G.T) / 2)
-    order = np.argsort(w)[::-1][:k]
-    return w[order], S @ E[:, order]
+    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns of ``basis``."""
+    projected_data = basis.T @ U
+    projected = projected_data @ projected_data.T - mu * (basis.T @ (W @ basis))
+    values, vectors = np.linalg.eigh((projected + projected.T) / 2)
+    order = np.argsort(values)[::-1][:k]
+    return values[order], basis @ vectors[:, order]
 
 
 @dataclass(frozen=True)
@@ -411,18 +411,18 @@ class RegularizedPCA:
         rest = np.zeros((self.n_vertices, 0))
         if k > n_data:
             rest = self._complement_lanczos(k - n_data, data_vectors, mu=mu, Y0=Y0)
-        S = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
-        values, P = _rayleigh_ritz(S, U, W, mu, k)
-        if P.shape[1] < k:  # pragma: no cover - would mean a lost direction
+        subspace = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
+        values, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
+        if ritz.shape[1] < k:  # pragma: no cover - would mean a lost direction
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
-        return RPCAResult(basis=fix_signs(P, A), values=values, mu=mu, n_data=n_data)
+        return RPCAResult(basis=fix_signs(ritz, A), values=values, mu=mu, n_data=n_data)
 
     def _data_eigenpairs(self, k: int, mu: float, tau: float, Y0: NDArray[np.float64]) -> NDArray[np.float64]:
         """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
         W, A, U, X = self.stiffness, self.mass, self._U, self.data
         c = U.shape[1]
-        S = a_orthonormalize(np.hstack([X, Y0]), A, drop_dependent=True)
-        theta, P = _rayleigh_ritz(S, U, W, mu, k)
+        subspace = a_orthonormalize(np.hstack([X, Y0]), A, drop_dependent=True)
+        theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
         # One factorisation per data eigenvalue, at its current Ritz estimate (Ritz values are lower
         # bounds; below tau we keep the tau factor, whose block Y0 is already in the subspace).
         factors: list[_ShiftedFactor] = []
@@ -433,8 +433,8 @@ class RegularizedPCA:
             solved = factor.solve(np.array(U))
             factors.append(_ShiftedFactor(float(shift), factor, solved, np.eye(c) - U.T @ solved))
         if factors:
-            S = a_orthonormalize(np.hstack([f.solved for f in factors]), A, prepend=S, drop_dependent=True)
-            theta, P = _rayleigh_ritz(S, U, W, mu, k)
+            subspace = a_orthonormalize(np.hstack([f.solved for f in factors]), A, prepend=subspace, drop_dependent=True)
+            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
 
         def shifted_solve(j: int, b: NDArray[np.float64]) -> NDArray[np.float64]:
             # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor whose shift is nearest theta[j].
@@ -447,14 +447,14 @@ class RegularizedPCA:
 
         scale = abs(theta[0]) + mu * abs(W).sum(axis=1).max() + 1.0
         for _ in range(_MAX_ROUNDS):
-            R = U @ (U.T @ P) - mu * (W @ P) - (A @ P) * theta
-            res = np.linalg.norm(R, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", P, A @ P)) * max(1.0, np.abs(A).max()))
-            if np.all(res < _DATA_TOL) or not factors:
+            residual = U @ (U.T @ ritz) - mu * (W @ ritz) - (A @ ritz) * theta
+            backward_error = np.linalg.norm(residual, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", ritz, A @ ritz)) * max(1.0, np.abs(A).max()))
+            if np.all(backward_error < _DATA_TOL) or not factors:
                 break
-            new = np.column_stack([shifted_solve(j, A @ P[:, j]) for j in range(k)])
-            S = a_orthonormalize(new, A, prepend=S, drop_dependent=True)
-            theta, P = _rayleigh_ritz(S, U, W, mu, k)
-        return P
+            corrections = np.column_stack([shifted_solve(j, A @ ritz[:, j]) for j in range(k)])
+            subspace = a_orthonormalize(corrections, A, prepend=subspace, drop_dependent=True)
+            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
+        return ritz
 
     def _complement_lanczos(
         self, count: int, deflate: NDArray[np.float64], *, mu: float | None, Y0: NDArray[np.float64] | None = None
