@@ -510,7 +510,7 @@ class RegularizedPCA:
         v0 = project(start_vector(n))
         values, vectors = spla.eigsh(L, k=count, M=A, sigma=sigma, which="LM", OPinv=op, v0=v0)
         order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
-        return a_orthonormalize(project(vectors[:, order]), A)
+        return a_orthonormalize(project(vectors[:, order]), A, refine=True)
 
     @renamed({"m": "k"})
     def sweep(self, k: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:

@@ -194,6 +194,6 @@ def eigenbasis(
         values, vectors = values[order], vectors[:, order]
         # ARPACK returns M-orthonormal vectors up to round-off; re-orthonormalising in order
         # (no mixing) keeps Phi.T A Phi = I to machine precision.
-        vectors = a_orthonormalize(vectors, A)
+        vectors = a_orthonormalize(vectors, A, refine=True)
     vectors = fix_signs(vectors, A)
     return Spectrum(values=np.ascontiguousarray(values), vectors=np.ascontiguousarray(vectors), stiffness=W, mass=A)
