@@ -66,7 +66,9 @@ def test_mass_kind(sphere):
                               lambda: lbo.eigenbasis(sphere, 6, mass="consistent"), "mass_kind=")
     np.testing.assert_array_equal(a.values, b.values)
     a, b = _same_with_warning(lambda: bases.umbrella_basis(sphere, 5, mass_kind="barycentric"),
-                              lambda: bases.umbrella_basis(sphere, n=5, mass="barycentric"), "k=")
+                              lambda: bases.umbrella_basis(sphere, 5, mass="barycentric"), "mass_kind=")
+    np.testing.assert_array_equal(a, b)
+    a, b = _same_with_warning(lambda: bases.umbrella_basis(sphere, 5), lambda: bases.umbrella_basis(sphere, n=5), "k=")
     np.testing.assert_array_equal(a, b)
     a, b = _same_with_warning(lambda: bases.random_smooth_functions(sphere, 3),
                               lambda: bases.random_smooth_functions(sphere, count=3), "k=")
