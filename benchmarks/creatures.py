@@ -46,7 +46,7 @@ def main(quick: bool = False) -> None:
     print(f"{'species':8s} {'asked':>7s} {'got':>7s} {'error':>7s} {'cpu s':>7s} {'wall s':>7s} {'min angle':>9s} {'>=25 deg':>9s}")
     for species in C.SPECIES:
         for n in sizes:
-            C._template.cache_clear()
+            C.rig.template_for.cache_clear()
             mesh, cpu, wall = _timed(lambda: C.creature(species, n_vertices=n))
             a = _min_angles(mesh)
             print(f"{species:8s} {n:7d} {mesh.n_vertices:7d} {100 * (mesh.n_vertices / n - 1):+6.1f}% {cpu:7.2f} {wall:7.2f} "
@@ -55,9 +55,9 @@ def main(quick: bool = False) -> None:
     print("\n2. cold 10,000-vertex family of poses against the template alone (baseline)")
     print(f"{'species':8s} {'template cpu':>12s} {'family cpu':>11s} {'family wall':>12s} {'ratio':>6s}")
     for species in C.SPECIES:
-        C._template.cache_clear()
+        C.rig.template_for.cache_clear()
         _, t_cpu, _ = _timed(lambda: C.creature(species, n_vertices=10_000))
-        C._template.cache_clear()
+        C.rig.template_for.cache_clear()
         poses, f_cpu, f_wall = _timed(lambda: C.creature_poses(species, n_vertices=10_000))
         print(f"{species:8s} {t_cpu:12.2f} {f_cpu:11.2f} {f_wall:12.2f} {f_cpu / t_cpu:6.2f}   ({len(poses)} poses)")
 

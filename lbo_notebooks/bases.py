@@ -1,10 +1,10 @@
 """Competitor bases for the optimality theorem: everything the eigenbasis is compared against.
 
-Every function takes a mesh and a size ``n`` and returns an array of shape ``(n_vertices, n)``
+Every function takes a mesh and a size ``k`` and returns an array of shape ``(n_vertices, k)``
 whose columns are **A-orthonormal** (``B.T @ A @ B = I`` for the mesh's mass matrix of the given
 kind) with **the constant function first** (so :func:`~lbo_notebooks.optimality.worst_case_ratio`
 is finite). Columns are ordered, so the first ``m`` columns are that basis with ``m`` functions:
-one call at the largest ``n`` serves a whole curve over ``n``.
+one call at the largest ``k`` serves a whole curve over ``k``.
 
 The competitors:
 
@@ -30,8 +30,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
-from .optimality import a_orthonormalize
-from .spectrum import check_operators, eigenbasis
+from ._deprecation import renamed
+from .inner_product import a_orthonormalize, check_operators
+from .spectrum import eigenbasis
 
 __all__ = [
     "eigen_basis",
@@ -52,29 +53,39 @@ __all__ = [
 Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
 
 
-def _check(mesh: Mesh, n: int, mass: MassKind) -> tuple[int, sp.csr_matrix]:
+def _check(mesh: Mesh, k: int, mass_kind: MassKind) -> tuple[int, sp.csr_matrix]:
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if mass not in MASS_KINDS:
-        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {mass!r}.")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n < mesh.n_vertices:
-        raise ValueError(f"n must be an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}, got {n!r}.")
-    return int(n), mass_matrix(mesh, mass)
+    if mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k < mesh.n_vertices:
+        raise ValueError(f"k must be an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}, got {k!r}.")
+    return int(k), mass_matrix(mesh, mass_kind)
 
 
-def _constant_first(mesh: Mesh, A: sp.csr_matrix, functions: NDArray[np.float64], n: int) -> NDArray[np.float64]:
-    """Constant, then ``functions`` A-orthonormalised in order; the first n columns."""
-    Q = a_orthonormalize(functions[:, : n - 1], A, prepend=np.ones(mesh.n_vertices))
-    return Q[:, :n]
+def _constant_first(mesh: Mesh, A: sp.csr_matrix, functions: NDArray[np.float64], k: int) -> NDArray[np.float64]:
+    """Constant, then ``functions`` A-orthonormalised in order; the first k columns."""
+    Q = a_orthonormalize(functions[:, : k - 1], A, prepend=np.ones(mesh.n_vertices))
+    return Q[:, :k]
 
 
-def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, n: int) -> NDArray[np.float64]:
-    """Eigenvectors 1..n-1 of ``W x = mu M x`` (the constant, eigenvector 0, is dropped)."""
-    return np.asarray(eigenbasis((W, M), n).vectors[:, 1:])
+def _identity_mass_eigenbasis(
+    mesh: Mesh, k: int, mass_kind: MassKind, operator: Callable[[Mesh], sp.spmatrix]
+) -> NDArray[np.float64]:
+    """Eigenvectors of ``operator(mesh) x = mu x`` (no area weights), then A-orthonormalised."""
+    k, A = _check(mesh, k, mass_kind)
+    identity = sp.identity(mesh.n_vertices, format="csr")
+    return _constant_first(mesh, A, _smallest_eigenvectors(operator(mesh), identity, k), k)
 
 
-def eigen_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
-    """The first n Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
+def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np.float64]:
+    """Eigenvectors 1..k-1 of ``W x = mu M x`` (the constant, eigenvector 0, is dropped)."""
+    return np.asarray(eigenbasis((W, M), k).vectors[:, 1:])
+
+
+@renamed({"n": "k", "mass": "mass_kind"})
+def eigen_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
+    """The first k Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
 
     Examples
     --------
@@ -82,11 +93,12 @@ def eigen_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np
     >>> eigen_basis(shapes.icosphere(2), 9).shape
     (162, 9)
     """
-    n, _ = _check(mesh, n, mass)
-    return np.array(eigenbasis(mesh, n, mass=mass).vectors)
+    k, _ = _check(mesh, k, mass_kind)
+    return np.array(eigenbasis(mesh, k, mass_kind=mass_kind).vectors)
 
 
-def random_smooth_functions(mesh: Mesh, count: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
+@renamed({"count": "k"})
+def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
     """Random smooth functions: white noise smoothed twice by an implicit heat step.
 
     Each noise column ``g`` becomes ``(A + t W)^{-1} A (A + t W)^{-1} A g`` with
@@ -95,7 +107,7 @@ def random_smooth_functions(mesh: Mesh, count: int, *, seed: int = 0, width: flo
 
     Returns
     -------
-    ndarray (n_vertices, count)
+    ndarray (n_vertices, k)
 
     Examples
     --------
@@ -105,15 +117,15 @@ def random_smooth_functions(mesh: Mesh, count: int, *, seed: int = 0, width: flo
     """
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
-        raise ValueError(f"count must be a non-negative integer, got {count!r}.")
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
+        raise ValueError(f"k must be a non-negative integer, got {k!r}.")
     if not (np.isscalar(width) and np.isfinite(width) and width > 0):
         raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)
     t = (width * np.sqrt(mesh.area)) ** 2
     lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
-    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(count)))
-    return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if count else g
+    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(k)))
+    return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if k else g
 
 
 def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> tuple[NDArray[np.float64], list[str]]:
@@ -156,10 +168,11 @@ def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> 
     return F, ["x", "y", "z", "heat kernel", "geodesic distance", "random 1", "random 2", "random 3"]
 
 
+@renamed({"n": "k", "mass": "mass_kind"})
 def random_smooth_basis(
-    mesh: Mesh, n: int, *, mass: MassKind = "voronoi", seed: int = 0, width: float = 0.15
+    mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", seed: int = 0, width: float = 0.15
 ) -> NDArray[np.float64]:
-    """The constant and ``n - 1`` :func:`random_smooth_functions`, A-orthonormalised.
+    """The constant and ``k - 1`` :func:`random_smooth_functions`, A-orthonormalised.
 
     Examples
     --------
@@ -170,8 +183,8 @@ def random_smooth_basis(
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)) and np.ptp(B[:, 0]) < 1e-12 * B[0, 0])
     True
     """
-    n, A = _check(mesh, n, mass)
-    return _constant_first(mesh, A, random_smooth_functions(mesh, n - 1, seed=seed, width=width), n)
+    k, A = _check(mesh, k, mass_kind)
+    return _constant_first(mesh, A, random_smooth_functions(mesh, k - 1, seed=seed, width=width), k)
 
 
 def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
@@ -186,24 +199,25 @@ def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
     return out
 
 
+@renamed({"n": "k", "mass": "mass_kind"})
 def pca_basis(
     mesh: Mesh,
-    n: int,
+    k: int,
     *,
-    mass: MassKind = "voronoi",
+    mass_kind: MassKind = "voronoi",
     samples: ArrayLike | None = None,
     seed: int = 0,
 ) -> NDArray[np.float64]:
     """Principal components (in the A inner product) of a set of sample functions.
 
     The constant part of every sample is removed (the constant is the basis's first column), then
-    the leading ``n - 1`` eigenvectors of the A-weighted second-moment operator ``X X.T A`` are
+    the leading ``k - 1`` eigenvectors of the A-weighted second-moment operator ``X X.T A`` are
     taken: with ``K = X.T A X = U S U.T`` they are ``X U / sqrt(S)``.
 
     Parameters
     ----------
     samples : array (n_vertices, m), optional
-        The sample functions, ``m >= n - 1`` of rank at least ``n - 1``. Default: ``4 n`` Gaussian
+        The sample functions, ``m >= k - 1`` of rank at least ``k - 1``. Default: ``4 k`` Gaussian
         bumps (of the Euclidean distance, widths 0.1–0.4 sqrt(area)) centred at random vertices.
 
     Examples
@@ -214,25 +228,25 @@ def pca_basis(
     >>> B = pca_basis(m, 5, samples=m.vertices)  # 3 samples: not enough for 4 components
     Traceback (most recent call last):
     ...
-    ValueError: pca_basis needs at least n - 1 = 4 independent samples; got 3 columns.
+    ValueError: pca_basis needs at least k - 1 = 4 independent samples; got 3 columns.
     >>> bool(np.allclose(pca_basis(m, 4, samples=m.vertices).T @ mass_matrix(m) @ pca_basis(m, 4, samples=m.vertices), np.eye(4)))
     True
     """
-    n, A = _check(mesh, n, mass)
-    X = _gaussian_bumps(mesh, 4 * n, seed) if samples is None else np.array(samples, dtype=np.float64)
+    k, A = _check(mesh, k, mass_kind)
+    X = _gaussian_bumps(mesh, 4 * k, seed) if samples is None else np.array(samples, dtype=np.float64)
     if X.ndim != 2 or X.shape[0] != mesh.n_vertices or not np.all(np.isfinite(X)):
         raise ValueError(f"samples must be a finite array of shape ({mesh.n_vertices}, m), got {X.shape}.")
-    if X.shape[1] < n - 1:
-        raise ValueError(f"pca_basis needs at least n - 1 = {n - 1} independent samples; got {X.shape[1]} columns.")
+    if X.shape[1] < k - 1:
+        raise ValueError(f"pca_basis needs at least k - 1 = {k - 1} independent samples; got {X.shape[1]} columns.")
     a = np.asarray(A @ np.ones(mesh.n_vertices)).ravel()
     X = X - np.outer(np.ones(mesh.n_vertices), (a @ X) / a.sum())  # remove each sample's A-mean
     K = X.T @ (A @ X)
     s, U = np.linalg.eigh(K)
     s, U = s[::-1], U[:, ::-1]
-    if n > 1 and not s[n - 2] > 1e-12 * max(s[0], 1e-300):
-        raise ValueError(f"the samples span fewer than n - 1 = {n - 1} directions besides the constant; add samples.")
-    components = X @ (U[:, : n - 1] / np.sqrt(s[: n - 1]))
-    return _constant_first(mesh, A, components, n)
+    if k > 1 and not s[k - 2] > 1e-12 * max(s[0], 1e-300):
+        raise ValueError(f"the samples span fewer than k - 1 = {k - 1} directions besides the constant; add samples.")
+    components = X @ (U[:, : k - 1] / np.sqrt(s[: k - 1]))
+    return _constant_first(mesh, A, components, k)
 
 
 def _umbrella_laplacian(mesh: Mesh) -> sp.csr_matrix:
@@ -242,7 +256,8 @@ def _umbrella_laplacian(mesh: Mesh) -> sp.csr_matrix:
     return (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
 
 
-def umbrella_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+@renamed({"n": "k", "mass": "mass_kind"})
+def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the combinatorial graph Laplacian ``L = D - Adj`` (uniform "umbrella" weights).
 
     The graph Laplacian ignores the geometry (edge lengths and angles): only connectivity counts.
@@ -256,12 +271,11 @@ def umbrella_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
     True
     """
-    n, A = _check(mesh, n, mass)
-    L = _umbrella_laplacian(mesh)
-    return _constant_first(mesh, A, _smallest_eigenvectors(L, sp.identity(mesh.n_vertices, format="csr"), n), n)
+    return _identity_mass_eigenbasis(mesh, k, mass_kind, _umbrella_laplacian)
 
 
-def identity_mass_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+@renamed({"n": "k", "mass": "mass_kind"})
+def identity_mass_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the cotangent ``W`` with the identity as mass (``W x = mu x``, no area weights).
 
     Right on a uniform mesh, wrong where triangle sizes vary: the missing ``A`` is exactly the
@@ -276,9 +290,7 @@ def identity_mass_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi") -> ND
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(8)))
     True
     """
-    n, A = _check(mesh, n, mass)
-    W = stiffness_matrix(mesh)
-    return _constant_first(mesh, A, _smallest_eigenvectors(W, sp.identity(mesh.n_vertices, format="csr"), n), n)
+    return _identity_mass_eigenbasis(mesh, k, mass_kind, stiffness_matrix)
 
 
 def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
@@ -292,7 +304,8 @@ def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
     return out
 
 
-def polynomial_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi", max_degree: int = 30) -> NDArray[np.float64]:
+@renamed({"n": "k", "mass": "mass_kind"})
+def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max_degree: int = 30) -> NDArray[np.float64]:
     """Polynomials in the embedding coordinates x, y, z, by increasing total degree.
 
     Coordinates are mapped to [-1, 1] by the bounding box and the products
@@ -307,7 +320,7 @@ def polynomial_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi", max_degr
     >>> B.shape
     (642, 9)
     """
-    n, A = _check(mesh, n, mass)
+    k, A = _check(mesh, k, mass_kind)
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     extent = np.where(hi - lo > 1e-12 * mesh.diagonal, hi - lo, np.inf)
     x = 2.0 * (mesh.vertices - lo) / extent - 1.0  # a degenerate axis maps to -1: constant
@@ -321,15 +334,16 @@ def polynomial_basis(mesh: Mesh, n: int, *, mass: MassKind = "voronoi", max_degr
         ]
         candidates = np.column_stack([found] + block) if found.size else np.column_stack(block)
         found = a_orthonormalize(candidates, A, drop_dependent=True, rtol=1e-6)
-        if found.shape[1] >= n:
-            return found[:, :n]
+        if found.shape[1] >= k:
+            return found[:, :k]
     raise ValueError(
         f"polynomials up to degree {max_degree} span only {found.shape[1]} functions on this mesh; "
-        f"ask for fewer than n = {n} or raise max_degree."
+        f"ask for fewer than k = {k} or raise max_degree."
     )
 
 
-def metric_basis(mesh: Mesh, n: int, metric: Metric, *, mass: MassKind = "voronoi") -> NDArray[np.float64]:
+@renamed({"n": "k", "mass": "mass_kind"})
+def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The eigenbasis of a different metric, A-orthonormalised for the *regular* mass.
 
     Parameters
@@ -350,7 +364,7 @@ def metric_basis(mesh: Mesh, n: int, metric: Metric, *, mass: MassKind = "vorono
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)))
     True
     """
-    n, A = _check(mesh, n, mass)
+    k, A = _check(mesh, k, mass_kind)
     value = metric(mesh) if callable(metric) else metric
     if isinstance(value, tuple) and len(value) == 2:
         W2, A2 = check_operators(*value)
@@ -363,11 +377,12 @@ def metric_basis(mesh: Mesh, n: int, metric: Metric, *, mass: MassKind = "vorono
         )
     if W2.shape[0] != mesh.n_vertices:
         raise ValueError(f"the metric's operators have size {W2.shape[0]}, the mesh has {mesh.n_vertices} vertices.")
-    return _constant_first(mesh, A, _smallest_eigenvectors(W2, A2, n), n)
+    return _constant_first(mesh, A, _smallest_eigenvectors(W2, A2, k), k)
 
 
+@renamed({"n": "k", "mass": "mass_kind"})
 def competitor_bases(
-    mesh: Mesh, n: int, *, mass: MassKind = "voronoi", seed: int = 0, metric: Metric | None = None
+    mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", seed: int = 0, metric: Metric | None = None
 ) -> dict[str, NDArray[np.float64]]:
     """All the bases at once, keyed by a display name (the eigenbasis first).
 
@@ -378,13 +393,13 @@ def competitor_bases(
     ['LBO eigenbasis', 'PCA of samples', 'identity mass']
     """
     bases = {
-        "LBO eigenbasis": eigen_basis(mesh, n, mass=mass),
-        "random smooth": random_smooth_basis(mesh, n, mass=mass, seed=seed),
-        "PCA of samples": pca_basis(mesh, n, mass=mass, seed=seed),
-        "umbrella Laplacian": umbrella_basis(mesh, n, mass=mass),
-        "identity mass": identity_mass_basis(mesh, n, mass=mass),
-        "polynomials": polynomial_basis(mesh, n, mass=mass),
+        "LBO eigenbasis": eigen_basis(mesh, k, mass_kind=mass_kind),
+        "random smooth": random_smooth_basis(mesh, k, mass_kind=mass_kind, seed=seed),
+        "PCA of samples": pca_basis(mesh, k, mass_kind=mass_kind, seed=seed),
+        "umbrella Laplacian": umbrella_basis(mesh, k, mass_kind=mass_kind),
+        "identity mass": identity_mass_basis(mesh, k, mass_kind=mass_kind),
+        "polynomials": polynomial_basis(mesh, k, mass_kind=mass_kind),
     }
     if metric is not None:
-        bases["other metric"] = metric_basis(mesh, n, metric, mass=mass)
+        bases["other metric"] = metric_basis(mesh, k, metric, mass_kind=mass_kind)
     return bases

@@ -3,7 +3,7 @@
 The metric ``g_alpha = |K|^alpha g`` (Aflalo, Kimmel, Raviv 2013) interpolates between the regular
 metric (``alpha = 0``) and a scale-invariant one (``alpha = 1``). In two dimensions the Dirichlet
 energy is conformally invariant, so the cotangent stiffness ``W`` does not change: **only the mass
-changes** (MATH.md section 3). This module computes that mass; :func:`lbo_notebooks.eigenbasis`
+changes** (docs/maths.md, "Scale-invariant metrics"). This module computes that mass; :func:`lbo_notebooks.eigenbasis`
 uses it when called with ``alpha != 0``.
 
 Regularisation (why ``|K|`` needs one, and which one)
@@ -47,7 +47,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .mesh import Mesh
+from ._deprecation import renamed
+from .mesh import Mesh, per_mesh
 from .operators import MASS_KINDS, MassKind, corner_angles, mass_matrix
 
 __all__ = [
@@ -90,32 +91,40 @@ def _check_mesh(mesh: Mesh) -> Mesh:
     return mesh
 
 
-def _topology(mesh: Mesh) -> tuple[NDArray[np.bool_], sp.csr_matrix]:
+@per_mesh
+def _topology(m: Mesh) -> tuple[NDArray[np.bool_], sp.csr_matrix]:
     """Interior-vertex mask and the closed one-ring (vertex + neighbours) as a 0/1 CSR matrix.
 
     Built from the faces' directed edges with one sparse sum (faster than the mesh's sorted edge
     table): an undirected edge used by one face is a boundary edge.
     """
-
-    def compute(m: Mesh) -> tuple[NDArray[np.bool_], sp.csr_matrix]:
-        f, n = m.faces, m.n_vertices
-        i = f.ravel()
-        j = f[:, [1, 2, 0]].ravel()
-        directed = sp.csr_matrix((np.ones(i.size), (i, j)), shape=(n, n))
-        undirected = (directed + directed.T).tocoo()
-        interior = np.ones(n, dtype=bool)
-        on_boundary = undirected.data == 1.0
-        interior[undirected.row[on_boundary]] = False
-        ring = sp.csr_matrix((np.ones(undirected.nnz), (undirected.row, undirected.col)), shape=(n, n))
-        closed = (ring + sp.identity(n, format="csr")).tocsr()
-        interior.setflags(write=False)
-        return interior, closed
-
-    return mesh.cached("curvature_topology", compute)
+    f, n = m.faces, m.n_vertices
+    i = f.ravel()
+    j = f[:, [1, 2, 0]].ravel()
+    directed = sp.csr_matrix((np.ones(i.size), (i, j)), shape=(n, n))
+    undirected = (directed + directed.T).tocoo()
+    interior = np.ones(n, dtype=bool)
+    on_boundary = undirected.data == 1.0
+    interior[undirected.row[on_boundary]] = False
+    ring = sp.csr_matrix((np.ones(undirected.nnz), (undirected.row, undirected.col)), shape=(n, n))
+    closed = (ring + sp.identity(n, format="csr")).tocsr()
+    interior.setflags(write=False)
+    return interior, closed
 
 
 def _interior_mask(mesh: Mesh) -> NDArray[np.bool_]:
     return _topology(mesh)[0]
+
+
+@per_mesh
+def _angle_defects(m: Mesh) -> NDArray[np.float64]:
+    # angle = arccot(cot) in (0, pi); the three angles of each face sum to pi to round-off.
+    angles = corner_angles(m)
+    total = np.bincount(m.faces.ravel(), weights=angles.ravel(), minlength=m.n_vertices)
+    full = np.where(_interior_mask(m), 2.0 * np.pi, np.pi)
+    out = full - total
+    out.setflags(write=False)
+    return out
 
 
 def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
@@ -132,17 +141,14 @@ def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
     True
     """
     _check_mesh(mesh)
+    return _angle_defects(mesh)
 
-    def compute(m: Mesh) -> NDArray[np.float64]:
-        # angle = arccot(cot) in (0, pi); the three angles of each face sum to pi to round-off.
-        angles = corner_angles(m)
-        total = np.bincount(m.faces.ravel(), weights=angles.ravel(), minlength=m.n_vertices)
-        full = np.where(_interior_mask(m), 2.0 * np.pi, np.pi)
-        out = full - total
-        out.setflags(write=False)
-        return out
 
-    return mesh.cached("curvature_angle_defects", compute)
+@per_mesh
+def _gaussian_curvature(m: Mesh) -> NDArray[np.float64]:
+    out = angle_defects(m) / _voronoi_areas(m)
+    out.setflags(write=False)
+    return out
 
 
 def gaussian_curvature(mesh: Mesh) -> NDArray[np.float64]:
@@ -170,17 +176,32 @@ def gaussian_curvature(mesh: Mesh) -> NDArray[np.float64]:
     True
     """
     _check_mesh(mesh)
-
-    def compute(m: Mesh) -> NDArray[np.float64]:
-        out = angle_defects(m) / _voronoi_areas(m)
-        out.setflags(write=False)
-        return out
-
-    return mesh.cached("curvature_gaussian", compute)
+    return _gaussian_curvature(mesh)
 
 
+@per_mesh
 def _voronoi_areas(mesh: Mesh) -> NDArray[np.float64]:
-    return mesh.cached("curvature_voronoi_areas", lambda m: mass_matrix(m, "voronoi").diagonal())
+    return mass_matrix(mesh, "voronoi").diagonal()
+
+
+@per_mesh
+def _kappa(m: Mesh) -> NDArray[np.float64]:
+    """One-ring summed |angle defect| over interior vertices / their summed Voronoi area."""
+    interior_mask, closed = _topology(m)
+    interior = interior_mask.astype(np.float64)
+    n = m.n_vertices
+    num = closed @ (np.abs(angle_defects(m)) * interior)
+    den = closed @ (_voronoi_areas(m) * interior)
+    out = np.divide(num, den, out=np.zeros(n), where=den > 0)
+    out.setflags(write=False)
+    return out
+
+
+@per_mesh
+def _rho(m: Mesh, floor: float) -> NDArray[np.float64]:
+    out = np.maximum(_kappa(m), floor * 4.0 * np.pi / m.area)
+    out.setflags(write=False)
+    return out
 
 
 def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.float64]:
@@ -210,24 +231,7 @@ def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.
     True
     """
     _check_mesh(mesh)
-    floor = _check_floor(floor)
-
-    def kappa(m: Mesh) -> NDArray[np.float64]:
-        interior_mask, closed = _topology(m)
-        interior = interior_mask.astype(np.float64)
-        n = m.n_vertices
-        num = closed @ (np.abs(angle_defects(m)) * interior)
-        den = closed @ (_voronoi_areas(m) * interior)
-        out = np.divide(num, den, out=np.zeros(n), where=den > 0)
-        out.setflags(write=False)
-        return out
-
-    def compute(m: Mesh) -> NDArray[np.float64]:
-        out = np.maximum(m.cached("curvature_kappa", kappa), floor * 4.0 * np.pi / m.area)
-        out.setflags(write=False)
-        return out
-
-    return mesh.cached(f"curvature_rho_{floor!r}", compute)
+    return _rho(mesh, _check_floor(floor))
 
 
 def conformal_factor(
@@ -269,11 +273,12 @@ def conformal_factor(
     raise ValueError(f"where must be 'vertex' or 'face', got {where!r}.")
 
 
+@renamed({"kind": "mass_kind"})
 def metric_mass_matrix(
     mesh: Mesh,
     alpha: float,
     *,
-    kind: MassKind = "voronoi",
+    mass_kind: MassKind = "voronoi",
     floor: float = DEFAULT_FLOOR,
 ) -> sp.csr_matrix:
     """Mass matrix of the metric ``|K|^alpha g``; the stiffness ``W`` is unchanged.
@@ -282,10 +287,10 @@ def metric_mass_matrix(
     ----------
     mesh : Mesh
     alpha : float in [0, 1]
-        ``0`` returns exactly ``mass_matrix(mesh, kind)``; ``1`` is the scale-invariant metric,
+        ``0`` returns exactly ``mass_matrix(mesh, mass_kind)``; ``1`` is the scale-invariant metric,
         whose spectrum does not change when the shape is scaled. In general the eigenvalues
         scale as ``s^(-2 (1 - alpha))``.
-    kind : {"voronoi", "barycentric", "consistent"}
+    mass_kind : {"voronoi", "barycentric", "consistent"}
         Lumped kinds scale each vertex's area by ``rho_i^alpha``; ``"consistent"`` scales each
         triangle's local matrix by ``rho_t^alpha`` (see the module notes).
     floor : float > 0, default 1e-3
@@ -309,12 +314,12 @@ def metric_mass_matrix(
     _check_mesh(mesh)
     alpha = _check_alpha(alpha)
     floor = _check_floor(floor)
-    if kind not in MASS_KINDS:
-        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {kind!r}.")
-    base = mass_matrix(mesh, kind)
+    if mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    base = mass_matrix(mesh, mass_kind)
     if alpha == 0.0:
         return base
-    if kind == "consistent":
+    if mass_kind == "consistent":
         f, n = mesh.faces, mesh.n_vertices
         weight = mesh.face_areas * conformal_factor(mesh, alpha, floor=floor, where="face")
         local = np.array([[2, 1, 1], [1, 2, 1], [1, 1, 2]], dtype=np.float64).ravel() / 12.0

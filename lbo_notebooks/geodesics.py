@@ -24,7 +24,8 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import Mesh, MeshError
+from ._deprecation import renamed
+from .mesh import Mesh, MeshError, per_mesh
 
 __all__ = [
     "GeodesicSolver",
@@ -33,6 +34,9 @@ __all__ = [
     "METHODS",
     "check_connected",
     "distance_matrix_bytes",
+    "check_method",
+    "check_memory",
+    "geodesic_solver",
 ]
 
 GeodesicMethod = Literal["heat", "exact", "fmm"]
@@ -67,7 +71,8 @@ def distance_matrix_bytes(rows: int, cols: int) -> int:
     return 8 * int(rows) * int(cols)
 
 
-def _check_method(method: Any) -> str:
+def check_method(method: Any) -> str:
+    """``method`` checked to be one of :data:`METHODS` (a ``ValueError`` naming them otherwise)."""
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}.")
     return str(method)
@@ -134,7 +139,7 @@ class GeodesicSolver:
 
     def __init__(self, mesh: Mesh, method: GeodesicMethod = "heat", *, heat_time: float = 1.0) -> None:
         check_connected(mesh)
-        self.method = _check_method(method)
+        self.method = check_method(method)
         if not (np.isscalar(heat_time) and np.isfinite(heat_time) and heat_time > 0):
             raise ValueError(f"heat_time must be a positive number (a multiple of h^2), got {heat_time!r}.")
         self.mesh = mesh
@@ -204,7 +209,7 @@ class GeodesicSolver:
         """
         src = _check_sources(sources, self.n_vertices)
         need = distance_matrix_bytes(src.size, self.n_vertices)
-        _check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
+        check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
         out = np.empty((src.size, self.n_vertices), dtype=np.float64)
         for i, s in enumerate(_progress(src, src.size, progress, f"geodesics ({self.method})")):
             out[i] = self.distance(int(s))
@@ -218,7 +223,11 @@ def available_memory() -> int:
     return int(psutil.virtual_memory().available)
 
 
-def _check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
+def check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
+    """Raise ``MemoryError`` naming ``what`` and ``hint`` when ``need`` bytes exceed ``budget``.
+
+    ``budget=None`` means half of the memory available now.
+    """
     if budget is None:
         budget = 0.5 * available_memory()
         where = "half of the memory available now"
@@ -233,12 +242,17 @@ def _check_memory(need: int, budget: float | None, what: str, hint: str = "use f
         )
 
 
-def _solver(mesh: Mesh, method: str) -> GeodesicSolver:
+def geodesic_solver(mesh: Mesh, method: str) -> GeodesicSolver:
     """The solver of ``mesh`` for ``method``, built once and cached on the mesh."""
-    method = _check_method(method)
+    method = check_method(method)
     if not isinstance(mesh, Mesh):
         raise ValueError(f"expected a Mesh, got {type(mesh).__name__}.")
-    return mesh.cached(f"geodesic_solver_{method}", lambda m: GeodesicSolver(m, method))
+    return _solver(mesh, method)
+
+
+@per_mesh
+def _solver(mesh: Mesh, method: str) -> GeodesicSolver:
+    return GeodesicSolver(mesh, method)
 
 
 def geodesic_distances(
@@ -280,15 +294,16 @@ def geodesic_distances(
     >>> bool(abs(d.max() - np.pi) < 0.02)   # the antipode is half a great circle away
     True
     """
-    return _solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
+    return geodesic_solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
 
 
+@renamed({"count": "k"}, keyword_only=("start", "method"), n_positional=2)
 def farthest_point_sampling(
     mesh: Mesh,
-    count: int,
+    k: int,
+    *,
     start: int = 0,
     method: GeodesicMethod = "heat",
-    *,
     return_distances: bool = False,
     progress: bool | None = None,
 ) -> NDArray[np.int64] | tuple[NDArray[np.int64], NDArray[np.float64]]:
@@ -297,28 +312,28 @@ def farthest_point_sampling(
     Starting from ``start``, each new sample is the vertex farthest (in geodesic distance) from
     all samples chosen so far. The samples cover the surface evenly (a 2-approximation of the
     best covering radius). The result is *nested*: the first ``c`` samples of a run with
-    ``count > c`` are exactly the samples of a run with ``count = c``.
+    ``k > c`` are exactly the samples of a run with ``k = c``.
 
     Parameters
     ----------
     mesh : Mesh
         A connected mesh.
-    count : int
-        Number of samples, ``1 <= count <= n_vertices``.
+    k : int
+        Number of samples, ``1 <= k <= n_vertices``.
     start : int, default 0
         The first sample.
     method : {"heat", "exact", "fmm"}
         Geodesic method (see :func:`geodesic_distances`).
     return_distances : bool, default False
-        Also return the distance fields of the samples, shape (count, n), which sampling computes
+        Also return the distance fields of the samples, shape (k, n), which sampling computes
         anyway (spectral and landmark MDS reuse them).
     progress : bool, optional
         tqdm progress bar; by default shown only for at least 500 samples.
 
     Returns
     -------
-    samples : ndarray of int, shape (count,)
-    distances : ndarray, shape (count, n)
+    samples : ndarray of int, shape (k,)
+    distances : ndarray, shape (k, n)
         Only with ``return_distances=True``: ``distances[i]`` is the field of ``samples[i]``.
 
     Examples
@@ -329,21 +344,21 @@ def farthest_point_sampling(
     >>> int(s[0]), bool(np.linalg.norm(sphere.vertices[s].sum(axis=0)) < 1e-9)  # antipodes
     (0, True)
     """
-    solver = _solver(mesh, method)
+    solver = geodesic_solver(mesh, method)
     n = mesh.n_vertices
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= n:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
         raise ValueError(
-            f"count must be an integer between 1 and the number of vertices ({n}), got {count!r}; "
+            f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}; "
             "you cannot pick more samples than the mesh has vertices."
         )
     start = int(_check_sources(start, n)[0])
-    count = int(count)
-    _check_memory(distance_matrix_bytes(count, n), None, f"{count} distance fields on {n} vertices")
-    samples = np.empty(count, dtype=np.int64)
-    fields = np.empty((count, n), dtype=np.float64)
+    k = int(k)
+    check_memory(distance_matrix_bytes(k, n), None, f"{k} distance fields on {n} vertices")
+    samples = np.empty(k, dtype=np.int64)
+    fields = np.empty((k, n), dtype=np.float64)
     nearest = np.full(n, np.inf)
     current = start
-    for i in _progress(range(count), count, progress, f"farthest-point sampling ({method})"):
+    for i in _progress(range(k), k, progress, f"farthest-point sampling ({method})"):
         samples[i] = current
         fields[i] = solver.distance(current)
         np.minimum(nearest, fields[i], out=nearest)

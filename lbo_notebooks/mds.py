@@ -9,7 +9,7 @@ the same shape then get (nearly) the same canonical form, up to a rigid motion.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
 * :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
-  span of the first ``n_eigs`` Laplace–Beltrami eigenfunctions from q sampled rows, and the
+  span of the first ``k`` Laplace–Beltrami eigenfunctions from q sampled rows, and the
   scaling is done in that k x k space. O(n k^2) time, O(n k) memory; never forms an n x n matrix.
 
 Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
@@ -26,15 +26,17 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import renamed
 from .geodesics import (
     GeodesicMethod,
-    _check_memory,
-    _check_method,
-    _solver,
     check_connected,
+    check_memory,
+    check_method,
     distance_matrix_bytes,
     farthest_point_sampling,
+    geodesic_solver,
 )
+from .inner_product import fix_signs, start_vector, use_dense
 from .mesh import Mesh
 from .spectrum import Spectrum, eigenbasis
 
@@ -48,9 +50,9 @@ __all__ = [
     "SMDS_DEFAULTS",
 ]
 
-#: Defaults of :func:`spectral_mds`. MATH.md section 4: on 3-5k-vertex meshes about 150
+#: Defaults of :func:`spectral_mds`. docs/maths.md, "Multidimensional scaling": on 3-5k-vertex meshes about 150
 #: eigenfunctions and 300 samples were needed for a Gram error under 2%; mu is dimensionless.
-SMDS_DEFAULTS: dict[str, float] = {"n_samples": 300, "n_eigs": 150, "mu": 0.05}
+SMDS_DEFAULTS: dict[str, float] = {"n_samples": 300, "k": 150, "mu": 0.05}
 
 
 # --- small helpers ----------------------------------------------------------------------------
@@ -60,14 +62,6 @@ def _check_dim(dim: Any, limit: int, what: str) -> int:
     if dim >= limit:
         raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
     return int(dim)
-
-
-def _fix_signs(X: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Make the entry of largest magnitude of each column positive (deterministic output)."""
-    if X.size == 0:
-        return X
-    peak = X[np.argmax(np.abs(X), axis=0), np.arange(X.shape[1])]
-    return X * np.where(peak < 0, -1.0, 1.0)
 
 
 def _as_embedding(Z: ArrayLike, name: str) -> NDArray[np.float64]:
@@ -144,11 +138,10 @@ def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
 def _top_eigs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Largest ``dim`` eigenpairs of a symmetric matrix, descending."""
     n = B.shape[0]
-    if n <= 400 or dim + 1 >= n // 2:
+    if use_dense(n) or dim + 1 >= n // 2:
         vals, vecs = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
     else:
-        v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))  # deterministic Lanczos start
-        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=v0)
+        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=start_vector(n))
     order = np.argsort(vals)[::-1]
     return vals[order], vecs[:, order]
 
@@ -186,7 +179,7 @@ def classical_mds(
     Returns
     -------
     ndarray, shape (n, dim)
-        Centred; column signs fixed (largest entry positive).
+        Centred; column signs fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
     Examples
     --------
@@ -201,10 +194,10 @@ def classical_mds(
         check_connected(mesh, "classical MDS on geodesic distances")
         n = mesh.n_vertices
         _check_dim(dim, n, "the number of vertices")
-        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+        check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
                       "simplify the mesh (fewer vertices)")
-        D2 = _solver(mesh, _check_method(method)).distances(
+        D2 = geodesic_solver(mesh, check_method(method)).distances(
             np.arange(n), progress=progress, memory_budget=float("inf")
         )
         np.square(D2, out=D2)  # our own buffer: square in place
@@ -218,7 +211,7 @@ def classical_mds(
             raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
         if np.any(D < 0):
             raise ValueError("distances must be non-negative.")
-        _check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
+        check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} points (two more {n} x {n} float64 matrices)",
                       "use fewer points")
         D2 = np.square(D)  # a new buffer: the caller's matrix is never modified
@@ -234,7 +227,7 @@ def classical_mds(
     vals, vecs = _top_eigs(B, dim)
     del B
     X = vecs * np.sqrt(np.maximum(vals, 0.0))
-    return _fix_signs(X - X.mean(axis=0))
+    return fix_signs(X - X.mean(axis=0))
 
 
 # --- landmark MDS -----------------------------------------------------------------------------
@@ -327,12 +320,12 @@ def landmark_mds(
         )
     pinv = vecs / np.sqrt(vals)  # (q, dim): columns of L^#.T
     X = -0.5 * (sq - mean_col[:, None]).T @ pinv
-    return _fix_signs(X - X.mean(axis=0))
+    return fix_signs(X - X.mean(axis=0))
 
 
 # --- spectral MDS -----------------------------------------------------------------------------
 def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64]) -> float:
-    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (MATH.md section 4).
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (docs/maths.md, "Multidimensional scaling").
 
     ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and ``lam`` with 1/length^2;
     dividing them out makes ``mu`` dimensionless, so one default works for any shape, size,
@@ -342,14 +335,15 @@ def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.floa
     return float(mu) * top / float(eigenvalues[-1])
 
 
+@renamed({"n_eigs": "k"}, keyword_only=("n_samples", "k", "mu", "method"), n_positional=2)
 def spectral_mds(
     mesh: Mesh,
     dim: int = 3,
+    *,
     n_samples: int = 300,
-    n_eigs: int = 150,
+    k: int = 150,
     mu: float = 0.05,
     method: GeodesicMethod = "heat",
-    *,
     spectrum: Spectrum | None = None,
     sampling: tuple[ArrayLike, ArrayLike] | None = None,
     progress: bool | None = None,
@@ -357,7 +351,7 @@ def spectral_mds(
 ) -> NDArray[np.float64] | tuple[NDArray[np.float64], dict[str, Any]]:
     """Spectral MDS (Aflalo & Kimmel 2013): canonical form from q sampled distance rows.
 
-    1. ``Phi`` (n x k), ``Lam``: the first k = ``n_eigs`` LBO eigenpairs; q farthest-point samples;
+    1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples;
     2. ``D_s``: squared geodesic distances among the samples (q x q, symmetrised); ``Phi_s`` the
        rows of Phi at the samples;
     3. ``M = (Phi_s.T Phi_s + mu_abs Lam)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
@@ -372,20 +366,20 @@ def spectral_mds(
     mesh : Mesh
         A connected mesh.
     dim : int, default 3
-        Embedding dimension, ``dim < n_eigs``.
+        Embedding dimension, ``dim < k``.
     n_samples : int, default 300
         Number of farthest-point samples q, ``2 <= q <= n``.
-    n_eigs : int, default 150
+    k : int, default 150
         Number of LBO eigenfunctions k. Accuracy depends on it far more than on mu.
     mu : float, default 0.05
         Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
     method : {"heat", "exact", "fmm"}
         Geodesic method for the sample distances (passed to the geodesic solver).
     spectrum : Spectrum, optional
-        A precomputed eigenbasis of ``mesh`` with at least ``n_eigs`` pairs (its first ``n_eigs``
+        A precomputed eigenbasis of ``mesh`` with at least ``k`` pairs (its first ``k``
         are used). Lets a parameter sweep pay for the eigenbasis once.
     sampling : (samples, distances), optional
-        A precomputed ``farthest_point_sampling(mesh, count, method=..., return_distances=True)``
+        A precomputed ``farthest_point_sampling(mesh, k, method=..., return_distances=True)``
         with ``count >= n_samples``; its first ``n_samples`` are used (sampling is nested).
     progress : bool, optional
         Progress bar for the sampling.
@@ -403,34 +397,34 @@ def spectral_mds(
     --------
     >>> from lbo_notebooks import shapes
     >>> m = shapes.ellipsoid(subdivisions=3)
-    >>> X = spectral_mds(m, n_samples=100, n_eigs=40)
+    >>> X = spectral_mds(m, n_samples=100, k=40)
     >>> X.shape
     (642, 3)
     """
     t0 = time.perf_counter()
     check_connected(mesh, "spectral MDS")
     n = mesh.n_vertices
-    method = _check_method(method)
-    if isinstance(n_eigs, bool) or not isinstance(n_eigs, (int, np.integer)) or not 2 <= n_eigs <= n:
-        raise ValueError(f"n_eigs must be an integer between 2 and the number of vertices ({n}), got {n_eigs!r}.")
-    n_eigs = int(n_eigs)
-    dim = _check_dim(dim, n_eigs, "n_eigs (the embedding lives in the span of the eigenfunctions)")
+    method = check_method(method)
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= n:
+        raise ValueError(f"k must be an integer between 2 and the number of vertices ({n}), got {k!r}.")
+    k = int(k)
+    dim = _check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
     q = _check_samples(n_samples, n)
     if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
 
     # 1. eigenbasis
     if spectrum is None:
-        spectrum = eigenbasis(mesh, n_eigs)
+        spectrum = eigenbasis(mesh, k)
     elif not isinstance(spectrum, Spectrum):
         raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
-    elif spectrum.n_vertices != n or spectrum.k < n_eigs:
+    elif spectrum.n_vertices != n or spectrum.k < k:
         raise ValueError(
             f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
-            f"n_eigs={n_eigs} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {n_eigs})."
+            f"k={k} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {k})."
         )
-    phi = spectrum.vectors[:, :n_eigs]
-    lam = np.maximum(spectrum.values[:n_eigs], 0.0)
+    phi = spectrum.vectors[:, :k]
+    lam = np.maximum(spectrum.values[:k], 0.0)
     t1 = time.perf_counter()
 
     # 2. samples and their squared distances
@@ -440,8 +434,8 @@ def spectral_mds(
         samples, fields = (np.asarray(a) for a in sampling)
         if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
             raise ValueError(
-                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
-                f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
+                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, k >= {q}, "
+                f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
             )
         samples, fields = samples[:q].astype(np.int64), fields[:q]
     ds = fields[:, samples] ** 2
@@ -461,7 +455,7 @@ def spectral_mds(
     G, U = np.linalg.eigh(0.5 * (small + small.T))
     G, U = G[::-1], U[:, ::-1]
     X = Q @ (U[:, :dim] * np.sqrt(np.maximum(G[:dim], 0.0)))
-    X = _fix_signs(X - X.mean(axis=0))
+    X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
         return X

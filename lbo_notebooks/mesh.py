@@ -7,13 +7,16 @@ caches derived geometry (edges, areas, components) on first use. Every check tha
 
 from __future__ import annotations
 
+import functools
 import hashlib
-from typing import Any
+from typing import Any, Callable, Hashable, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows"]
+__all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows", "per_mesh"]
+
+T = TypeVar("T")
 
 # A face is degenerate when its area is below this fraction of the squared bounding-box diagonal.
 DEGENERATE_AREA_TOL = 1e-14
@@ -141,11 +144,11 @@ class Mesh:
         _check_degenerate(new)
         return new
 
-    def cached(self, key: str, compute: Any) -> Any:
+    def cached(self, key: Hashable, compute: Callable[["Mesh"], T]) -> T:
         """Return ``compute(self)`` computed once per mesh and stored under ``key``.
 
-        Derived quantities (operators, curvature, ...) are cached this way so that a mesh used
-        several times pays for them once. Callers must not modify what they get back.
+        Prefer the :func:`per_mesh` decorator, which builds the key from the function and its
+        arguments. Callers must not modify what they get back.
         """
         cache = self._cache
         if key not in cache:
@@ -156,12 +159,12 @@ class Mesh:
     @property
     def edges(self) -> NDArray[np.int64]:
         """Unique undirected edges, shape (e, 2), each row sorted ascending."""
-        return self.cached("edge_table", _edge_table)[0]
+        return _edge_table(self)[0]
 
     @property
     def edge_face_counts(self) -> NDArray[np.int64]:
         """How many faces use each edge of :attr:`edges` (1 on the boundary, 2 inside)."""
-        return self.cached("edge_table", _edge_table)[1]
+        return _edge_table(self)[1]
 
     @property
     def boundary_edges(self) -> NDArray[np.int64]:
@@ -176,15 +179,12 @@ class Mesh:
     @property
     def face_areas(self) -> NDArray[np.float64]:
         """Area of each triangle, shape (m,)."""
-        return self.cached("face_areas", lambda m: 0.5 * np.linalg.norm(_face_cross(m), axis=1))
+        return _face_areas(self)
 
     @property
     def face_normals(self) -> NDArray[np.float64]:
         """Unit normal of each triangle (right-hand rule), shape (m, 3)."""
-        def compute(m: Mesh) -> NDArray[np.float64]:
-            c = _face_cross(m)
-            return c / np.linalg.norm(c, axis=1, keepdims=True)
-        return self.cached("face_normals", compute)
+        return _face_normals(self)
 
     @property
     def area(self) -> float:
@@ -216,7 +216,7 @@ class Mesh:
     @property
     def component_labels(self) -> NDArray[np.int64]:
         """Connected-component label of each vertex, 0-based, ordered by first vertex."""
-        return self.cached("component_labels", _component_labels)
+        return _component_labels(self)
 
     @property
     def n_components(self) -> int:
@@ -235,11 +235,7 @@ class Mesh:
         return np.array_equal(self._vertices, other._vertices) and np.array_equal(self._faces, other._faces)
 
     def __hash__(self) -> int:
-        def compute(m: Mesh) -> int:
-            h = hashlib.sha1(m._vertices.tobytes())
-            h.update(m._faces.tobytes())
-            return int.from_bytes(h.digest()[:8], "little")
-        return self.cached("hash", compute)
+        return _hash(self)
 
     def __repr__(self) -> str:
         return (
@@ -259,6 +255,33 @@ class Mesh:
         )
 
 
+# --- the per-mesh cache ------------------------------------------------------------------------------
+def per_mesh(function: Callable[..., T]) -> Callable[..., T]:
+    """Decorator: compute ``function(mesh, *args)`` once per mesh and arguments, cached on the mesh.
+
+    The cache key is the function itself plus the (hashable) positional arguments, so no module
+    writes string keys and two functions can never collide. A :class:`Mesh` is immutable, so the
+    cache can never go stale; what the function returns must be treated as read-only.
+
+    Examples
+    --------
+    >>> calls = []
+    >>> @per_mesh
+    ... def n_edges(mesh):
+    ...     calls.append(1)
+    ...     return len(mesh.edges)
+    >>> m = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> n_edges(m), n_edges(m), len(calls)
+    (3, 3, 1)
+    """
+
+    @functools.wraps(function)
+    def wrapper(mesh: Mesh, *args: Hashable) -> T:
+        return mesh.cached((wrapper, args), lambda m: function(m, *args))
+
+    return wrapper
+
+
 # --- helpers ------------------------------------------------------------------------------------
 def _face_cross(m: Mesh) -> NDArray[np.float64]:
     v, f = m.vertices, m.faces
@@ -274,6 +297,25 @@ def _pair_keys(pairs: NDArray[np.int64], n: int) -> NDArray[np.int64]:
     return pairs[:, 0] * np.int64(n) + pairs[:, 1]
 
 
+@per_mesh
+def _face_areas(m: Mesh) -> NDArray[np.float64]:
+    return _readonly(0.5 * np.linalg.norm(_face_cross(m), axis=1))
+
+
+@per_mesh
+def _face_normals(m: Mesh) -> NDArray[np.float64]:
+    c = _face_cross(m)
+    return _readonly(c / np.linalg.norm(c, axis=1, keepdims=True))
+
+
+@per_mesh
+def _hash(m: Mesh) -> int:
+    h = hashlib.sha1(m.vertices.tobytes())
+    h.update(m.faces.tobytes())
+    return int.from_bytes(h.digest()[:8], "little")
+
+
+@per_mesh
 def _edge_table(m: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
     n = m.n_vertices
     e = np.sort(_directed_edges(m.faces), axis=1)
@@ -282,6 +324,7 @@ def _edge_table(m: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
     return _readonly(edges.astype(np.int64)), _readonly(counts.astype(np.int64))
 
 
+@per_mesh
 def _component_labels(m: Mesh) -> NDArray[np.int64]:
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components

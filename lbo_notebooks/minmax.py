@@ -1,6 +1,6 @@
 """The min–max (Courant–Fischer) principle for ``W phi = lam A phi``, made computable.
 
-Discrete Courant–Fischer (MATH.md section 2)::
+Discrete Courant–Fischer (docs/maths.md, "Min–max")::
 
     lam[n] = max over subspaces L of codimension n of  min over f in L of (f W f) / (f A f)
 
@@ -26,8 +26,17 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .optimality import _check_functions, _check_symmetric, a_orthonormalize
-from .spectrum import Spectrum, check_operators
+from ._deprecation import moved, renamed
+from .inner_product import (
+    a_orthonormalize,
+    check_functions,
+    check_operators,
+    default_shift,
+    fix_signs,
+    start_vector,
+    use_dense,
+)
+from .spectrum import Spectrum
 
 __all__ = [
     "rayleigh_quotient",
@@ -35,25 +44,21 @@ __all__ = [
     "ConstrainedRayleigh",
     "random_subspace",
     "optimal_subspace",
+    "complement_ratio",
     "plane_normal",
-    "rayleigh_sphere_figure",
-    "plane_slider",
+    "plane_circle",
+    "symmetric_3x3",
 ]
 
-# Below this many vertices min_rayleigh_quotient(method="auto") uses dense linear algebra.
-DENSE_LIMIT = 400
-
 Method = Literal["auto", "dense", "sparse"]
+
+# Below this many free dimensions (n minus the codimension) Lanczos has no room: solve densely.
+_LANCZOS_ROOM = 50
 
 
 def _operators(stiffness: ArrayLike | sp.spmatrix, mass: ArrayLike | sp.spmatrix) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """Accept sparse or dense (e.g. a 3 x 3 example) operators; validate them."""
-    W = stiffness if sp.issparse(stiffness) else sp.csr_matrix(np.asarray(stiffness, dtype=np.float64))
-    A = mass if sp.issparse(mass) else sp.csr_matrix(np.asarray(mass, dtype=np.float64))
-    W, A = check_operators(W, A)
-    _check_symmetric(W, "stiffness")
-    _check_symmetric(A, "mass")
-    return W, A
+    return check_operators(stiffness, mass, allow_dense=True)
 
 
 def rayleigh_quotient(
@@ -70,7 +75,7 @@ def rayleigh_quotient(
     True
     """
     W, A = _operators(stiffness, mass)
-    arr = _check_functions(f, W.shape[0])
+    arr = check_functions(f, W.shape[0])
     den = np.einsum("i...,i...->...", arr, A @ arr)
     if np.any(den <= 0):
         raise ValueError("f (or one of its columns) is zero: the Rayleigh quotient is undefined.")
@@ -103,6 +108,14 @@ def _min_dense(W: sp.csr_matrix, A: sp.csr_matrix, Q: NDArray[np.float64]) -> tu
     return float(values[0]), Z @ vectors[:, 0]
 
 
+def _result(
+    value: float, f: NDArray[np.float64], A: sp.csr_matrix, return_vector: bool
+) -> float | tuple[float, NDArray[np.float64]]:
+    if not return_vector:
+        return value
+    return value, fix_signs(f / np.sqrt(float(f @ (A @ f))), A)
+
+
 class ConstrainedRayleigh:
     """Reusable solver for :func:`min_rayleigh_quotient` on one ``(W, A)`` pair, many subspaces.
 
@@ -123,8 +136,7 @@ class ConstrainedRayleigh:
 
     def __init__(self, stiffness: ArrayLike | sp.spmatrix, mass: ArrayLike | sp.spmatrix) -> None:
         self.stiffness, self.mass = _operators(stiffness, mass)
-        # Small against the first nonzero eigenvalue (~4 pi / area) at every scale.
-        self.shift = 1e-2 * 4.0 * np.pi / float(self.mass.sum())
+        self.shift = default_shift(self.mass)
         self._lu = spla.splu((self.stiffness + self.shift * self.mass).tocsc(), permc_spec="MMD_AT_PLUS_A")
 
     def minimum(
@@ -134,14 +146,11 @@ class ConstrainedRayleigh:
         W, A = self.stiffness, self.mass
         Q = _constraint_basis(orthogonal_to, A)
         n = W.shape[0]
-        if n - Q.shape[1] < 50:  # too small a subspace for Lanczos
+        if n - Q.shape[1] < _LANCZOS_ROOM:
             value, f = _min_dense(W, A, Q)
         else:
             value, f = self._min_sparse(Q)
-        if not return_vector:
-            return value
-        f = f / np.sqrt(float(f @ (A @ f)))
-        return value, f if f[np.argmax(np.abs(f))] >= 0 else -f
+        return _result(value, f, A, return_vector)
 
     def _min_sparse(self, Q: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
         W, A, lu = self.stiffness, self.mass, self._lu
@@ -160,9 +169,8 @@ class ConstrainedRayleigh:
                 return lu.solve(np.ravel(b))
 
         op = spla.LinearOperator((n, n), matvec=solve, dtype=np.float64)
-        # A fixed start vector (in the subspace) makes ARPACK deterministic.
-        v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
-        v0 -= Q @ (AQ.T @ v0)
+        v0 = start_vector(n)
+        v0 -= Q @ (AQ.T @ v0)  # the start vector must lie in the subspace
         values, vectors = spla.eigsh(
             W, k=1, M=A, sigma=-self.shift, OPinv=op, which="LM", v0=v0, tol=0.0, ncv=min(n - 1, 20)
         )
@@ -201,9 +209,9 @@ def min_rayleigh_quotient(
         ``"dense"``: a basis of L by SVD and ``scipy.linalg.eigh`` (small n); ``"sparse"``:
         shift-invert Lanczos on the constrained problem, one sparse LU of ``W + s A`` and ``codim``
         extra solves (no dense n x n matrix; see :class:`ConstrainedRayleigh`, which reuses the
-        factorisation across many subspaces). ``"auto"`` picks dense below ``DENSE_LIMIT``.
+        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
     return_vector : bool
-        Also return the minimiser, A-normalised with its largest entry positive.
+        Also return the minimiser, A-normalised, sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
     Returns
     -------
@@ -218,28 +226,24 @@ def min_rayleigh_quotient(
     >>> round(min_rayleigh_quotient(M, np.eye(3), orthogonal_to=[1.0, 1.0, 0.0]), 6)  # any other: less
     1.5
     """
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
     W, A = _operators(stiffness, mass)
-    if method == "dense" or (method == "auto" and W.shape[0] <= DENSE_LIMIT):
+    if use_dense(W.shape[0], method):
         value, f = _min_dense(W, A, _constraint_basis(orthogonal_to, A))
-        if not return_vector:
-            return value
-        f = f / np.sqrt(float(f @ (A @ f)))
-        return value, f if f[np.argmax(np.abs(f))] >= 0 else -f
+        return _result(value, f, A, return_vector)
     return ConstrainedRayleigh(W, A).minimum(orthogonal_to, return_vector=return_vector)
 
 
+@renamed({"codim": "k"})
 def random_subspace(
-    n_vertices: int, codim: int, *, seed: int = 0, pool: ArrayLike | None = None
+    n_vertices: int, k: int, *, seed: int = 0, pool: ArrayLike | None = None
 ) -> NDArray[np.float64]:
-    """Constraints of a random codimension-``codim`` subspace (for :func:`min_rayleigh_quotient`).
+    """Constraints of a random codimension-``k`` subspace (for :func:`min_rayleigh_quotient`).
 
     Parameters
     ----------
     n_vertices : int
-    codim : int
-        Codimension n (number of constraint vectors), ``0 <= codim < n_vertices``.
+    k : int
+        Codimension (number of constraint vectors), ``0 <= k < n_vertices``.
     seed : int
         Seed for ``numpy.random.default_rng``.
     pool : array (n_vertices, m), optional
@@ -249,7 +253,7 @@ def random_subspace(
 
     Returns
     -------
-    ndarray (n_vertices, codim): the subspace is ``{f : C.T @ A @ f = 0}``.
+    ndarray (n_vertices, k): the subspace is ``{f : C.T @ A @ f = 0}``.
 
     Examples
     --------
@@ -258,23 +262,24 @@ def random_subspace(
     """
     if isinstance(n_vertices, bool) or not isinstance(n_vertices, (int, np.integer)) or n_vertices < 1:
         raise ValueError(f"n_vertices must be a positive integer, got {n_vertices!r}.")
-    if isinstance(codim, bool) or not isinstance(codim, (int, np.integer)) or not 0 <= codim < n_vertices:
-        raise ValueError(f"codim must be an integer in 0..{n_vertices - 1}, got {codim!r}.")
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < n_vertices:
+        raise ValueError(f"k must be an integer in 0..{n_vertices - 1}, got {k!r}.")
     rng = np.random.default_rng(seed)
     if pool is None:
-        return rng.normal(size=(int(n_vertices), int(codim)))
+        return rng.normal(size=(int(n_vertices), int(k)))
     P = np.asarray(pool, dtype=np.float64)
     if P.ndim != 2 or P.shape[0] != n_vertices or not np.all(np.isfinite(P)):
         raise ValueError(f"pool must be a finite array of shape ({n_vertices}, m), got {P.shape}.")
-    if P.shape[1] < codim:
-        raise ValueError(f"pool has {P.shape[1]} columns; it needs at least codim = {codim} to span a codim-{codim} constraint set.")
-    return P @ rng.normal(size=(P.shape[1], int(codim)))
+    if P.shape[1] < k:
+        raise ValueError(f"pool has {P.shape[1]} columns; it needs at least k = {k} to span a codimension-{k} constraint set.")
+    return P @ rng.normal(size=(P.shape[1], int(k)))
 
 
-def optimal_subspace(spectrum: Spectrum, n: int) -> NDArray[np.float64]:
-    """Constraints of the optimal codimension-n subspace: the first n eigenvectors.
+@renamed({"n": "k"})
+def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
+    """Constraints of the optimal codimension-k subspace: the first k eigenvectors.
 
-    Its minimum Rayleigh quotient is ``lam[n]``, attained at ``phi_n`` (Courant–Fischer).
+    Its minimum Rayleigh quotient is ``lam[k]``, attained at ``phi_k`` (Courant–Fischer).
 
     Examples
     --------
@@ -286,9 +291,9 @@ def optimal_subspace(spectrum: Spectrum, n: int) -> NDArray[np.float64]:
     """
     if not isinstance(spectrum, Spectrum):
         raise ValueError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}.")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 0 <= n < spectrum.k:
-        raise ValueError(f"n must be an integer with 0 <= n < k = {spectrum.k} (lam[n] must be known), got {n!r}.")
-    return np.array(spectrum.vectors[:, : int(n)])
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < spectrum.k:
+        raise ValueError(f"k must be an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known), got {k!r}.")
+    return np.array(spectrum.vectors[:, : int(k)])
 
 
 # --- the 3 x 3 picture -----------------------------------------------------------------------------
@@ -305,52 +310,40 @@ def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
     >>> plane_normal(np.diag([1.0, 2.0, 4.0]), 0.0).round(12).tolist()
     [1.0, 0.0, 0.0]
     """
-    M = _check_3x3(matrix)
+    M = symmetric_3x3(matrix)
     _, vec = np.linalg.eigh(M)
-    vec = vec * np.where(vec[np.argmax(np.abs(vec), axis=0), range(3)] < 0, -1.0, 1.0)  # deterministic signs
+    vec = fix_signs(vec)
     t = np.deg2rad(float(angle))
     return np.cos(t) * vec[:, 0] + np.sin(t) * (vec[:, 1] + vec[:, 2]) / np.sqrt(2.0)
 
 
-def _check_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
+def symmetric_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
+    """``matrix`` as a float array, checked to be a finite symmetric 3 x 3 matrix.
+
+    Examples
+    --------
+    >>> symmetric_3x3(np.eye(3)).shape
+    (3, 3)
+    """
     M = np.asarray(matrix, dtype=np.float64)
     if M.shape != (3, 3) or not np.all(np.isfinite(M)) or not np.allclose(M, M.T):
         raise ValueError(f"matrix must be a finite symmetric 3 x 3 array, got shape {M.shape}.")
     return M
 
 
-def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *, resolution: int = 60) -> Any:
-    """Plotly figure: the unit sphere coloured by ``x.T M x``, with a plane's great circle.
+def plane_circle(matrix: ArrayLike, normal: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """The plane ``{x : normal . x = 0}`` on the unit sphere and its Rayleigh-quotient minimum.
 
-    The circle is the plane ``{x : normal . x = 0}`` on the sphere, and the marker its minimiser.
+    Returns the great circle (200 points), the minimiser (just off the sphere, for drawing) and
+    the minimum value of ``x.T M x`` on the circle.
 
     Examples
     --------
-    >>> fig = rayleigh_sphere_figure(np.diag([1.0, 2.0, 4.0]), [1.0, 0.0, 0.0])
-    >>> [trace.type for trace in fig.data]
-    ['surface', 'scatter3d', 'scatter3d']
+    >>> circle, point, value = plane_circle(np.diag([1.0, 2.0, 4.0]), [1.0, 0.0, 0.0])
+    >>> circle.shape, round(value, 12)
+    ((200, 3), 2.0)
     """
-    import plotly.graph_objects as go
-
-    M = _check_3x3(matrix)
-    u, v = np.meshgrid(np.linspace(0, np.pi, resolution), np.linspace(0, 2 * np.pi, 2 * resolution))
-    X = np.stack([np.sin(u) * np.cos(v), np.sin(u) * np.sin(v), np.cos(u)], axis=-1)
-    R = np.einsum("...i,ij,...j->...", X, M, X)
-    fig = go.Figure(
-        go.Surface(x=X[..., 0], y=X[..., 1], z=X[..., 2], surfacecolor=R, colorscale="Viridis", opacity=0.9,
-                   colorbar=dict(title="x'Mx"))
-    )
-    if normal is not None:
-        circle, point, value = _plane_circle(M, normal)
-        fig.add_trace(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
-                                   line=dict(color="white", width=6), name="plane"))
-        fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
-                                   marker=dict(color="red", size=6), name=f"min on plane = {value:.3f}"))
-    fig.update_layout(height=450, margin=dict(l=0, r=0, t=30, b=0), scene=dict(aspectmode="data"))
-    return fig
-
-
-def _plane_circle(M: NDArray[np.float64], normal: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    M = symmetric_3x3(matrix)
     value, point = min_rayleigh_quotient(M, np.eye(3), orthogonal_to=normal, method="dense", return_vector=True)
     nrm = np.asarray(normal, dtype=np.float64) / np.linalg.norm(normal)
     e1 = point / np.linalg.norm(point)
@@ -359,48 +352,29 @@ def _plane_circle(M: NDArray[np.float64], normal: ArrayLike) -> tuple[NDArray[np
     return np.outer(np.cos(t), e1) + np.outer(np.sin(t), e2), 1.01 * e1, value
 
 
-class PlaneSlider:
-    """A :func:`rayleigh_sphere_figure` whose plane is rotated by an ipywidgets slider (degrees).
+def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
+    """The **trap**: ``sup over r A-orthogonal to V of ||r||_A^2 / (r @ W @ r)``.
 
-    ``widget`` is what to display (the notebook displays the object itself); ``figure`` and
-    ``slider`` are exposed so that code and tests can drive it. Build it with :func:`plane_slider`.
-    """
-
-    def __init__(self, matrix: ArrayLike, angles: Sequence[float]) -> None:
-        import ipywidgets as widgets
-        import plotly.graph_objects as go
-
-        self.matrix = _check_3x3(matrix)
-        self.lam = np.linalg.eigvalsh(self.matrix)
-        self._values = list(angles)
-        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, plane_normal(self.matrix, angles[0])))
-        self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
-                                              continuous_update=False)
-        self.slider.observe(lambda change: self.update(change["new"]), names="value")
-        self.widget = widgets.VBox([self.slider, self.figure])
-        self.update(angles[0])
-
-    def update(self, angle: float) -> None:
-        circle, point, value = _plane_circle(self.matrix, plane_normal(self.matrix, angle))
-        with self.figure.batch_update():
-            line, marker = self.figure.data[1], self.figure.data[2]
-            line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
-            marker.x, marker.y, marker.z = [point[0]], [point[1]], [point[2]]
-            marker.name = f"min on plane = {value:.3f}"
-            self.figure.layout.title = f"angle {angle:.0f} deg: min on the plane {value:.3f} <= lam_2 = {self.lam[1]:.3f}"
-
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
-
-        display(self.widget)
-
-
-def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181, 5))) -> PlaneSlider:
-    """Courant–Fischer in 3-D: rotate a plane and watch its minimum Rayleigh quotient.
+    This uses ``W`` itself on the complement of V instead of the Schur complement, i.e. it only
+    looks at functions with no component in V. It is ``1 / min_rayleigh_quotient(W, A,
+    orthogonal_to=basis)`` (Courant–Fischer's quantity), a *lower* bound on
+    :func:`~lbo_notebooks.optimality.worst_case_ratio`, and equal to it only when ``W`` maps V
+    into ``A V`` (e.g. V spanned by eigenvectors). Kept to show the difference; do not use it as
+    the worst-case constant.
 
     Examples
     --------
-    >>> w = plane_slider(np.diag([1.0, 2.0, 4.0]))
-    >>> w.slider.value = 45
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, eigenbasis, worst_case_ratio
+    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
+    >>> B = s.vectors[:, :10] + 0.05 * np.random.default_rng(0).normal(size=(162, 10))
+    >>> bool(complement_ratio(B, s.stiffness, s.mass) < worst_case_ratio(B, s.stiffness, s.mass))
+    True
     """
-    return PlaneSlider(matrix, angles)
+    return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
+
+
+# The 3-D figure and its slider moved to plotting (no plotly code in this module).
+__getattr__ = moved(
+    __name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")}
+)

@@ -1,6 +1,6 @@
 """Discrete Laplace–Beltrami operator: cotangent stiffness ``W`` and mass ``A`` (P1 elements).
 
-Conventions (see MATH.md section 1): ``W`` is positive semidefinite, ``W @ 1 = 0`` and
+Conventions (see docs/maths.md, "Operators"): ``W`` is positive semidefinite, ``W @ 1 = 0`` and
 ``f @ W @ f`` is the Dirichlet energy of the piecewise-linear function with vertex values ``f``.
 The eigenproblem is ``W phi = lam A phi``.
 """
@@ -13,12 +13,28 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .mesh import Mesh
+from ._deprecation import renamed
+from .mesh import Mesh, per_mesh
 
 __all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS"]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
 MASS_KINDS: tuple[str, ...] = ("voronoi", "barycentric", "consistent")
+
+
+@per_mesh
+def _face_cotangents(m: Mesh) -> NDArray[np.float64]:
+    v, f = m.vertices, m.faces
+    p = v[f]  # (m, 3, 3): corners
+    cot = np.empty(f.shape, dtype=np.float64)
+    double_area = 2.0 * m.face_areas
+    for k in range(3):
+        a = p[:, (k + 1) % 3] - p[:, k]
+        b = p[:, (k + 2) % 3] - p[:, k]
+        # cot = cos / sin = (a . b) / |a x b|
+        cot[:, k] = np.einsum("ij,ij->i", a, b) / double_area
+    cot.setflags(write=False)
+    return cot
 
 
 def face_cotangents(mesh: Mesh) -> NDArray[np.float64]:
@@ -31,21 +47,7 @@ def face_cotangents(mesh: Mesh) -> NDArray[np.float64]:
     >>> face_cotangents(m).round(12).tolist()
     [[0.0, 1.0, 1.0]]
     """
-
-    def compute(m: Mesh) -> NDArray[np.float64]:
-        v, f = m.vertices, m.faces
-        p = v[f]  # (m, 3, 3): corners
-        cot = np.empty(f.shape, dtype=np.float64)
-        double_area = 2.0 * m.face_areas
-        for k in range(3):
-            a = p[:, (k + 1) % 3] - p[:, k]
-            b = p[:, (k + 2) % 3] - p[:, k]
-            # cot = cos / sin = (a . b) / |a x b|
-            cot[:, k] = np.einsum("ij,ij->i", a, b) / double_area
-        cot.setflags(write=False)
-        return cot
-
-    return mesh.cached("face_cotangents", compute)
+    return _face_cotangents(mesh)
 
 
 def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
@@ -62,6 +64,22 @@ def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
     return np.arctan2(1.0, face_cotangents(mesh))
 
 
+@per_mesh
+def _stiffness(m: Mesh) -> sp.csr_matrix:
+    f, n = m.faces, m.n_vertices
+    cot = face_cotangents(m)
+    # The edge opposite corner k joins corners k+1 and k+2.
+    i = np.concatenate([f[:, 1], f[:, 2], f[:, 0]])
+    j = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])
+    w = -0.5 * np.concatenate([cot[:, 0], cot[:, 1], cot[:, 2]])
+    off = sp.coo_matrix((w, (i, j)), shape=(n, n))
+    off = (off + off.T).tocsr()
+    W = (off - sp.diags(np.asarray(off.sum(axis=1)).ravel())).tocsr()
+    W.sum_duplicates()
+    W.sort_indices()
+    return W
+
+
 def stiffness_matrix(mesh: Mesh) -> sp.csr_matrix:
     """Cotangent stiffness matrix ``W`` (n x n, CSR), positive semidefinite.
 
@@ -75,21 +93,7 @@ def stiffness_matrix(mesh: Mesh) -> sp.csr_matrix:
     >>> bool(abs(W @ np.ones(W.shape[0])).max() < 1e-12 * abs(W).max())
     True
     """
-    def compute(m: Mesh) -> sp.csr_matrix:
-        f, n = m.faces, m.n_vertices
-        cot = face_cotangents(m)
-        # The edge opposite corner k joins corners k+1 and k+2.
-        i = np.concatenate([f[:, 1], f[:, 2], f[:, 0]])
-        j = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])
-        w = -0.5 * np.concatenate([cot[:, 0], cot[:, 1], cot[:, 2]])
-        off = sp.coo_matrix((w, (i, j)), shape=(n, n))
-        off = (off + off.T).tocsr()
-        W = (off - sp.diags(np.asarray(off.sum(axis=1)).ravel())).tocsr()
-        W.sum_duplicates()
-        W.sort_indices()
-        return W
-
-    return mesh.cached("stiffness", compute).copy()
+    return _stiffness(mesh).copy()
 
 
 def _voronoi_corner_areas(mesh: Mesh) -> NDArray[np.float64]:
@@ -112,13 +116,35 @@ def _voronoi_corner_areas(mesh: Mesh) -> NDArray[np.float64]:
     return corner
 
 
-def mass_matrix(mesh: Mesh, kind: MassKind = "voronoi") -> sp.csr_matrix:
-    """Mass matrix ``A`` (n x n, CSR) of the given kind.
+@per_mesh
+def _mass(m: Mesh, mass_kind: str) -> sp.csr_matrix:
+    f, n = m.faces, m.n_vertices
+    if mass_kind == "consistent":
+        area = m.face_areas
+        rows = np.repeat(f, 3, axis=1).ravel()
+        cols = np.tile(f, (1, 3)).ravel()
+        local = np.array([[2, 1, 1], [1, 2, 1], [1, 1, 2]], dtype=np.float64).ravel() / 12.0
+        vals = (area[:, None] * local[None, :]).ravel()
+        A = sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
+        A.sum_duplicates()
+        A.sort_indices()
+        return A
+    if mass_kind == "barycentric":
+        corner = np.repeat(m.face_areas[:, None] / 3.0, 3, axis=1)
+    else:
+        corner = _voronoi_corner_areas(m)
+    diag = np.bincount(f.ravel(), weights=corner.ravel(), minlength=n)
+    return sp.diags(diag).tocsr()
+
+
+@renamed({"kind": "mass_kind"})
+def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
+    """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
 
     Parameters
     ----------
     mesh : Mesh
-    kind : {"voronoi", "barycentric", "consistent"}
+    mass_kind : {"voronoi", "barycentric", "consistent"}
         ``"voronoi"``: lumped mixed Voronoi areas (Meyer et al. 2003); ``"barycentric"``: lumped,
         a third of each incident triangle; ``"consistent"``: the full P1 Gram matrix
         ``|t|/12 [[2,1,1],[1,2,1],[1,1,2]]``. All three sum to the surface area.
@@ -130,26 +156,6 @@ def mass_matrix(mesh: Mesh, kind: MassKind = "voronoi") -> sp.csr_matrix:
     >>> float(mass_matrix(m).sum())
     2.0
     """
-    if kind not in MASS_KINDS:
-        raise ValueError(f"mass kind must be one of {MASS_KINDS}, got {kind!r}.")
-
-    def compute(m: Mesh) -> sp.csr_matrix:
-        f, n = m.faces, m.n_vertices
-        if kind == "consistent":
-            area = m.face_areas
-            rows = np.repeat(f, 3, axis=1).ravel()
-            cols = np.tile(f, (1, 3)).ravel()
-            local = np.array([[2, 1, 1], [1, 2, 1], [1, 1, 2]], dtype=np.float64).ravel() / 12.0
-            vals = (area[:, None] * local[None, :]).ravel()
-            A = sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
-            A.sum_duplicates()
-            A.sort_indices()
-            return A
-        if kind == "barycentric":
-            corner = np.repeat(m.face_areas[:, None] / 3.0, 3, axis=1)
-        else:
-            corner = _voronoi_corner_areas(m)
-        diag = np.bincount(f.ravel(), weights=corner.ravel(), minlength=n)
-        return sp.diags(diag).tocsr()
-
-    return mesh.cached(f"mass_{kind}", compute).copy()
+    if mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    return _mass(mesh, mass_kind).copy()

@@ -11,8 +11,8 @@ Dirichlet energy better than the first n eigenfunctions of the Laplace–Beltram
 
 The exact ``C(V)`` minimises the energy over the part of ``f`` that lies *in* ``V`` (a Schur
 complement). Using ``W`` itself on the A-orthogonal complement of ``V`` instead is a classic trap:
-it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See MATH.md
-section 2.
+it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See docs/maths.md,
+section "Optimality".
 """
 
 from __future__ import annotations
@@ -26,7 +26,10 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .spectrum import Spectrum, check_operators
+from ._deprecation import renamed
+from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
+from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
+from .spectrum import Spectrum
 
 __all__ = [
     "representation_error",
@@ -39,37 +42,16 @@ __all__ = [
     "witness_function",
 ]
 
-# Below this many vertices worst_case_ratio(method="auto") uses a dense generalized eigensolver.
-DENSE_LIMIT = 400
-
 Method = Literal["auto", "dense", "sparse"]
 
 
 # --- input checks ----------------------------------------------------------------------------
-def _check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[np.float64]:
-    arr = np.asarray(f, dtype=np.float64)
-    if arr.ndim not in (1, 2) or arr.shape[0] != n_vertices:
-        raise ValueError(
-            f"{name} must have shape ({n_vertices},) or ({n_vertices}, c): one value per vertex; "
-            f"got {arr.shape}."
-        )
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or inf; replace them before measuring errors.")
-    return arr
-
-
 def _check_spectrum(spectrum: Spectrum) -> Spectrum:
     if not isinstance(spectrum, Spectrum):
         raise ValueError(
             f"spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}."
         )
     return spectrum
-
-
-def _check_symmetric(M: sp.csr_matrix, name: str) -> None:
-    scale = abs(M).max() if M.nnz else 0.0
-    if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
-        raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
 
 
 def _check_basis(basis: ArrayLike, n_vertices: int) -> NDArray[np.float64]:
@@ -113,21 +95,22 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     """
     if not sp.issparse(stiffness) or stiffness.shape[0] != stiffness.shape[1]:
         raise ValueError("stiffness must be a square scipy.sparse matrix (see operators.stiffness_matrix).")
-    arr = _check_functions(f, stiffness.shape[0])
+    arr = check_functions(f, stiffness.shape[0])
     out = np.einsum("i...,i...->...", arr, stiffness @ arr)
     return float(out) if arr.ndim == 1 else np.asarray(out)
 
 
-def representation_error(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
-    """Squared A-norm error ``||f - Phi_n Phi_n.T A f||_A^2`` of the n-term eigen-expansion.
+@renamed({"n": "k"})
+def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
+    """Squared A-norm error ``||f - Phi_k Phi_k.T A f||_A^2`` of the k-term eigen-expansion.
 
     Parameters
     ----------
     spectrum : Spectrum
-        Eigenbasis with at least ``n`` eigenpairs.
+        Eigenbasis with at least ``k`` eigenpairs.
     f : array (n_vertices,) or (n_vertices, c)
-    n : int
-        Number of eigenfunctions kept, ``0 <= n <= spectrum.k``.
+    k : int
+        Number of eigenfunctions kept, ``0 <= k <= spectrum.k``.
 
     Returns
     -------
@@ -143,15 +126,16 @@ def representation_error(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np
     >>> round(representation_error(s, x, 4), 10)
     1.0
     """
-    err = _check_spectrum(spectrum).error(f, n)
+    err = _check_spectrum(spectrum).error(f, k)
     return err**2 if isinstance(err, float) else np.asarray(err) ** 2
 
 
-def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64] | float:
-    """The theorem's bound ``(f @ W @ f) / lam[n]`` on :func:`representation_error`.
+@renamed({"n": "k"})
+def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
+    """The theorem's bound ``(f @ W @ f) / lam[k]`` on :func:`representation_error`.
 
-    ``lam[n]`` is the first eigenvalue *not* in the expansion (the paper's lambda_{n+1}), so the
-    spectrum must hold ``k > n`` eigenpairs. ``n = 0`` is excluded: ``lam[0] = 0``, and without the
+    ``lam[k]`` is the first eigenvalue *not* in the expansion (the paper's lambda_{k+1}), so the
+    spectrum must hold more than ``k`` eigenpairs (``spectrum.k > k``). ``k = 0`` is excluded: ``lam[0] = 0``, and without the
     constant function no finite bound exists.
 
     Examples
@@ -163,132 +147,20 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, n: int) -> NDArray[np.float64]
     True
     """
     spectrum = _check_spectrum(spectrum)
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-        raise ValueError(f"n must be an integer number of eigenfunctions, got {n!r}.")
-    if not 1 <= n < spectrum.k:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+        raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+    if not 1 <= k < spectrum.k:
         raise ValueError(
-            f"error_bound needs lam[n] with 1 <= n < k = {spectrum.k}; got n = {n}. "
-            "Compute the spectrum with k > n eigenpairs."
+            f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "
+            "Compute the spectrum with more than k eigenpairs."
         )
-    lam = float(spectrum.values[int(n)])
+    lam = float(spectrum.values[int(k)])
     if not lam > 0:
-        raise ValueError(f"lam[{n}] = {lam:.3g} is not positive: the surface has more than {n} components.")
+        raise ValueError(f"lam[{k}] = {lam:.3g} is not positive: the surface has more than {k} components.")
     return dirichlet_energy(spectrum.stiffness, f) / lam
 
 
 # --- A-orthonormal bases -------------------------------------------------------------------------
-_BLOCK = 32
-
-
-def _a_norms(X: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
-    return np.sqrt(np.maximum(np.einsum("ij,ij->j", X, mass @ X), 0.0))
-
-
-def _project_out(
-    Q: NDArray[np.float64], X: NDArray[np.float64], mass: sp.spmatrix, norms: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """In place ``X -= Q Q.T A X``, repeated while a pass removes more than half of a column's
-    norm ("twice is enough", with a guard for nearly dependent columns). Returns the new norms."""
-    for _ in range(4):
-        X -= Q @ (Q.T @ (mass @ X))
-        new = _a_norms(X, mass)
-        if np.all((new > 0.5 * norms) | (new == 0.0)):
-            return new
-        norms = new
-    return norms
-def a_orthonormalize(
-    vectors: ArrayLike,
-    mass: sp.spmatrix,
-    *,
-    prepend: ArrayLike | None = None,
-    drop_dependent: bool = False,
-    rtol: float = 1e-8,
-) -> NDArray[np.float64]:
-    """A-orthonormal basis of the span of the columns, in column order (Gram–Schmidt in ``<.,.>_A``).
-
-    Each column is orthogonalised against the previous ones by classical Gram–Schmidt, repeated
-    while a pass removes more than half of its norm ("twice is enough", with a guard), so the
-    result satisfies ``Q.T @ A @ Q = I`` to round-off even for ill-conditioned input.
-
-    Parameters
-    ----------
-    vectors : array (n_vertices, m)
-    mass : sparse (n_vertices, n_vertices)
-        The mass matrix ``A`` defining the inner product.
-    prepend : array (n_vertices,) or (n_vertices, p), optional
-        Columns placed first (e.g. ``numpy.ones(n)`` for "the constant function first").
-    drop_dependent : bool
-        Skip columns that are numerically in the span of the previous ones instead of raising.
-    rtol : float
-        A column is dependent when less than ``rtol`` of its A-norm survives orthogonalisation.
-
-    Returns
-    -------
-    ndarray (n_vertices, r), a fresh array (the input is not modified).
-
-    Raises
-    ------
-    ValueError
-        If a column is (numerically) dependent and ``drop_dependent`` is False: the basis is
-        rank-deficient.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, mass_matrix
-    >>> m = shapes.icosphere(2)
-    >>> A = mass_matrix(m)
-    >>> Q = a_orthonormalize(m.vertices, A, prepend=np.ones(m.n_vertices))
-    >>> Q.shape, bool(np.allclose(Q.T @ A @ Q, np.eye(4)))
-    ((162, 4), True)
-    """
-    if not sp.issparse(mass) or mass.shape[0] != mass.shape[1]:
-        raise ValueError("mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
-    nv = mass.shape[0]
-    cols = np.asarray(vectors, dtype=np.float64)
-    if cols.ndim == 1:
-        cols = cols[:, None]
-    if prepend is not None:
-        pre = np.asarray(prepend, dtype=np.float64)
-        pre = pre[:, None] if pre.ndim == 1 else pre
-        if pre.ndim != 2 or pre.shape[0] != nv:
-            raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
-        cols = np.hstack([pre, cols]) if cols.ndim == 2 and cols.shape[0] == nv else cols
-    if cols.ndim != 2 or cols.shape[0] != nv:
-        raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
-    if not np.all(np.isfinite(cols)):
-        raise ValueError("vectors contain NaN or inf.")
-    if not (np.isfinite(rtol) and 0 < rtol < 1):
-        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
-    Q = np.empty((nv, cols.shape[1]))
-    r = 0
-    for lo in range(0, cols.shape[1], _BLOCK):
-        # Block Gram-Schmidt against the columns accepted so far (BLAS-3), then column by column
-        # inside the block.
-        X = cols[:, lo : lo + _BLOCK].copy()
-        norm0 = _a_norms(X, mass)
-        if r:
-            _project_out(Q[:, :r], X, mass, norm0)
-        r_block = r
-        for j in range(X.shape[1]):
-            v = X[:, j : j + 1]
-            before = float(_a_norms(v, mass)[0])
-            norm = float(_project_out(Q[:, r_block:r], v, mass, np.array([before]))[0]) if r > r_block else before
-            if r and 0.0 < norm < 1e-3 * before:
-                # Heavy cancellation: refresh orthogonality against everything accepted so far.
-                norm = float(_project_out(Q[:, :r], v, mass, np.array([norm]))[0])
-            if norm0[j] == 0.0 or norm <= rtol * norm0[j]:
-                if drop_dependent:
-                    continue
-                raise ValueError(
-                    f"the basis is rank-deficient: column {lo + j} is (numerically) a combination of "
-                    "the previous columns; remove it or pass drop_dependent=True."
-                )
-            Q[:, r] = v[:, 0] / norm
-            r += 1
-    return Q[:, :r]
-
-
 def kernel_basis(stiffness: sp.spmatrix) -> NDArray[np.float64]:
     """The kernel of ``W``: one indicator column per connected component (shape (n, p)).
 
@@ -371,29 +243,29 @@ def _worst_case_sparse(
     left = spla.LinearOperator((n, n), matvec=lambda x: A @ np.ravel(x) - AQ @ (AQ.T @ np.ravel(x)), dtype=np.float64)
     right = spla.LinearOperator((n, n), matvec=solver.matvec, dtype=np.float64)
     right_inv = spla.LinearOperator((n, n), matvec=solver.solve, dtype=np.float64)
-    # A fixed start vector makes ARPACK deterministic; tol=0 asks for machine precision.
-    v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
+    # tol=0 asks for machine precision.
     values, vectors = spla.eigsh(
-        left, k=1, M=right, Minv=right_inv, which="LA", v0=v0, tol=0.0, ncv=min(n - 1, 24)
+        left, k=1, M=right, Minv=right_inv, which="LA", v0=start_vector(n), tol=0.0, ncv=min(n - 1, 24)
     )
     return float(values[0]), vectors[:, 0]
 
 
 @overload
 def worst_case_ratio(
-    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[False] = ...
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[False] = ...
 ) -> float: ...
 @overload
 def worst_case_ratio(
-    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_function: Literal[True]
+    basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[True]
 ) -> tuple[float, NDArray[np.float64]]: ...
+@renamed({"return_function": "return_vector"})
 def worst_case_ratio(
     basis: ArrayLike,
     stiffness: sp.spmatrix,
     mass: sp.spmatrix,
     *,
     method: Method = "auto",
-    return_function: bool = False,
+    return_vector: bool = False,
 ) -> float | tuple[float, NDArray[np.float64]]:
     """Exact worst-case constant ``C(V) = sup_f ||f - P_V f||_A^2 / (f @ W @ f)`` of a basis.
 
@@ -408,7 +280,7 @@ def worst_case_ratio(
     ``numpy.ones(n)`` among the columns (e.g. ``a_orthonormalize(..., prepend=ones)``) to get a
     finite constant.
 
-    How it is computed (MATH.md section 2): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
+    How it is computed (docs/maths.md, "Optimality"): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
     V, the error is ``||r||_A^2`` and the smallest energy over ``v`` is the Schur complement
     ``r @ S @ r``, ``S = W - W Q (Q.T W Q)^+ Q.T W``. Equivalently ``C(V)`` is the largest eigenvalue
     of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,
@@ -428,12 +300,12 @@ def worst_case_ratio(
         applied by a sparse LU of ``W`` with one vertex pinned, corrected by the constant; no dense
         n_vertices x n_vertices matrix is formed. ``"auto"`` picks dense below
         ``DENSE_LIMIT`` vertices.
-    return_function : bool
+    return_vector : bool
         Also return a worst-case function ``f`` (scaled so that ``||f - P_V f||_A = 1``).
 
     Returns
     -------
-    float, or (float, ndarray (n_vertices,)) with ``return_function``.
+    float, or (float, ndarray (n_vertices,)) with ``return_vector``.
 
     Raises
     ------
@@ -450,53 +322,24 @@ def worst_case_ratio(
     inf
     """
     W, A = check_operators(stiffness, mass)
-    _check_symmetric(W, "stiffness")
-    _check_symmetric(A, "mass")
     n = W.shape[0]
     arr = _check_basis(basis, n)
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+    dense = use_dense(n, method)
     Q = a_orthonormalize(arr, A)
     kernel = kernel_basis(W)
     # Is the kernel of W (the constants) inside V? Relative A-norm of what V misses.
     residual = kernel - Q @ (Q.T @ (A @ kernel))
     missed = np.einsum("ik,ik->k", residual, A @ residual) / np.einsum("ik,ik->k", kernel, A @ kernel)
     if np.any(missed > 1e-16):  # a relative A-norm above 1e-8
-        if return_function:
+        if return_vector:
             f = residual[:, int(np.argmax(missed))]
-            return float("inf"), f / np.sqrt(float(f @ (A @ f)))
+            return float("inf"), fix_signs(f / np.sqrt(float(f @ (A @ f))), A)
         return float("inf")
-    use_dense = method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
-    value, f = (_worst_case_dense if use_dense else _worst_case_sparse)(Q, W, A, kernel)
-    if not return_function:
+    value, f = (_worst_case_dense if dense else _worst_case_sparse)(Q, W, A, kernel)
+    if not return_vector:
         return value
     r = f - Q @ (Q.T @ (A @ f))
-    f = f / np.sqrt(float(r @ (A @ r)))
-    peak = f[np.argmax(np.abs(f))]
-    return value, f * (1.0 if peak >= 0 else -1.0)
-
-
-def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
-    """The **trap**: ``sup over r A-orthogonal to V of ||r||_A^2 / (r @ W @ r)``.
-
-    This uses ``W`` itself on the complement of V instead of the Schur complement, i.e. it only
-    looks at functions with no component in V. It is ``1 / min_rayleigh_quotient(W, A,
-    orthogonal_to=basis)`` (Courant–Fischer's quantity), a *lower* bound on
-    :func:`worst_case_ratio`, and equal to it only when ``W`` maps V into ``A V`` (e.g. V spanned by
-    eigenvectors). Kept to show the difference; do not use it as the worst-case constant.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
-    >>> B = s.vectors[:, :10] + 0.05 * np.random.default_rng(0).normal(size=(162, 10))
-    >>> bool(complement_ratio(B, s.stiffness, s.mass) < worst_case_ratio(B, s.stiffness, s.mass))
-    True
-    """
-    from .minmax import min_rayleigh_quotient
-
-    return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
+    return value, fix_signs(f / np.sqrt(float(r @ (A @ r))), A)
 
 
 def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
@@ -509,7 +352,7 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
 
     Returns
     -------
-    ndarray (n_vertices,), A-normalised (``f @ A @ f = 1``), sign fixed (largest entry positive).
+    ndarray (n_vertices,), A-normalised (``f @ A @ f = 1``), sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
     Examples
     --------
@@ -530,5 +373,4 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     coupling = Q.T @ (spectrum.mass @ spectrum.vectors[:, : n + 1])  # (n, n + 1)
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c
-    f /= np.sqrt(float(f @ (spectrum.mass @ f)))
-    return f if f[np.argmax(np.abs(f))] >= 0 else -f
+    return fix_signs(f / np.sqrt(float(f @ (spectrum.mass @ f))), spectrum.mass)

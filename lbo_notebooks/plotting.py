@@ -356,3 +356,88 @@ def mesh_slider(
     """
     return MeshSlider(mesh, frame, values, description, colorscale=colorscale, symmetric=symmetric,
                       max_faces=max_faces, height=height, title=title)
+
+
+# --- min-max (notebook 05): the Rayleigh quotient on the unit sphere of R^3 ------------------------
+def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *, resolution: int = 60) -> Any:
+    """Plotly figure: the unit sphere coloured by ``x.T M x``, with a plane's great circle.
+
+    The circle is the plane ``{x : normal . x = 0}`` on the sphere, and the marker its minimiser.
+
+    Examples
+    --------
+    >>> fig = rayleigh_sphere_figure(np.diag([1.0, 2.0, 4.0]), [1.0, 0.0, 0.0])
+    >>> [trace.type for trace in fig.data]
+    ['surface', 'scatter3d', 'scatter3d']
+    """
+    import plotly.graph_objects as go
+
+    from . import minmax
+
+    M = minmax.symmetric_3x3(matrix)
+    u, v = np.meshgrid(np.linspace(0, np.pi, resolution), np.linspace(0, 2 * np.pi, 2 * resolution))
+    X = np.stack([np.sin(u) * np.cos(v), np.sin(u) * np.sin(v), np.cos(u)], axis=-1)
+    R = np.einsum("...i,ij,...j->...", X, M, X)
+    fig = go.Figure(
+        go.Surface(x=X[..., 0], y=X[..., 1], z=X[..., 2], surfacecolor=R, colorscale="Viridis", opacity=0.9,
+                   colorbar=dict(title="x'Mx"))
+    )
+    if normal is not None:
+        circle, point, value = minmax.plane_circle(M, normal)
+        fig.add_trace(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
+                                   line=dict(color="white", width=6), name="plane"))
+        fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
+                                   marker=dict(color="red", size=6), name=f"min on plane = {value:.3f}"))
+    fig.update_layout(height=450, margin=dict(l=0, r=0, t=30, b=0), scene=dict(aspectmode="data"))
+    return fig
+
+
+class PlaneSlider:
+    """A :func:`rayleigh_sphere_figure` whose plane is rotated by an ipywidgets slider (degrees).
+
+    ``widget`` is what to display (the notebook displays the object itself); ``figure`` and
+    ``slider`` are exposed so that code and tests can drive it. Build it with :func:`plane_slider`.
+    """
+
+    def __init__(self, matrix: ArrayLike, angles: Sequence[float]) -> None:
+        import ipywidgets as widgets
+        import plotly.graph_objects as go
+
+        from . import minmax
+
+        self.matrix = minmax.symmetric_3x3(matrix)
+        self.lam = np.linalg.eigvalsh(self.matrix)
+        self._values = list(angles)
+        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, minmax.plane_normal(self.matrix, angles[0])))
+        self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
+                                              continuous_update=False)
+        self.slider.observe(lambda change: self.update(change["new"]), names="value")
+        self.widget = widgets.VBox([self.slider, self.figure])
+        self.update(angles[0])
+
+    def update(self, angle: float) -> None:
+        from . import minmax
+
+        circle, point, value = minmax.plane_circle(self.matrix, minmax.plane_normal(self.matrix, angle))
+        with self.figure.batch_update():
+            line, marker = self.figure.data[1], self.figure.data[2]
+            line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
+            marker.x, marker.y, marker.z = [point[0]], [point[1]], [point[2]]
+            marker.name = f"min on plane = {value:.3f}"
+            self.figure.layout.title = f"angle {angle:.0f} deg: min on the plane {value:.3f} <= lam_2 = {self.lam[1]:.3f}"
+
+    def _ipython_display_(self) -> None:
+        from IPython.display import display
+
+        display(self.widget)
+
+
+def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181, 5))) -> PlaneSlider:
+    """Courant–Fischer in 3-D: rotate a plane and watch its minimum Rayleigh quotient.
+
+    Examples
+    --------
+    >>> w = plane_slider(np.diag([1.0, 2.0, 4.0]))
+    >>> w.slider.value = 45
+    """
+    return PlaneSlider(matrix, angles)

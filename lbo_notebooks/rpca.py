@@ -1,14 +1,14 @@
 """Regularized PCA: principal components married to the Dirichlet energy (paper, section 6).
 
 Given training functions ``X`` (n x c, e.g. the x, y, z coordinates of two poses that share a
-triangulation), regularized PCA looks for an A-orthonormal basis ``P`` (n x m) that represents the
+triangulation), regularized PCA looks for an A-orthonormal basis ``P`` (n x k) that represents the
 data well *and* is smooth:
 
     minimise  sum_i ||P P.T A x_i - x_i||_A^2 + mu * sum_j P_j.T W P_j   subject to  P.T A P = I.
 
 The objective equals ``const - trace(P.T (A X X.T A - mu W) P)``, so the minimiser is the set of
-``m`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (MATH.md section 5).
-``mu -> infinity`` gives the first ``m`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
+``k`` *top* generalized eigenvectors of ``(A X X.T A - mu W) p = sigma A p`` (docs/maths.md, "Regularized PCA").
+``mu -> infinity`` gives the first ``k`` Laplace–Beltrami eigenfunctions; ``mu -> 0`` gives the
 PCA directions first, and then (the data have rank at most c) the smoothest functions A-orthogonal
 to the data.
 
@@ -20,13 +20,13 @@ single shift-invert Lanczos run cannot resolve both ends. :class:`RegularizedPCA
    counts the eigenvalues above the split point ``tau = mu t0`` exactly from a c x c matrix;
 2. finds those few "data" eigenpairs by a rational Krylov / inverse-iteration Rayleigh–Ritz,
    with one shift (one sparse factorisation) per data eigenvalue;
-3. finds the remaining ``m - k`` eigenpairs by shift-invert Lanczos at ``tau`` on the
+3. finds the remaining ``k - n_data`` eigenpairs by shift-invert Lanczos at ``tau`` on the
    A-orthogonal complement of the data eigenvectors (Woodbury solves with the step-1 factor);
 4. finishes with one Rayleigh–Ritz over both sets.
 
 Cost: one sparse factorisation of ``W + t0 A``, one per data eigenvalue above the split (at most
 c, the number of data columns), and a Lanczos run as long as :func:`~lbo_notebooks.eigenbasis`'s;
-memory O(n (m + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, m = 100, one BLAS thread):
+memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
 about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
 
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
@@ -37,8 +37,8 @@ A raw ``mu`` depends on the units of the data and of the mesh. The dimensionless
 
     maximise  (1 - beta) trace(P.T B P) / s_B  -  beta trace(P.T W P) / lam_ref,
 
-with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi m /
-area`` Weyl's estimate of the m-th Laplace–Beltrami eigenvalue, i.e.
+with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi k /
+area`` Weyl's estimate of the k-th Laplace–Beltrami eigenvalue, i.e.
 ``mu = beta / (1 - beta) * s_B / lam_ref`` (:func:`mu_from_beta`). ``beta = 0`` is PCA,
 ``beta = 1`` the eigenbasis, and the same ``beta`` means the same balance on every shape and scale.
 """
@@ -54,7 +54,19 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .spectrum import check_operators, eigenbasis, fix_signs
+from ._deprecation import renamed, warn
+from .inner_product import (
+    a_orthonormalize,
+    check_operators,
+    default_shift,
+    fix_signs,
+    principal_angles,
+    reconstruct,
+    reconstruction_error,
+    start_vector,
+    use_dense,
+)
+from .spectrum import eigenbasis
 
 __all__ = [
     "RegularizedPCA",
@@ -69,12 +81,9 @@ __all__ = [
 
 Method = Literal["auto", "dense", "sparse"]
 
-# Below this many vertices method="auto" uses dense scipy.linalg.eigh (exact and fast enough).
-DENSE_LIMIT = 1500
 # Residual (relative backward error) at which a data eigenpair counts as converged.
 _DATA_TOL = 1e-12
 _MAX_ROUNDS = 8
-_SPLIT = 1e-2
 
 
 # --- small linear-algebra helpers --------------------------------------------------------------
@@ -85,59 +94,25 @@ def _factor(M: sp.spmatrix) -> spla.SuperLU:
     )
 
 
-def _extend(S: NDArray[np.float64], V: NDArray[np.float64], A: sp.csr_matrix, drop: float = 1e-8) -> NDArray[np.float64]:
-    """Append to the A-orthonormal columns ``S`` an A-orthonormal basis of ``V``'s new directions.
-
-    Each column is scaled to unit A-norm; directions whose part A-orthogonal to ``S`` (and to the
-    other columns) is below ``drop`` are discarded: rank-deficient data, or directions already in
-    the subspace. Gram-eigenvector orthonormalisation is repeated so that round-off does not
-    accumulate (the first pass has condition number at most ``1 / drop``).
-    """
-    V = np.array(V, dtype=np.float64, copy=True)
-    if V.shape[1] == 0:
-        return S
-    norms = np.sqrt(np.maximum(np.einsum("ij,ij->j", V, A @ V), 0.0))
-    V = V[:, norms > 0] / norms[norms > 0]
-    for _ in range(3):
-        if V.shape[1] == 0:
-            return S
-        if S.shape[1]:
-            V -= S @ (S.T @ (A @ V))
-            V -= S @ (S.T @ (A @ V))
-        gram = V.T @ (A @ V)
-        w, E = np.linalg.eigh((gram + gram.T) / 2)
-        keep = w > (drop**2 if _ == 0 else 0.5)
-        V = (V @ E[:, keep]) / np.sqrt(w[keep])
-    return np.hstack([S, V])
-
-
-def _a_orthonormal(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
-    """An A-orthonormal basis of ``span V`` (columns rotated; rank-deficient input allowed)."""
-    return _extend(np.zeros((V.shape[0], 0)), V, A)
-
-
-def _a_orthonormal_ordered(V: NDArray[np.float64], A: sp.csr_matrix) -> NDArray[np.float64]:
-    """A-orthonormalise nearly A-orthonormal, full-rank columns *without* mixing them.
-
-    Cholesky QR twice: column j only combines with columns before it, so eigenvectors that are
-    already orthonormal up to round-off keep their order and meaning.
-    """
-    for _ in range(2):
-        gram = V.T @ (A @ V)
-        chol = np.linalg.cholesky((gram + gram.T) / 2)
-        V = scipy.linalg.solve_triangular(chol, V.T, lower=True).T
-    return V
-
-
 def _rayleigh_ritz(
-    S: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
+    basis: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns ``S``."""
-    SU = S.T @ U
-    G = SU @ SU.T - mu * (S.T @ (W @ S))
-    w, E = np.linalg.eigh((G + G.T) / 2)
-    order = np.argsort(w)[::-1][:k]
-    return w[order], S @ E[:, order]
+    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns of ``basis``."""
+    projected_data = basis.T @ U
+    projected = projected_data @ projected_data.T - mu * (basis.T @ (W @ basis))
+    values, vectors = np.linalg.eigh((projected + projected.T) / 2)
+    order = np.argsort(values)[::-1][:k]
+    return values[order], basis @ vectors[:, order]
+
+
+@dataclass(frozen=True)
+class _ShiftedFactor:
+    """A sparse LU of ``mu W + shift A`` with the Woodbury pieces for ``- U U.T``."""
+
+    shift: float
+    factor: spla.SuperLU
+    solved: NDArray[np.float64]  # factor^-1 U
+    capacitance: NDArray[np.float64]  # I - U.T factor^-1 U
 
 
 # --- input checks ------------------------------------------------------------------------------
@@ -155,12 +130,12 @@ def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
     return np.array(X, copy=True)
 
 
-def _check_m(m: int, n: int) -> int:
-    if isinstance(m, bool) or not isinstance(m, (int, np.integer)):
-        raise ValueError(f"m must be an integer number of basis functions, got {m!r}.")
-    if not 1 <= m <= n:
-        raise ValueError(f"m must be between 1 and the number of vertices ({n}), got {m}.")
-    return int(m)
+def _check_k(k: int, n: int) -> int:
+    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+        raise ValueError(f"k must be an integer number of basis functions, got {k!r}.")
+    if not 1 <= k <= n:
+        raise ValueError(f"k must be between 1 and the number of vertices ({n}), got {k}.")
+    return int(k)
 
 
 def _check_mu(mu: float) -> float:
@@ -205,10 +180,10 @@ class RPCAResult:
 
     Attributes
     ----------
-    basis : ndarray, shape (n, m)
+    basis : ndarray, shape (n, k)
         A-orthonormal columns, ordered by decreasing ``values``; signs fixed by
         :func:`~lbo_notebooks.spectrum.fix_signs`.
-    values : ndarray, shape (m,)
+    values : ndarray, shape (k,)
         Generalized eigenvalues ``sigma`` of ``(A X X.T A - mu W) p = sigma A p``, descending.
         At ``mu = 0`` the directions beyond the rank of the data all have ``sigma = 0`` and are
         ordered by smoothness (the ``mu -> 0`` limit). At ``mu = inf`` every direction with
@@ -229,11 +204,18 @@ class RPCAResult:
         self.values.setflags(write=False)
 
     @property
-    def m(self) -> int:
+    def k(self) -> int:
+        """Number of basis functions."""
         return int(self.basis.shape[1])
 
+    @property
+    def m(self) -> int:
+        """Deprecated spelling of :attr:`k`."""
+        warn("RPCAResult.m is deprecated: use RPCAResult.k instead.")
+        return self.k
+
     def __repr__(self) -> str:
-        return f"RPCAResult(m={self.m}, mu={self.mu:.4g}, n_data={self.n_data})"
+        return f"RPCAResult(k={self.k}, mu={self.mu:.4g}, n_data={self.n_data})"
 
 
 # --- the solver ----------------------------------------------------------------------------------
@@ -282,9 +264,8 @@ class RegularizedPCA:
         gram = X.T @ U
         self.data_values = np.sort(np.linalg.eigvalsh((gram + gram.T) / 2))[::-1]
         self.data_values.setflags(write=False)
-        # The split-point shift: small against the smoothness eigenvalues at every scale
-        # (the first nonzero one is of order 4 pi / area), like spectrum.eigenbasis's shift.
-        self._t0 = _SPLIT * 4.0 * np.pi / self.area
+        # The split-point shift: small against the smoothness eigenvalues at every scale.
+        self._t0 = default_shift(A)
         self._base_factor: spla.SuperLU | None = None
         self._base_solved: NDArray[np.float64] | None = None
 
@@ -297,32 +278,36 @@ class RegularizedPCA:
         """``s_B``: the largest eigenvalue of ``(A X X.T A, A)``, i.e. of ``X.T A X``."""
         return float(max(self.data_values[0], 0.0))
 
-    def reference_eigenvalue(self, m: int) -> float:
-        """Weyl's estimate ``4 pi m / area`` of the m-th Laplace–Beltrami eigenvalue."""
-        return 4.0 * np.pi * _check_m(m, self.n_vertices) / self.area
+    @renamed({"m": "k"})
+    def reference_eigenvalue(self, k: int) -> float:
+        """Weyl's estimate ``4 pi k / area`` of the k-th Laplace–Beltrami eigenvalue."""
+        return 4.0 * np.pi * _check_k(k, self.n_vertices) / self.area
 
-    def mu_from_beta(self, beta: float, m: int) -> float:
+    @renamed({"m": "k"})
+    def mu_from_beta(self, beta: float, k: int) -> float:
         """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
-        return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(m))
+        return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(k))
 
-    def beta_from_mu(self, mu: float, m: int) -> float:
+    @renamed({"m": "k"})
+    def beta_from_mu(self, mu: float, k: int) -> float:
         """Inverse of :meth:`mu_from_beta`."""
         mu = _check_mu(mu)
         if np.isinf(mu):
             return 1.0
         if self.top_data_value <= 0.0:
             raise ValueError("the data are identically zero (after centring), so beta has no meaning.")
-        r = mu * self.reference_eigenvalue(m) / self.top_data_value
+        r = mu * self.reference_eigenvalue(k) / self.top_data_value
         return r / (1.0 + r)
 
     # ---- solving ----
-    def solve(self, m: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
-        """The regularized PCA basis of size ``m`` for weight ``mu`` (or dimensionless ``beta``).
+    @renamed({"m": "k"})
+    def solve(self, k: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
+        """The regularized PCA basis of size ``k`` for weight ``mu`` (or dimensionless ``beta``).
 
         Parameters
         ----------
-        m : int
-            Number of basis functions, ``1 <= m <= n``.
+        k : int
+            Number of basis functions, ``1 <= k <= n``.
         mu : float, optional
             Raw weight ``>= 0`` (``inf`` allowed: the eigenbasis). Give exactly one of mu, beta.
         beta : float in [0, 1], optional
@@ -330,34 +315,31 @@ class RegularizedPCA:
         method : {"auto", "dense", "sparse"}
             ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
             ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
-            ``"auto"`` picks dense below 1,500 vertices.
+            ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
 
         Returns
         -------
         RPCAResult
         """
-        m = _check_m(m, self.n_vertices)
+        k = _check_k(k, self.n_vertices)
         if (mu is None) == (beta is None):
             raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
-        mu = self.mu_from_beta(beta, m) if beta is not None else _check_mu(mu)
-        if method not in ("auto", "dense", "sparse"):
-            raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+        mu = self.mu_from_beta(beta, k) if beta is not None else _check_mu(mu)
         n, c = self.data.shape
-        if method == "auto":
-            method = "dense" if n <= DENSE_LIMIT else "sparse"
-        if method == "sparse" and 2 * m + c + 2 > n:
-            method = "dense"  # Lanczos needs room: m close to n is a small-mesh problem anyway
+        method = "dense" if use_dense(n, method) else "sparse"
+        if method == "sparse" and 2 * k + c + 2 > n:
+            method = "dense"  # Lanczos needs room: k close to n is a small-mesh problem anyway
         if np.isinf(mu):
-            return self._solve_infinite(m)
+            return self._solve_infinite(k)
         if mu == 0.0:
-            return self._solve_pca_limit(m, method)
+            return self._solve_pca_limit(k, method)
         if method == "dense":
-            return self._solve_dense(m, mu)
-        return self._solve_sparse(m, mu)
+            return self._solve_dense(k, mu)
+        return self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis
-    def _solve_infinite(self, m: int) -> RPCAResult:
-        spectrum = eigenbasis((self.stiffness, self.mass), m)
+    def _solve_infinite(self, k: int) -> RPCAResult:
+        spectrum = eigenbasis((self.stiffness, self.mass), k)
         P = np.array(spectrum.vectors)
         kernel = spectrum.values <= 1e-9 * max(float(spectrum.values[-1]), 1e-300)
         PU = P.T @ self._U
@@ -366,9 +348,9 @@ class RegularizedPCA:
         return RPCAResult(basis=P, values=values, mu=float("inf"), n_data=0)
 
     # mu = 0: PCA first, then the smoothest functions A-orthogonal to the data (the mu -> 0 limit)
-    def _solve_pca_limit(self, m: int, method: str) -> RPCAResult:
+    def _solve_pca_limit(self, k: int, method: str) -> RPCAResult:
         W, A, U = self.stiffness, self.mass, self._U
-        Q = _a_orthonormal(np.array(self.data), A)  # basis of span X (rank r)
+        Q = a_orthonormalize(self.data, A, drop_dependent=True)  # basis of span X (rank r)
         QU = Q.T @ U
         w, E = np.linalg.eigh(QU @ QU.T)
         order = np.argsort(w)[::-1]
@@ -376,28 +358,28 @@ class RegularizedPCA:
         positive = w > 1e-12 * max(float(w[0]) if w.size else 0.0, 1e-300)
         r = int(positive.sum())
         pca = Q @ E[:, :r]
-        if m <= r:
-            basis, values = pca[:, :m], w[:m]
+        if k <= r:
+            basis, values = pca[:, :k], w[:k]
         else:
             Q_all = Q  # deflate the whole span of the data, not only its top directions
             if method == "dense":
                 Z = scipy.linalg.null_space((A @ Q_all).T)
                 Zw = Z.T @ (W @ Z)
                 Za = Z.T @ (A @ Z)
-                _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, m - r - 1])
+                _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, k - r - 1])
                 rest = Z @ Y  # already A-orthonormal: Y.T (Z.T A Z) Y = I
             else:
-                rest = self._complement_lanczos(m - r, Q_all, mu=None)
+                rest = self._complement_lanczos(k - r, Q_all, mu=None)
             basis = np.hstack([pca, rest])
-            values = np.concatenate([w[:r], np.zeros(m - r)])
-        return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, m))
+            values = np.concatenate([w[:r], np.zeros(k - r)])
+        return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, k))
 
-    def _solve_dense(self, m: int, mu: float) -> RPCAResult:
+    def _solve_dense(self, k: int, mu: float) -> RPCAResult:
         n = self.n_vertices
         U = self._U
         L = U @ U.T - mu * self.stiffness.toarray()
         Ad = self.mass.toarray()
-        values, vectors = scipy.linalg.eigh((L + L.T) / 2, (Ad + Ad.T) / 2, subset_by_index=[n - m, n - 1])
+        values, vectors = scipy.linalg.eigh((L + L.T) / 2, (Ad + Ad.T) / 2, subset_by_index=[n - k, n - 1])
         values, vectors = values[::-1], vectors[:, ::-1]
         tau = mu * self._t0
         return RPCAResult(
@@ -413,7 +395,7 @@ class RegularizedPCA:
         assert self._base_solved is not None
         return self._base_factor, self._base_solved
 
-    def _solve_sparse(self, m: int, mu: float) -> RPCAResult:
+    def _solve_sparse(self, k: int, mu: float) -> RPCAResult:
         W, A, U = self.stiffness, self.mass, self._U
         tau = mu * self._t0
         F0, Z0 = self._base()
@@ -421,61 +403,58 @@ class RegularizedPCA:
         H = U.T @ Y0
         # Sylvester's law of inertia on [[-M, U], [U.T, -I]]: the number of eigenvalues of the
         # pencil above tau equals the number of eigenvalues of U.T M^-1 U above 1.
-        k = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
-        kk = min(k, m)
+        n_above = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
+        n_data = min(n_above, k)
         data_vectors = np.zeros((self.n_vertices, 0))
-        if kk:
-            data_vectors = self._data_eigenpairs(kk, mu, tau, Y0)
+        if n_data:
+            data_vectors = self._data_eigenpairs(n_data, mu, tau, Y0)
         rest = np.zeros((self.n_vertices, 0))
-        if m > kk:
-            rest = self._complement_lanczos(m - kk, data_vectors, mu=mu, Y0=Y0)
-        S = _a_orthonormal(np.hstack([data_vectors, rest]), A)
-        values, P = _rayleigh_ritz(S, U, W, mu, m)
-        if P.shape[1] < m:  # pragma: no cover - would mean a lost direction
+        if k > n_data:
+            rest = self._complement_lanczos(k - n_data, data_vectors, mu=mu, Y0=Y0)
+        subspace = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
+        values, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
+        if ritz.shape[1] < k:  # pragma: no cover - would mean a lost direction
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
-        return RPCAResult(basis=fix_signs(P, A), values=values, mu=mu, n_data=kk)
+        return RPCAResult(basis=fix_signs(ritz, A), values=values, mu=mu, n_data=n_data)
 
     def _data_eigenpairs(self, k: int, mu: float, tau: float, Y0: NDArray[np.float64]) -> NDArray[np.float64]:
         """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
         W, A, U, X = self.stiffness, self.mass, self._U, self.data
         c = U.shape[1]
-        S = _a_orthonormal(np.hstack([X, Y0]), A)
-        theta, P = _rayleigh_ritz(S, U, W, mu, k)
+        subspace = a_orthonormalize(np.hstack([X, Y0]), A, drop_dependent=True)
+        theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
         # One factorisation per data eigenvalue, at its current Ritz estimate (Ritz values are lower
         # bounds; below tau we keep the tau factor, whose block Y0 is already in the subspace).
-        solvers: list[tuple[float, spla.SuperLU, NDArray[np.float64], NDArray[np.float64]]] = []
-        blocks = []
-        for s in theta:
-            if s <= tau * (1 + 1e-8):
+        factors: list[_ShiftedFactor] = []
+        for shift in theta:
+            if shift <= tau * (1 + 1e-8):
                 continue
-            F = _factor(mu * W + s * A)
-            Y = F.solve(np.array(U))
-            C = np.eye(c) - U.T @ Y
-            solvers.append((float(s), F, Y, C))
-            blocks.append(Y)
-        if blocks:
-            S = _extend(S, np.hstack(blocks), A)
-            theta, P = _rayleigh_ritz(S, U, W, mu, k)
+            factor = _factor(mu * W + shift * A)
+            solved = factor.solve(np.array(U))
+            factors.append(_ShiftedFactor(float(shift), factor, solved, np.eye(c) - U.T @ solved))
+        if factors:
+            subspace = a_orthonormalize(np.hstack([f.solved for f in factors]), A, prepend=subspace, drop_dependent=True)
+            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
 
         def shifted_solve(j: int, b: NDArray[np.float64]) -> NDArray[np.float64]:
-            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor nearest to theta[j].
-            s, F, Y, C = min(solvers, key=lambda t: abs(np.log(t[0] / max(theta[j], tau))))
-            z = F.solve(b)
+            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor whose shift is nearest theta[j].
+            near = min(factors, key=lambda f: abs(np.log(f.shift / max(theta[j], tau))))
+            z = near.factor.solve(b)
             try:
-                return z + Y @ np.linalg.solve(C, U.T @ z)
-            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: Y already holds the vector
+                return z + near.solved @ np.linalg.solve(near.capacitance, U.T @ z)
+            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: solved already holds the vector
                 return z
 
         scale = abs(theta[0]) + mu * abs(W).sum(axis=1).max() + 1.0
         for _ in range(_MAX_ROUNDS):
-            R = U @ (U.T @ P) - mu * (W @ P) - (A @ P) * theta
-            res = np.linalg.norm(R, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", P, A @ P)) * max(1.0, np.abs(A).max()))
-            if np.all(res < _DATA_TOL) or not solvers:
+            residual = U @ (U.T @ ritz) - mu * (W @ ritz) - (A @ ritz) * theta
+            backward_error = np.linalg.norm(residual, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", ritz, A @ ritz)) * max(1.0, np.abs(A).max()))
+            if np.all(backward_error < _DATA_TOL) or not factors:
                 break
-            new = np.column_stack([shifted_solve(j, A @ P[:, j]) for j in range(k)])
-            S = _extend(S, new, A)
-            theta, P = _rayleigh_ritz(S, U, W, mu, k)
-        return P
+            corrections = np.column_stack([shifted_solve(j, A @ ritz[:, j]) for j in range(k)])
+            subspace = a_orthonormalize(corrections, A, prepend=subspace, drop_dependent=True)
+            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
+        return ritz
 
     def _complement_lanczos(
         self, count: int, deflate: NDArray[np.float64], *, mu: float | None, Y0: NDArray[np.float64] | None = None
@@ -528,26 +507,28 @@ class RegularizedPCA:
             return project(inner(project_t(y)))
 
         op = spla.LinearOperator((n, n), matvec=opinv, dtype=np.float64)
-        v0 = project(1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64)))
+        v0 = project(start_vector(n))
         values, vectors = spla.eigsh(L, k=count, M=A, sigma=sigma, which="LM", OPinv=op, v0=v0)
         order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
-        return _a_orthonormal_ordered(project(vectors[:, order]), A)
+        return a_orthonormalize(project(vectors[:, order]), A, refine=True)
 
-    def sweep(self, m: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
+    @renamed({"m": "k"})
+    def sweep(self, k: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
         """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation."""
         if (betas is None) == (mus is None):
             raise ValueError("give exactly one of betas or mus.")
         if betas is not None:
-            return [self.solve(m, beta=b) for b in betas]
-        return [self.solve(m, mu) for mu in mus]  # type: ignore[union-attr]
+            return [self.solve(k, beta=b) for b in betas]
+        return [self.solve(k, mu) for mu in mus]  # type: ignore[union-attr]
 
 
 # --- functional interface ----------------------------------------------------------------------
+@renamed({"m": "k"})
 def regularized_pca(
     data: ArrayLike,
     stiffness: sp.spmatrix,
     mass: sp.spmatrix,
-    m: int,
+    k: int,
     mu: float | None = None,
     *,
     beta: float | None = None,
@@ -555,7 +536,7 @@ def regularized_pca(
     return_values: bool = False,
     method: Method = "auto",
 ) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """A-orthonormal basis of the ``m`` top generalized eigenvectors of ``(A X X.T A - mu W, A)``.
+    """A-orthonormal basis of the ``k`` top generalized eigenvectors of ``(A X X.T A - mu W, A)``.
 
     This is the exact minimiser of ``sum_i ||P P.T A x_i - x_i||_A^2 + mu sum_j P_j.T W P_j``
     over ``P.T A P = I``. No n x n matrix is formed unless ``method="dense"``.
@@ -566,8 +547,8 @@ def regularized_pca(
         Training functions ``X``, one per column.
     stiffness, mass : scipy.sparse matrix
         ``W`` and ``A``.
-    m : int
-        Number of basis functions, ``1 <= m <= n``.
+    k : int
+        Number of basis functions, ``1 <= k <= n``.
     mu : float, optional
         Raw weight, ``>= 0``; ``0`` is PCA (then the smoothest functions A-orthogonal to the data),
         ``inf`` the Laplace–Beltrami eigenbasis.
@@ -581,8 +562,8 @@ def regularized_pca(
 
     Returns
     -------
-    basis : ndarray, shape (n, m)
-    values : ndarray, shape (m,), only if ``return_values``
+    basis : ndarray, shape (n, k)
+    values : ndarray, shape (k,), only if ``return_values``
 
     Examples
     --------
@@ -594,16 +575,17 @@ def regularized_pca(
     >>> P.shape
     (642, 10)
     """
-    result = RegularizedPCA(data, stiffness, mass, center=center).solve(m, mu, beta=beta, method=method)
+    result = RegularizedPCA(data, stiffness, mass, center=center).solve(k, mu, beta=beta, method=method)
     basis = np.array(result.basis)
     return (basis, np.array(result.values)) if return_values else basis
 
 
-def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+@renamed({"m": "k"})
+def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
 
     ``mu = beta / (1 - beta) * s_B / lam_ref``: ``s_B`` is the largest eigenvalue of ``X.T A X``
-    (the top data eigenvalue) and ``lam_ref = 4 pi m / area`` is Weyl's estimate of the m-th
+    (the top data eigenvalue) and ``lam_ref = 4 pi k / area`` is Weyl's estimate of the k-th
     Laplace–Beltrami eigenvalue. Both scale with the shape, so ``beta`` does not. ``beta = 1``
     gives ``inf``.
 
@@ -624,142 +606,19 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, cen
         X = _centred(X, A)
     gram = X.T @ (A @ X)
     s_B = float(np.linalg.eigvalsh((gram + gram.T) / 2)[-1])
-    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_m(m, A.shape[0]) / float(A.sum()))
+    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_k(k, A.shape[0]) / float(A.sum()))
 
 
-def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, m: int, *, center: bool = False) -> float:
+@renamed({"m": "k"})
+def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Inverse of :func:`mu_from_beta`."""
     mu = _check_mu(mu)
     if np.isinf(mu):
         return 1.0
-    unit = mu_from_beta(0.5, data, mass, m, center=center)  # = s_B / lam_ref
+    unit = mu_from_beta(0.5, data, mass, k, center=center)  # = s_B / lam_ref
     return (mu / unit) / (1.0 + mu / unit)
 
 
-# --- evaluation protocol -------------------------------------------------------------------------
-def _check_basis(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
-    P = np.asarray(basis, dtype=np.float64)
-    n = mass.shape[0]
-    if P.ndim != 2 or P.shape[0] != n:
-        raise ValueError(f"basis must have shape ({n}, m), one column per basis function; got {P.shape}.")
-    if not np.all(np.isfinite(P)):
-        raise ValueError("basis contains NaN or inf.")
-    gram = P.T @ (mass @ P)
-    if not np.allclose(gram, np.eye(P.shape[1]), atol=1e-8):
-        raise ValueError(
-            "basis is not A-orthonormal (basis.T @ mass @ basis != I); the projection P P.T A would "
-            "be wrong. A-orthonormalise it first (e.g. spectrum vectors or regularized_pca output)."
-        )
-    return P
-
-
-def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
-    """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
-
-    The A-weighted centroid of each column is removed, the rest projected with
-    ``P P.T A``, and the centroid added back, as in the protocol of MATH.md section 5.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> mesh = shapes.bumpy_sphere(3)
-    >>> s = eigenbasis(mesh, 642)
-    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8 * abs(mesh.vertices).max())
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_basis(basis, A)
-    Y = _check_data(target, A.shape[0])
-    a = _area_weights(A)
-    centroid = (a @ Y) / a.sum()
-    Yc = Y - centroid
-    out = P @ (P.T @ (A @ Yc)) + centroid
-    return out[:, 0] if np.ndim(target) == 1 else out
-
-
-def reconstruction_error(
-    basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
-) -> float | NDArray[np.float64]:
-    """Relative A-norm reconstruction error ``sqrt(sum_c ||x_c - x̂_c||_A^2 / sum_c ||x_c||_A^2)``.
-
-    A-weighted centroids are removed from each column first (MATH.md section 5), so a basis
-    without the constant function is not penalised for translation.
-
-    Parameters
-    ----------
-    basis : array_like, shape (n, m)
-        A-orthonormal basis.
-    mass : scipy.sparse matrix
-    targets : (n, d) array, or a list/tuple of them
-        One shape (e.g. vertex coordinates of a pose) or several.
-
-    Returns
-    -------
-    float for one target, ndarray of floats for a sequence.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> mesh = shapes.bumpy_sphere(3)
-    >>> s = eigenbasis(mesh, 50)
-    >>> e = reconstruction_error(s.vectors, s.mass, mesh.vertices)
-    >>> bool(0 < e < 0.1)
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_basis(basis, A)
-    many = isinstance(targets, (list, tuple))  # a sequence of shapes; an array is one shape
-    items = list(targets) if many else [targets]
-    a = _area_weights(A)
-    errors = []
-    for target in items:
-        Y = _check_data(target, A.shape[0])
-        Yc = Y - (a @ Y) / a.sum()
-        R = Yc - P @ (P.T @ (A @ Yc))
-        num = float(np.einsum("ij,ij->", R, A @ R))
-        den = float(np.einsum("ij,ij->", Yc, A @ Yc))
-        if den <= 0:
-            raise ValueError("a target is constant (zero after removing its centroid); its relative error is undefined.")
-        errors.append(np.sqrt(max(num, 0.0) / den))
-    return np.array(errors) if many else errors[0]
-
-
-def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
-    """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
-
-    Both are A-orthonormalised first. Equal spans give all angles ~0; the largest angle measures
-    how far two bases are from spanning the same space.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> s = eigenbasis(shapes.icosphere(2), 4)
-    >>> rotated = s.vectors @ np.linalg.qr(np.arange(16.0).reshape(4, 4) + np.eye(4))[0]
-    >>> bool(principal_angles(s.vectors, rotated, s.mass).max() < 1e-6)
-    True
-    """
-    A = sp.csr_matrix(mass, dtype=np.float64)
-    n = A.shape[0]
-    Pa, Qa = (np.asarray(x, dtype=np.float64) for x in (P, Q))
-    for name, x in (("P", Pa), ("Q", Qa)):
-        if x.ndim != 2 or x.shape[0] != n:
-            raise ValueError(f"{name} must have shape ({n}, k); got {x.shape}.")
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"{name} contains NaN or inf.")
-    Pa, Qa = _a_orthonormal(Pa, A), _a_orthonormal(Qa, A)
-    if Qa.shape[1] > Pa.shape[1]:
-        Pa, Qa = Qa, Pa  # angles are symmetric; let Q be the smaller space
-    k = Qa.shape[1]
-    cos = np.clip(np.linalg.svd(Pa.T @ (A @ Qa), compute_uv=False), 0.0, 1.0)  # descending
-    # arccos is inaccurate for small angles: take their sines from the residual of Q off span P.
-    R = Qa - Pa @ (Pa.T @ (A @ Qa))
-    diag = A.diagonal()
-    if abs(A - sp.diags(diag)).max() == 0:  # lumped mass: an exact square root
-        sin = np.linalg.svd(np.sqrt(diag)[:, None] * R, compute_uv=False)[::-1]
-    else:
-        g = R.T @ (A @ R)
-        sin = np.sqrt(np.clip(np.linalg.eigvalsh((g + g.T) / 2), 0.0, None))
-    sin = np.clip(np.sort(sin)[:k], 0.0, 1.0)  # ascending
-    angles = np.where(cos > np.sqrt(0.5), np.arcsin(sin), np.arccos(cos))
-    return np.sort(angles)
+# --- evaluation protocol ----------------------------------------------------------------------
+# reconstruct, reconstruction_error and principal_angles work for any A-orthonormal basis: they
+# live in lbo_notebooks.inner_product and are re-exported here.

@@ -135,7 +135,7 @@ def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mes
     """The flat rectangle ``[0, a] x [0, b]`` (z = 0) as ``nx x ny`` cells, each split by one diagonal.
 
     Every cell is cut along the same diagonal, whose cotangent weight is then zero: ``W`` is the
-    5-point stencil and the Neumann eigenvalues are known exactly (MATH.md section 1).
+    5-point stencil and the Neumann eigenvalues are known exactly (docs/maths.md, "Operators").
 
     Examples
     --------

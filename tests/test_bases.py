@@ -15,7 +15,7 @@ ALL = [
     bases.umbrella_basis,
     bases.identity_mass_basis,
     bases.polynomial_basis,
-    lambda m, n, mass="voronoi": bases.metric_basis(m, n, _heavier_on_the_sides(mass), mass=mass),
+    lambda m, k, mass_kind="voronoi": bases.metric_basis(m, k, _heavier_on_the_sides(mass_kind), mass_kind=mass_kind),
 ]
 
 
@@ -41,11 +41,11 @@ def blob():
 def test_a_orthonormal_with_the_constant_first(make, mass):
     m = wavy_sheet(2, 8, 6)  # open surface, 63 vertices
     A = mass_matrix(m, mass)
-    B = make(m, 12, mass=mass)
+    B = make(m, 12, mass_kind=mass)
     assert B.shape == (m.n_vertices, 12)
     np.testing.assert_allclose(B.T @ A @ B, np.eye(12), atol=1e-10)
     assert np.ptp(B[:, 0]) < 1e-12 * np.abs(B[:, 0]).max() and B[0, 0] > 0
-    np.testing.assert_array_equal(B, make(m, 12, mass=mass))  # deterministic
+    np.testing.assert_array_equal(B, make(m, 12, mass_kind=mass))  # deterministic
 
 
 @pytest.mark.parametrize("make", ALL[1:], ids=IDS[1:])
@@ -78,7 +78,7 @@ def test_pca_recovers_the_span_of_its_samples(blob):
     full = np.column_stack([np.ones(m.n_vertices), generators])
     residual = full - B @ (B.T @ (A @ full))
     assert np.abs(residual).max() < 1e-10 * np.abs(full).max()
-    with pytest.raises(ValueError, match="fewer than n - 1 = 5"):
+    with pytest.raises(ValueError, match="fewer than k - 1 = 5"):
         bases.pca_basis(m, 6, samples=samples)
 
 
@@ -125,12 +125,12 @@ def test_competitor_bases_and_bad_input(blob):
     out = bases.competitor_bases(m, 8, metric=lambda mm: 3.0 * mass_matrix(mm))
     assert list(out)[0] == "LBO eigenbasis" and len(out) == 7
     assert all(B.shape == (m.n_vertices, 8) for B in out.values())
-    with pytest.raises(ValueError, match="n must be"):
+    with pytest.raises(ValueError, match="k must be"):
         bases.umbrella_basis(m, 0)
-    with pytest.raises(ValueError, match="n must be"):
+    with pytest.raises(ValueError, match="k must be"):
         bases.random_smooth_basis(m, m.n_vertices)
-    with pytest.raises(ValueError, match="mass kind"):
-        bases.identity_mass_basis(m, 5, mass="lumped")
+    with pytest.raises(ValueError, match="mass_kind must be one of"):
+        bases.identity_mass_basis(m, 5, mass_kind="lumped")
     with pytest.raises(ValueError, match="Mesh"):
         bases.eigen_basis((stiffness_matrix(m), mass_matrix(m)), 5)
     with pytest.raises(ValueError, match="width"):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, MeshError, shapes
-from lbo_notebooks.geodesics import GeodesicSolver, farthest_point_sampling, geodesic_distances
+from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
 
 
 def great_circle(mesh: Mesh, sources: list[int]) -> np.ndarray:
@@ -72,11 +72,24 @@ def test_scalar_source_gives_one_row(sphere3):
     assert d.shape == (1, sphere3.n_vertices)
 
 
-def test_solver_is_cached_and_reused(sphere3):
-    geodesic_distances(sphere3, [0])
-    first = sphere3.cached("geodesic_solver_heat", lambda m: None)
-    geodesic_distances(sphere3, [1, 2])
-    assert isinstance(first, GeodesicSolver) and sphere3.cached("geodesic_solver_heat", lambda m: None) is first
+def test_solver_is_cached_and_reused(monkeypatch):
+    from lbo_notebooks import geodesics
+
+    mesh = shapes.icosphere(2)
+    built = []
+    original = geodesics.GeodesicSolver.__init__
+
+    def counting(self, *args, **kwargs):
+        built.append(1)
+        original(self, *args, **kwargs)
+
+    monkeypatch.setattr(geodesics.GeodesicSolver, "__init__", counting)
+    geodesic_distances(mesh, [0])
+    geodesic_distances(mesh, [1, 2])
+    assert len(built) == 1  # one factorisation serves every call on this mesh
+    assert geodesics.geodesic_solver(mesh, "heat") is geodesics.geodesic_solver(mesh, "heat")
+    geodesic_distances(mesh.with_vertices(2.0 * mesh.vertices), [0])
+    assert len(built) == 2  # a new mesh gets its own solver
 
 
 def test_rigid_motion_invariance(sphere3):
@@ -144,7 +157,7 @@ def test_fps_covers_evenly(sphere3):
 
 @pytest.mark.parametrize("count", [0, 643, 2.0, True])
 def test_fps_bad_count(sphere3, count):
-    with pytest.raises(ValueError, match="count must be an integer between 1 and"):
+    with pytest.raises(ValueError, match="k must be an integer between 1 and"):
         farthest_point_sampling(sphere3, count)
 
 

@@ -153,13 +153,13 @@ def test_spectral_mds_with_the_full_basis_and_all_samples_is_classical(blob):
     # k = q = n and mu -> 0: Phi alpha Phi.T interpolates D2 exactly, so SMDS is classical MDS.
     m, D, X, spec, sampling = blob
     n = m.n_vertices
-    Z = spectral_mds(m, n_eigs=n, n_samples=n, mu=1e-10, spectrum=spec, sampling=sampling)
+    Z = spectral_mds(m, k=n, n_samples=n, mu=1e-10, spectrum=spec, sampling=sampling)
     assert gram_error(Z, X) < 1e-6
 
 
 def test_spectral_mds_converges_with_eigenfunctions(blob):
     m, D, X, spec, sampling = blob
-    errs = [gram_error(spectral_mds(m, n_eigs=k, n_samples=162, spectrum=spec, sampling=sampling), X)
+    errs = [gram_error(spectral_mds(m, k=k, n_samples=162, spectrum=spec, sampling=sampling), X)
             for k in (10, 20, 40, 80)]
     # measured (exact distances) 0.10, 0.033, 0.012, 0.0066
     assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.015
@@ -167,7 +167,7 @@ def test_spectral_mds_converges_with_eigenfunctions(blob):
 
 def test_spectral_mds_converges_with_samples(blob):
     m, D, X, spec, sampling = blob
-    errs = [gram_error(spectral_mds(m, n_eigs=40, n_samples=q, spectrum=spec, sampling=sampling), X)
+    errs = [gram_error(spectral_mds(m, k=40, n_samples=q, spectrum=spec, sampling=sampling), X)
             for q in (20, 40, 80, 162)]
     assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.02
 
@@ -177,15 +177,15 @@ def test_spectral_mds_is_rigid_and_scale_covariant(blob):
     m, D, X, _, _ = blob
     rng = np.random.default_rng(5)
     moved = m.with_vertices(3.0 * m.vertices @ random_rotation(rng) + 1.0)
-    Z = spectral_mds(m, n_samples=60, n_eigs=40)
-    Zm = spectral_mds(moved, n_samples=60, n_eigs=40)
+    Z = spectral_mds(m, n_samples=60, k=40)
+    Zm = spectral_mds(moved, n_samples=60, k=40)
     assert procrustes_error(Zm / 3.0, Z) < 1e-6
 
 
 def test_spectral_mds_details_and_determinism(blob):
     m, *_ = blob
-    Z1, info = spectral_mds(m, n_samples=50, n_eigs=30, return_details=True)
-    Z2 = spectral_mds(m, n_samples=50, n_eigs=30)
+    Z1, info = spectral_mds(m, n_samples=50, k=30, return_details=True)
+    Z2 = spectral_mds(m, n_samples=50, k=30)
     assert np.array_equal(Z1, Z2)
     assert info["eigengap"] > 1 and info["eigenvalues"].shape == (4,) and info["samples"].shape == (50,)
     assert set(info["timings"]) == {"eigenbasis", "sampling", "embedding", "total"} and info["mu_abs"] > 0
@@ -200,21 +200,21 @@ def test_scale_mu_is_dimensionless():
 def test_spectral_mds_errors(blob):
     m, D, X, spec, sampling = blob
     with pytest.raises(ValueError, match="more than the mesh's 162 vertices"):
-        spectral_mds(m, n_samples=200, n_eigs=20)
-    with pytest.raises(ValueError, match="dim=20 must be smaller than n_eigs"):
-        spectral_mds(m, dim=20, n_eigs=20, n_samples=50)
+        spectral_mds(m, n_samples=200, k=20)
+    with pytest.raises(ValueError, match="dim=20 must be smaller than k"):
+        spectral_mds(m, dim=20, k=20, n_samples=50)
     with pytest.raises(ValueError, match="mu must be a positive number"):
-        spectral_mds(m, n_eigs=20, n_samples=50, mu=0.0)
+        spectral_mds(m, k=20, n_samples=50, mu=0.0)
     with pytest.raises(ValueError, match="spectrum has 10 eigenpairs"):
-        spectral_mds(m, n_eigs=20, n_samples=50, spectrum=eigenbasis(m, 10))
-    with pytest.raises(ValueError, match="count >= 50"):
-        spectral_mds(m, n_eigs=20, n_samples=50, sampling=(sampling[0][:10], sampling[1][:10]))
+        spectral_mds(m, k=20, n_samples=50, spectrum=eigenbasis(m, 10))
+    with pytest.raises(ValueError, match="k >= 50"):
+        spectral_mds(m, k=20, n_samples=50, sampling=(sampling[0][:10], sampling[1][:10]))
 
 
 def test_disconnected_mesh_is_refused():
     a = shapes.icosphere(1)
     two = Mesh(np.vstack([a.vertices, a.vertices + 3.0]), np.vstack([a.faces, a.faces + a.n_vertices]))
-    for call in (lambda: spectral_mds(two, n_eigs=10, n_samples=20),
+    for call in (lambda: spectral_mds(two, k=10, n_samples=20),
                  lambda: landmark_mds(two, n_samples=10),
                  lambda: classical_mds(two)):
         with pytest.raises(MeshError, match="keep_largest_component"):

@@ -1,3 +1,4 @@
+import importlib
 import subprocess
 import sys
 
@@ -18,7 +19,12 @@ def test_import_is_light():
 
 @pytest.mark.parametrize("name", lbo.__all__)
 def test_every_public_name_resolves(name):
-    assert getattr(lbo, name) is not None
+    value = getattr(lbo, name)
+    if name in lbo._SUBMODULES:
+        assert value is importlib.import_module(f"lbo_notebooks.{name}")
+    else:  # the very object of the module that _EXPORTS names, documented there
+        module = importlib.import_module(f"lbo_notebooks.{lbo._WHERE[name]}")
+        assert value is getattr(module, name) and name in module.__all__
 
 
 def test_unknown_attribute():

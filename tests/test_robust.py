@@ -141,7 +141,7 @@ def test_a_clean_mesh_keeps_the_cotangent_path_without_warning():
     "kwargs,words",
     [
         ({"laplacian": "tufted"}, "laplacian must be one of"),
-        ({"laplacian": "robust", "mass": "consistent"}, "own lumped"),
+        ({"laplacian": "robust", "mass_kind": "consistent"}, "own lumped"),
         ({"laplacian": "robust", "alpha": 0.5}, "alpha"),
     ],
 )

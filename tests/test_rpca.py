@@ -2,7 +2,7 @@
 
 Oracles: dense ``scipy.linalg.eigh`` of the n x n pencil (the closed form), the Laplace–Beltrami
 eigenbasis (mu -> inf), PCA of the data plus the smoothest A-orthogonal functions (mu -> 0), the
-objective identity of MATH.md section 5, and random feasible perturbations (optimality).
+objective identity of docs/maths.md, "Regularized PCA", and random feasible perturbations (optimality).
 """
 
 from __future__ import annotations
@@ -253,9 +253,9 @@ def test_principal_angles_known_angle(setup):
 def test_clear_errors(setup):
     mesh, W, A, X = setup
     n = mesh.n_vertices
-    with pytest.raises(ValueError, match="m must be between 1"):
+    with pytest.raises(ValueError, match="k must be between 1"):
         regularized_pca(X, W, A, n + 1, 1.0)
-    with pytest.raises(ValueError, match="m must be between 1"):
+    with pytest.raises(ValueError, match="k must be between 1"):
         regularized_pca(X, W, A, 0, 1.0)
     with pytest.raises(ValueError, match=r"data must have shape"):
         regularized_pca(X[:-1], W, A, 5, 1.0)

@@ -30,10 +30,10 @@ def test_sphere_multiplicities(sphere5):
 
 @pytest.mark.parametrize("mass", ["voronoi", "consistent"])
 def test_sphere_convergence_is_second_order(mass):
-    # Skip l=1: superconvergent with lumped mass (MATH.md).
+    # Skip l=1: superconvergent with lumped mass (docs/maths.md, "Operators").
     errors = []
     for s in (2, 3, 4):
-        values = eigenbasis(shapes.icosphere(s), 36, mass=mass).values
+        values = eigenbasis(shapes.icosphere(s), 36, mass_kind=mass).values
         errors.append(np.max(np.abs(values[4:] / SPHERE[4:] - 1)))
     rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:])) # h halves per subdivision
     assert np.all(rates > 1.8), rates
@@ -41,8 +41,8 @@ def test_sphere_convergence_is_second_order(mass):
 
 def test_lumped_lies_below_and_consistent_above_on_the_sphere():
     m = shapes.icosphere(3)
-    lumped = eigenbasis(m, 36, mass="voronoi").values[4:]
-    consistent = eigenbasis(m, 36, mass="consistent").values[4:]
+    lumped = eigenbasis(m, 36, mass_kind="voronoi").values[4:]
+    consistent = eigenbasis(m, 36, mass_kind="consistent").values[4:]
     assert np.all(lumped < SPHERE[4:]) and np.all(consistent > SPHERE[4:])
 
 
@@ -66,17 +66,13 @@ def test_vectors_are_mass_orthonormal_not_euclidean_orthonormal():
     assert np.all(np.diff(spec.values) >= 0)
 
 
-def test_dense_and_sparse_paths_agree():
+def test_dense_and_sparse_paths_agree(monkeypatch):
     m = shapes.bumpy_sphere(3)  # 642 vertices: above DENSE_LIMIT, so the sparse path
     sparse = eigenbasis(m, 20)
-    import lbo_notebooks.spectrum as spectrum_module
+    import lbo_notebooks.inner_product as inner_product
 
-    old = spectrum_module.DENSE_LIMIT
-    spectrum_module.DENSE_LIMIT = 10**9
-    try:
-        dense = eigenbasis(m, 20)
-    finally:
-        spectrum_module.DENSE_LIMIT = old
+    monkeypatch.setattr(inner_product, "DENSE_LIMIT", 10**9)
+    dense = eigenbasis(m, 20)
     np.testing.assert_allclose(sparse.values, dense.values, rtol=1e-9, atol=1e-9)
     # Non-degenerate eigenvectors agree including sign (deterministic sign rule).
     np.testing.assert_allclose(sparse.vectors[:, :8], dense.vectors[:, :8], atol=1e-6)
@@ -162,8 +158,8 @@ def test_bad_inputs():
         spec.project(np.full(m.n_vertices, np.nan))
     with pytest.raises(ValueError, match="between 0 and k"):
         spec.reconstruct(np.ones(m.n_vertices), 11)
-    with pytest.raises(ValueError, match="mass kind"):
-        eigenbasis(m, 5, mass="lumped")
+    with pytest.raises(ValueError, match="mass_kind must be one of"):
+        eigenbasis(m, 5, mass_kind="lumped")
     with pytest.raises(ValueError, match="alpha"):
         eigenbasis(m, 5, alpha=2.0)
     with pytest.raises(ValueError, match="shift"):

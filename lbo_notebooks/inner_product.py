@@ -1,0 +1,470 @@
+"""The A-inner-product algebra: one home for the building blocks every module shares.
+
+Functions on a mesh live in the inner product ``<f, g>_A = f @ A @ g`` of the mass matrix ``A``,
+not the Euclidean one. This module holds, once, what the spectral modules need around it:
+
+* checks: :func:`check_operators` (a ``(stiffness, mass)`` pair), :func:`check_functions`;
+* norms and bases: :func:`a_norms`, :func:`a_orthonormalize` (the one orthonormaliser),
+  :func:`principal_angles`, :func:`reconstruct` and :func:`reconstruction_error` for any
+  A-orthonormal basis;
+* the deterministic sign rule :func:`fix_signs`;
+* solver conventions: :func:`default_shift` (shift-invert at ``sigma = -shift``),
+  :func:`start_vector` (a fixed Lanczos start, so ARPACK is deterministic) and
+  :func:`use_dense` (one dense-or-sparse policy, :data:`DENSE_LIMIT`).
+
+The formulas are in ``docs/maths.md``, section "The A inner product".
+"""
+
+from __future__ import annotations
+
+from typing import Literal, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "DENSE_LIMIT",
+    "Method",
+    "check_operators",
+    "check_functions",
+    "a_norms",
+    "a_orthonormalize",
+    "fix_signs",
+    "default_shift",
+    "start_vector",
+    "use_dense",
+    "principal_angles",
+    "reconstruct",
+    "reconstruction_error",
+]
+
+#: Up to this many unknowns a dense ``scipy.linalg.eigh`` is exact and fast enough on a laptop;
+#: above it the sparse (factorise-and-Lanczos) paths win. One limit for every solver.
+DENSE_LIMIT = 600
+
+Method = Literal["auto", "dense", "sparse"]
+
+_BLOCK = 32
+# Columns whose A-Gram matrix is this close to I are finished by one Cholesky QR pass.
+_NEARLY_ORTHONORMAL = 1e-8
+
+
+# --- checks ------------------------------------------------------------------------------------
+def _check_symmetric(M: sp.csr_matrix, name: str) -> None:
+    scale = abs(M).max() if M.nnz else 0.0
+    if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
+        raise ValueError(f"{name} must be symmetric; symmetrise it with (M + M.T) / 2.")
+
+
+def check_operators(
+    stiffness: ArrayLike | sp.spmatrix, mass: ArrayLike | sp.spmatrix, *, allow_dense: bool = False
+) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """Validate a ``(stiffness, mass)`` pair and return both as CSR float64 (fresh copies).
+
+    Both must be square, of the same size, finite and symmetric; the mass diagonal positive.
+
+    Parameters
+    ----------
+    stiffness, mass : scipy.sparse (n, n)
+        ``W`` and ``A`` (see :mod:`lbo_notebooks.operators`).
+    allow_dense : bool
+        Also accept dense arrays (small examples such as a 3 x 3 matrix with ``numpy.eye(3)``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> W, A = check_operators(np.diag([1.0, 2.0]), np.eye(2), allow_dense=True)
+    >>> W.format, A.shape
+    ('csr', (2, 2))
+    """
+    if allow_dense:
+        stiffness = stiffness if sp.issparse(stiffness) else sp.csr_matrix(np.asarray(stiffness, dtype=np.float64))
+        mass = mass if sp.issparse(mass) else sp.csr_matrix(np.asarray(mass, dtype=np.float64))
+    if not (sp.issparse(stiffness) and sp.issparse(mass)):
+        raise ValueError("stiffness and mass must be scipy.sparse matrices (see operators.stiffness_matrix).")
+    W, A = sp.csr_matrix(stiffness, dtype=np.float64), sp.csr_matrix(mass, dtype=np.float64)
+    n = W.shape[0]
+    if W.shape != (n, n) or A.shape != (n, n):
+        raise ValueError(f"stiffness {W.shape} and mass {A.shape} must be square and of the same size.")
+    if not (np.all(np.isfinite(W.data)) and np.all(np.isfinite(A.data))):
+        raise ValueError("stiffness or mass contains NaN or inf; check the mesh for degenerate faces.")
+    _check_symmetric(W, "stiffness")
+    _check_symmetric(A, "mass")
+    if np.any(A.diagonal() <= 0):
+        raise ValueError("the mass matrix has a non-positive diagonal entry; it must be positive definite.")
+    return W, A
+
+
+def check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[np.float64]:
+    """``f`` as a float array of shape (n_vertices,) or (n_vertices, c), finite.
+
+    Examples
+    --------
+    >>> check_functions([[1.0], [2.0]], 2).shape
+    (2, 1)
+    """
+    arr = np.asarray(f, dtype=np.float64)
+    if arr.ndim not in (1, 2) or arr.shape[0] != n_vertices:
+        raise ValueError(
+            f"{name} must have shape ({n_vertices},) or ({n_vertices}, c): one value per vertex; "
+            f"got {arr.shape}."
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or inf; replace them first.")
+    return arr
+
+
+# --- norms and orthonormal bases ---------------------------------------------------------------
+def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
+    """A-norm ``sqrt(x @ A @ x)`` of each column of ``X`` (shape (c,)).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> a_norms(np.ones((4, 2)), sp.identity(4)).tolist()
+    [2.0, 2.0]
+    """
+    X = np.asarray(X, dtype=np.float64)
+    return np.sqrt(np.maximum(np.einsum("ij,ij->j", X, mass @ X), 0.0))
+
+
+def _project_out(
+    Q: NDArray[np.float64], X: NDArray[np.float64], mass: sp.spmatrix, norms: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """In place ``X -= Q Q.T A X``, repeated while a pass removes more than half of a column's
+    norm ("twice is enough", with a guard for nearly dependent columns). Returns the new norms."""
+    for _ in range(4):
+        X -= Q @ (Q.T @ (mass @ X))
+        new = a_norms(X, mass)
+        if np.all((new > 0.5 * norms) | (new == 0.0)):
+            return new
+        norms = new
+    return norms
+
+
+def a_orthonormalize(
+    vectors: ArrayLike,
+    mass: sp.spmatrix,
+    *,
+    prepend: ArrayLike | None = None,
+    drop_dependent: bool = False,
+    rtol: float = 1e-8,
+    refine: bool = False,
+) -> NDArray[np.float64]:
+    """A-orthonormal basis of the span of the columns, in column order (Gram–Schmidt in ``<.,.>_A``).
+
+    Column ``j`` of the result combines only columns ``0..j`` of the input, so columns that are
+    already A-orthonormal (e.g. eigenvectors up to round-off) keep their order and meaning. Each
+    column is orthogonalised by classical Gram–Schmidt, repeated while a pass removes more than
+    half of its norm ("twice is enough", with a guard), so ``Q.T @ A @ Q = I`` to round-off even
+    for ill-conditioned input.
+
+    Parameters
+    ----------
+    vectors : array (n_vertices, m) or (n_vertices,)
+    mass : sparse (n_vertices, n_vertices)
+        The mass matrix ``A`` defining the inner product.
+    prepend : array (n_vertices,) or (n_vertices, p), optional
+        Columns placed first (e.g. ``numpy.ones(n)`` for "the constant function first", or an
+        A-orthonormal basis to extend).
+    drop_dependent : bool
+        Skip columns that are numerically in the span of the previous ones instead of raising.
+    rtol : float
+        A column is dependent when less than ``rtol`` of its A-norm survives orthogonalisation.
+    refine : bool
+        The columns are already A-orthonormal up to round-off (e.g. eigenvectors from ARPACK):
+        when their A-Gram matrix is within ``1e-8`` of ``I``, finish them with one Cholesky QR
+        pass ``Q = V L^-T``, ``L L^T = V^T A V`` (exact to round-off, all BLAS-3, column ``j`` still
+        only mixes columns ``0..j``); otherwise Gram–Schmidt as usual.
+
+    Returns
+    -------
+    ndarray (n_vertices, r), a fresh array (the input is not modified).
+
+    Raises
+    ------
+    ValueError
+        If a column is (numerically) dependent and ``drop_dependent`` is False: the basis is
+        rank-deficient.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, mass_matrix
+    >>> m = shapes.icosphere(2)
+    >>> A = mass_matrix(m)
+    >>> Q = a_orthonormalize(m.vertices, A, prepend=np.ones(m.n_vertices))
+    >>> Q.shape, bool(np.allclose(Q.T @ A @ Q, np.eye(4)))
+    ((162, 4), True)
+    """
+    if not sp.issparse(mass) or mass.shape[0] != mass.shape[1]:
+        raise ValueError("mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
+    nv = mass.shape[0]
+    cols = np.asarray(vectors, dtype=np.float64)
+    if cols.ndim == 1:
+        cols = cols[:, None]
+    if prepend is not None:
+        pre = np.asarray(prepend, dtype=np.float64)
+        pre = pre[:, None] if pre.ndim == 1 else pre
+        if pre.ndim != 2 or pre.shape[0] != nv:
+            raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
+        cols = np.hstack([pre, cols]) if cols.ndim == 2 and cols.shape[0] == nv else cols
+    if cols.ndim != 2 or cols.shape[0] != nv:
+        raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
+    if not np.all(np.isfinite(cols)):
+        raise ValueError("vectors contain NaN or inf.")
+    if not (np.isfinite(rtol) and 0 < rtol < 1):
+        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
+    if refine and cols.shape[1]:
+        gram = cols.T @ (mass @ cols)
+        if np.abs(gram - np.eye(cols.shape[1])).max() < _NEARLY_ORTHONORMAL:
+            # Already A-orthonormal up to ~sqrt(eps) (e.g. eigenvectors from ARPACK): one Cholesky
+            # QR pass, Q = V L^-T with L L^T = V^T A V, is exact to round-off and all BLAS-3.
+            chol = np.linalg.cholesky(gram)
+            return np.linalg.solve(chol, cols.T).T
+    Q = np.empty((nv, cols.shape[1]))
+    r = 0
+    for lo in range(0, cols.shape[1], _BLOCK):
+        # Block Gram-Schmidt against the columns accepted so far (BLAS-3), then column by column
+        # inside the block.
+        X = cols[:, lo : lo + _BLOCK].copy()
+        norm0 = a_norms(X, mass)
+        if r:
+            _project_out(Q[:, :r], X, mass, norm0)
+        r_block = r
+        for j in range(X.shape[1]):
+            v = X[:, j : j + 1]
+            before = float(a_norms(v, mass)[0])
+            norm = float(_project_out(Q[:, r_block:r], v, mass, np.array([before]))[0]) if r > r_block else before
+            if r and 0.0 < norm < 1e-3 * before:
+                # Heavy cancellation: refresh orthogonality against everything accepted so far.
+                norm = float(_project_out(Q[:, :r], v, mass, np.array([norm]))[0])
+            if norm0[j] == 0.0 or norm <= rtol * norm0[j]:
+                if drop_dependent:
+                    continue
+                raise ValueError(
+                    f"the basis is rank-deficient: column {lo + j} is (numerically) a combination of "
+                    "the previous columns; remove it or pass drop_dependent=True."
+                )
+            Q[:, r] = v[:, 0] / norm
+            r += 1
+    return Q[:, :r]
+
+
+# --- the sign rule -----------------------------------------------------------------------------
+def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
+    """Flip columns so that their signs are deterministic (a fresh array; 1-D input allowed).
+
+    A column gets the sign that makes its A-weighted third moment ``sum_i a_i v_i^3`` positive
+    (``a`` = row sums of ``mass``; unit weights when ``mass`` is None, e.g. for point
+    embeddings); when that moment vanishes (odd functions on symmetric shapes), the first entry
+    within a relative 1e-6 of the largest magnitude is made positive instead. The third moment
+    does not depend on the vertex order, and the sign of an eigenvector is arbitrary, so this is
+    the one rule every module uses.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> fix_signs(np.array([[-1.0], [-2.0], [0.5]]))[:, 0].tolist()
+    [1.0, 2.0, -0.5]
+    """
+    v = np.array(vectors, dtype=np.float64, copy=True)
+    if v.ndim == 1:
+        return fix_signs(v[:, None], mass)[:, 0]
+    if v.size == 0:
+        return v
+    a = np.ones(v.shape[0]) if mass is None else np.asarray(mass.sum(axis=1)).ravel()
+    moment = a @ v**3
+    scale = a @ np.abs(v) ** 3
+    # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
+    # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
+    mag = np.abs(v)
+    first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
+    peak = v[first_peak, np.arange(v.shape[1])]
+    sign = np.where(np.abs(moment) > 1e-6 * scale, np.sign(moment), np.sign(peak))
+    sign[sign == 0] = 1.0
+    return v * sign
+
+
+# --- solver conventions ------------------------------------------------------------------------
+def default_shift(mass: sp.spmatrix) -> float:
+    """Default shift ``s = 1e-2 * 4 pi / area`` for shift-invert at ``sigma = -s``.
+
+    The first nonzero eigenvalue of a surface of area S is of order ``4 pi / S`` (2 on the unit
+    sphere), so this shift is small against the spectrum at every scale yet keeps ``W + s A``
+    positive definite (``W`` alone is singular: constants are in its kernel).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> bool(np.isclose(default_shift(sp.identity(4) * np.pi), 1e-2))
+    True
+    """
+    return 1e-2 * 4.0 * np.pi / float(mass.sum())
+
+
+def start_vector(n: int) -> NDArray[np.float64]:
+    """The fixed Lanczos start vector ``1 + cos(i) / 2``: makes ARPACK deterministic.
+
+    It is positive (so never orthogonal to the constant function) and not constant (so it has
+    a component along every eigenvector in practice).
+
+    Examples
+    --------
+    >>> start_vector(3).round(3).tolist()
+    [1.5, 1.27, 0.792]
+    """
+    return 1.0 + 0.5 * np.cos(np.arange(int(n), dtype=np.float64))
+
+
+def use_dense(n: int, method: str = "auto") -> bool:
+    """The dense-or-sparse policy: ``method`` checked, ``"auto"`` is dense up to :data:`DENSE_LIMIT`.
+
+    Examples
+    --------
+    >>> use_dense(100), use_dense(100_000), use_dense(100_000, "dense")
+    (True, False, True)
+    """
+    if method not in ("auto", "dense", "sparse"):
+        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+    return method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
+
+
+# --- any A-orthonormal basis -------------------------------------------------------------------
+def _check_a_orthonormal(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
+    P = np.asarray(basis, dtype=np.float64)
+    n = mass.shape[0]
+    if P.ndim != 2 or P.shape[0] != n:
+        raise ValueError(f"basis must have shape ({n}, k), one column per basis function; got {P.shape}.")
+    if not np.all(np.isfinite(P)):
+        raise ValueError("basis contains NaN or inf.")
+    gram = P.T @ (mass @ P)
+    if not np.allclose(gram, np.eye(P.shape[1]), atol=1e-8):
+        raise ValueError(
+            "basis is not A-orthonormal (basis.T @ mass @ basis != I); the projection P P.T A would "
+            "be wrong. A-orthonormalise it first (a_orthonormalize, or spectrum vectors)."
+        )
+    return P
+
+
+def _check_targets(target: ArrayLike, n: int) -> NDArray[np.float64]:
+    Y = np.asarray(target, dtype=np.float64)
+    Y = Y[:, None] if Y.ndim == 1 else Y
+    if Y.ndim != 2 or Y.shape[0] != n or Y.shape[1] == 0:
+        raise ValueError(f"target must have shape ({n},) or ({n}, d): one row per vertex; got {np.shape(target)}.")
+    if not np.all(np.isfinite(Y)):
+        raise ValueError("target contains NaN or inf; clean it first.")
+    return Y
+
+
+def _centred(Y: NDArray[np.float64], A: sp.csr_matrix) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    a = np.asarray(A.sum(axis=1)).ravel()
+    centroid = (a @ Y) / a.sum()
+    return Y - centroid, centroid
+
+
+def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
+    """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
+
+    The A-weighted centroid of each column is removed, the rest projected with ``P P.T A``, and
+    the centroid added back (so a basis without the constant is not charged for translation).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> s = eigenbasis(mesh, 642)
+    >>> bool(abs(reconstruct(s.vectors, s.mass, mesh.vertices) - mesh.vertices).max() < 1e-8 * abs(mesh.vertices).max())
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    P = _check_a_orthonormal(basis, A)
+    Yc, centroid = _centred(_check_targets(target, A.shape[0]), A)
+    out = P @ (P.T @ (A @ Yc)) + centroid
+    return out[:, 0] if np.ndim(target) == 1 else out
+
+
+def reconstruction_error(
+    basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
+) -> float | NDArray[np.float64]:
+    """Relative A-norm reconstruction error ``sqrt(sum_c ||x_c - x̂_c||_A^2 / sum_c ||x_c||_A^2)``.
+
+    A-weighted centroids are removed from each column first, as in :func:`reconstruct`.
+
+    Parameters
+    ----------
+    basis : array_like, shape (n, k)
+        A-orthonormal basis.
+    mass : scipy.sparse matrix
+    targets : (n, d) array, or a list/tuple of them
+        One shape (e.g. vertex coordinates of a pose) or several.
+
+    Returns
+    -------
+    float for one target, ndarray of floats for a sequence.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> mesh = shapes.bumpy_sphere(3)
+    >>> s = eigenbasis(mesh, 50)
+    >>> e = reconstruction_error(s.vectors, s.mass, mesh.vertices)
+    >>> bool(0 < e < 0.1)
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    P = _check_a_orthonormal(basis, A)
+    many = isinstance(targets, (list, tuple))  # a sequence of shapes; an array is one shape
+    errors = []
+    for target in list(targets) if many else [targets]:
+        Yc, _ = _centred(_check_targets(target, A.shape[0]), A)
+        residual = Yc - P @ (P.T @ (A @ Yc))
+        num = float(np.einsum("ij,ij->", residual, A @ residual))
+        den = float(np.einsum("ij,ij->", Yc, A @ Yc))
+        if den <= 0:
+            raise ValueError("a target is constant (zero after removing its centroid); its relative error is undefined.")
+        errors.append(np.sqrt(max(num, 0.0) / den))
+    return np.array(errors) if many else errors[0]
+
+
+def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
+    """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
+
+    Both are A-orthonormalised first. Equal spans give all angles ~0; the largest angle measures
+    how far two bases are from spanning the same space.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(2), 4)
+    >>> rotated = s.vectors @ np.linalg.qr(np.arange(16.0).reshape(4, 4) + np.eye(4))[0]
+    >>> bool(principal_angles(s.vectors, rotated, s.mass).max() < 1e-6)
+    True
+    """
+    A = sp.csr_matrix(mass, dtype=np.float64)
+    n = A.shape[0]
+    Pa, Qa = (np.asarray(x, dtype=np.float64) for x in (P, Q))
+    for name, x in (("P", Pa), ("Q", Qa)):
+        if x.ndim != 2 or x.shape[0] != n:
+            raise ValueError(f"{name} must have shape ({n}, k); got {x.shape}.")
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} contains NaN or inf.")
+    Pa = a_orthonormalize(Pa, A, drop_dependent=True)
+    Qa = a_orthonormalize(Qa, A, drop_dependent=True)
+    if Qa.shape[1] > Pa.shape[1]:
+        Pa, Qa = Qa, Pa  # angles are symmetric; let Q be the smaller space
+    k = Qa.shape[1]
+    cos = np.clip(np.linalg.svd(Pa.T @ (A @ Qa), compute_uv=False), 0.0, 1.0)  # descending
+    # arccos is inaccurate for small angles: take their sines from the residual of Q off span P.
+    residual = Qa - Pa @ (Pa.T @ (A @ Qa))
+    diag = A.diagonal()
+    if abs(A - sp.diags(diag)).max() == 0:  # lumped mass: an exact square root
+        sin = np.linalg.svd(np.sqrt(diag)[:, None] * residual, compute_uv=False)[::-1]
+    else:
+        g = residual.T @ (A @ residual)
+        sin = np.sqrt(np.clip(np.linalg.eigvalsh((g + g.T) / 2), 0.0, None))
+    sin = np.clip(np.sort(sin)[:k], 0.0, 1.0)  # ascending
+    angles = np.where(cos > np.sqrt(0.5), np.arcsin(sin), np.arccos(cos))
+    return np.sort(angles)
