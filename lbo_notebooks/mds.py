@@ -46,6 +46,7 @@ __all__ = [
     "procrustes_error",
     "scale_mu",
     "SMDS_DEFAULTS",
+    "ENERGIES",
 ]
 
 #: Defaults of :func:`spectral_mds`. MATH.md section 4: on 3-5k-vertex meshes about 150
@@ -331,15 +332,35 @@ def landmark_mds(
 
 
 # --- spectral MDS -----------------------------------------------------------------------------
-def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64]) -> float:
-    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (MATH.md section 4).
+#: The interpolation energies of :func:`spectral_mds`: the power of Lam in the regulariser.
+ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 
-    ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and ``lam`` with 1/length^2;
-    dividing them out makes ``mu`` dimensionless, so one default works for any shape, size,
-    resolution and sample count.
+
+def _check_energy(energy: Any) -> int:
+    if not isinstance(energy, str) or energy not in ENERGIES:
+        raise ValueError(f"energy must be one of {sorted(ENERGIES)} (the interpolation's smoothness term), got {energy!r}.")
+    return ENERGIES[energy]
+
+
+def scale_mu(
+    mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64], *, energy: str = "dirichlet"
+) -> float:
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]**p`` (MATH.md sections 4, 7).
+
+    ``p = 1`` for the Dirichlet energy ``sum lam_i c_i^2`` and ``p = 2`` for the biharmonic one
+    ``sum lam_i^2 c_i^2``. ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and
+    ``lam`` with 1/length^2; dividing them out makes ``mu`` dimensionless, so one default works for
+    any shape, size, resolution and sample count.
+
+    Examples
+    --------
+    >>> phi_s, lam = np.eye(3), np.array([0.0, 1.0, 4.0])
+    >>> scale_mu(0.5, phi_s, lam), scale_mu(0.5, phi_s, lam, energy="biharmonic")
+    (0.125, 0.03125)
     """
+    power = _check_energy(energy)
     top = float(np.linalg.norm(phi_s, 2)) ** 2
-    return float(mu) * top / float(eigenvalues[-1])
+    return float(mu) * top / float(eigenvalues[-1]) ** power
 
 
 def spectral_mds(
@@ -350,6 +371,7 @@ def spectral_mds(
     mu: float = 0.05,
     method: GeodesicMethod = "heat",
     *,
+    energy: str = "biharmonic",
     spectrum: Spectrum | None = None,
     sampling: tuple[ArrayLike, ArrayLike] | None = None,
     progress: bool | None = None,
@@ -360,9 +382,10 @@ def spectral_mds(
     1. ``Phi`` (n x k), ``Lam``: the first k = ``n_eigs`` LBO eigenpairs; q farthest-point samples;
     2. ``D_s``: squared geodesic distances among the samples (q x q, symmetrised); ``Phi_s`` the
        rows of Phi at the samples;
-    3. ``M = (Phi_s.T Phi_s + mu_abs Lam)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
-       ``D2 ~ Phi alpha Phi.T`` is the smoothest (least Dirichlet energy) interpolant of the
-       sampled squared distances;
+    3. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
+       ``D2 ~ Phi alpha Phi.T`` is the smoothest interpolant of the sampled squared distances:
+       least biharmonic energy (``p = 2``, the paper's choice, default) or least Dirichlet energy
+       (``p = 1``);
     4. reduced scaling: thin QR ``J Phi = Q R``; eigendecompose the k x k matrix
        ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
     Cost O(n k^2 + q n) plus q geodesic solves; memory O(n (k + q)). No n x n matrix is formed.
@@ -377,10 +400,14 @@ def spectral_mds(
         Number of farthest-point samples q, ``2 <= q <= n``.
     n_eigs : int, default 150
         Number of LBO eigenfunctions k. Accuracy depends on it far more than on mu.
-    mu : float, default 0.05
+    mu : float
         Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
     method : {"heat", "exact", "fmm"}
         Geodesic method for the sample distances (passed to the geodesic solver).
+    energy : {"biharmonic", "dirichlet"}, default "biharmonic"
+        Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
+        ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was as accurate or better and far
+        less sensitive to ``mu`` (``benchmarks/mds.py --accuracy``).
     spectrum : Spectrum, optional
         A precomputed eigenbasis of ``mesh`` with at least ``n_eigs`` pairs (its first ``n_eigs``
         are used). Lets a parameter sweep pay for the eigenbasis once.
@@ -391,7 +418,8 @@ def spectral_mds(
         Progress bar for the sampling.
     return_details : bool, default False
         Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
-        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs`` and ``timings`` (seconds for
+        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``alpha`` (the k x k
+        coefficients of ``D2 ~ Phi alpha Phi.T``) and ``timings`` (seconds for
         ``eigenbasis``, ``sampling`` (including the distances), ``embedding``, ``total``).
 
     Returns
@@ -416,6 +444,7 @@ def spectral_mds(
     n_eigs = int(n_eigs)
     dim = _check_dim(dim, n_eigs, "n_eigs (the embedding lives in the span of the eigenfunctions)")
     q = _check_samples(n_samples, n)
+    power = _check_energy(energy)
     if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
 
@@ -450,8 +479,8 @@ def spectral_mds(
 
     # 3. interpolation coefficients alpha (k x k)
     phi_s = phi[samples]
-    mu_abs = scale_mu(mu, phi_s, lam)
-    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam), phi_s.T, assume_a="pos")
+    mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
+    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
     alpha = M @ ds @ M.T
     alpha = 0.5 * (alpha + alpha.T)
 
@@ -470,6 +499,7 @@ def spectral_mds(
         "eigenvalues": G[: dim + 1].copy(),
         "eigengap": float(G[dim - 1] / G[dim]) if G[dim] > 0 else float("inf"),
         "mu_abs": mu_abs,
+        "alpha": alpha,
         "timings": {"eigenbasis": t1 - t0, "sampling": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
     }
     return X, details

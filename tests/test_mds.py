@@ -189,12 +189,46 @@ def test_spectral_mds_details_and_determinism(blob):
     assert np.array_equal(Z1, Z2)
     assert info["eigengap"] > 1 and info["eigenvalues"].shape == (4,) and info["samples"].shape == (50,)
     assert set(info["timings"]) == {"eigenbasis", "sampling", "embedding", "total"} and info["mu_abs"] > 0
+    assert info["alpha"].shape == (30, 30) and np.array_equal(info["alpha"], info["alpha"].T)
+
+
+@pytest.mark.parametrize("energy, power", [("dirichlet", 1), ("biharmonic", 2)])
+def test_energy_is_the_penalty_of_the_interpolation(blob, energy, power):
+    # Independent oracle: alpha = M D_s M.T where M solves the stacked least-squares problem
+    # [Phi_s; sqrt(mu_abs) Lam^(p/2)] M = [I; 0], i.e. each column of D_s is interpolated by the
+    # coefficients c minimising ||Phi_s c - d||^2 + mu_abs sum lam_i^p c_i^2.
+    m, D, X, spec, sampling = blob
+    k, q, mu = 30, 60, 0.3
+    Z, info = spectral_mds(m, n_samples=q, n_eigs=k, mu=mu, energy=energy, spectrum=spec, sampling=sampling,
+                           return_details=True)
+    phi_s, lam = spec.vectors[sampling[0][:q], :k], np.maximum(spec.values[:k], 0.0)
+    mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
+    assert info["mu_abs"] == pytest.approx(mu_abs, rel=1e-12)
+    stacked = np.vstack([phi_s, np.sqrt(mu_abs) * np.diag(lam ** (power / 2))])
+    M = np.linalg.lstsq(stacked, np.vstack([np.eye(q), np.zeros((k, q))]), rcond=None)[0]
+    ds = D[np.ix_(sampling[0][:q], sampling[0][:q])] ** 2
+    alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+    assert np.linalg.norm(info["alpha"] - alpha) <= 1e-9 * np.linalg.norm(alpha)
+
+
+def test_biharmonic_is_less_sensitive_to_mu(blob):
+    # A 100-fold range of mu moves the biharmonic interpolant less than the Dirichlet one (MATH.md 7).
+    m, D, X, spec, sampling = blob
+    spread = {}
+    for energy in ("dirichlet", "biharmonic"):
+        errs = [gram_error(spectral_mds(m, n_samples=100, n_eigs=40, mu=mu, energy=energy, spectrum=spec,
+                                        sampling=sampling), X) for mu in (0.01, 0.1, 1.0)]
+        spread[energy] = max(errs) - min(errs)
+    assert spread["biharmonic"] < spread["dirichlet"]
 
 
 def test_scale_mu_is_dimensionless():
     rng = np.random.default_rng(0)
     phi_s, lam = rng.normal(size=(30, 10)), np.linspace(0, 9, 10)
     assert scale_mu(0.05, 2 * phi_s, lam / 4) == pytest.approx(16 * scale_mu(0.05, phi_s, lam))
+    # biharmonic: mu_abs lam^2 must scale like Phi_s.T Phi_s, so mu_abs gains a second factor 4
+    assert scale_mu(0.05, 2 * phi_s, lam / 4, energy="biharmonic") == pytest.approx(
+        64 * scale_mu(0.05, phi_s, lam, energy="biharmonic"))
 
 
 def test_spectral_mds_errors(blob):
@@ -205,6 +239,9 @@ def test_spectral_mds_errors(blob):
         spectral_mds(m, dim=20, n_eigs=20, n_samples=50)
     with pytest.raises(ValueError, match="mu must be a positive number"):
         spectral_mds(m, n_eigs=20, n_samples=50, mu=0.0)
+    for bad in ("laplacian", None, ["biharmonic"]):
+        with pytest.raises(ValueError, match="energy must be one of"):
+            spectral_mds(m, n_eigs=20, n_samples=50, energy=bad)
     with pytest.raises(ValueError, match="spectrum has 10 eigenpairs"):
         spectral_mds(m, n_eigs=20, n_samples=50, spectrum=eigenbasis(m, 10))
     with pytest.raises(ValueError, match="count >= 50"):
