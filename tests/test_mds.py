@@ -15,7 +15,12 @@ from lbo_notebooks.mds import (
     gram_error,
     landmark_mds,
     procrustes_error,
+    growth_exponent,
+    measure_cost,
+    SMDS_DEFAULTS,
     scale_mu,
+    shape_distribution,
+    shape_distribution_distances,
     spectral_mds,
 )
 
@@ -256,3 +261,52 @@ def test_disconnected_mesh_is_refused():
                  lambda: classical_mds(two)):
         with pytest.raises(MeshError, match="keep_largest_component"):
             call()
+
+
+# --- shape distributions and cost measurement ---------------------------------------------------
+def test_shape_distribution_is_a_density_invariant_to_similarities():
+    rng = np.random.default_rng(3)
+    P = rng.normal(size=(150, 3))
+    h = shape_distribution(P, bins=40, max_ratio=50.0)        # every ratio is in range
+    assert np.sum(h) * 50.0 / 40 == pytest.approx(1.0, rel=1e-12)
+    moved = 0.3 * P @ random_rotation(rng) - 2.0
+    assert np.allclose(shape_distribution(moved), shape_distribution(P), rtol=0, atol=1e-12 * shape_distribution(P).max())
+    # two points: every distance equals the mean, so all the mass is in the bin holding 1
+    h2 = shape_distribution([[0.0, 0.0], [1.0, 1.0]], bins=3, max_ratio=3.0)
+    assert np.array_equal(h2, [0.0, 1.0, 0.0])
+
+
+def test_shape_distribution_distances_and_errors():
+    rng = np.random.default_rng(4)
+    sets = [rng.normal(size=(80, 3)), rng.uniform(size=(60, 3)), rng.normal(size=(80, 3)) * [1, 1, 0.01]]
+    D = shape_distribution_distances(sets, bins=20)
+    assert np.allclose(D, D.T) and np.all(np.diag(D) == 0) and np.all(D[~np.eye(3, dtype=bool)] > 0)
+    assert np.all(D <= 2 + 1e-12)  # L1 distance of two densities on the same bins
+    for bad, match in [([[0.0, 0.0]], "at least two points"), ([[1.0, 2.0], [1.0, 2.0]], "coincide")]:
+        with pytest.raises(ValueError, match=match):
+            shape_distribution(bad)
+    with pytest.raises(ValueError, match="bins must be"):
+        shape_distribution(sets[0], bins=0)
+
+
+def test_growth_exponent_and_cost():
+    n = np.array([100.0, 300.0, 900.0])
+    assert growth_exponent(n, 5 * n**1.5) == pytest.approx(1.5, abs=1e-12)
+    with pytest.raises(ValueError, match="positive"):
+        growth_exponent([1, 2], [0.0, 1.0])
+    with pytest.raises(ValueError, match="same length"):
+        growth_exponent([1, 2, 3], [1.0, 2.0])
+    # classical MDS holds two n x n float64 matrices at once: the trace must see them
+    D = cdist(*(2 * [np.random.default_rng(0).normal(size=(300, 3))]))
+    cost = measure_cost(classical_mds, D)
+    assert cost["peak_bytes"] >= 2 * 8 * 300**2 and cost["result"].shape == (300, 3) and cost["cpu_seconds"] >= 0
+
+
+def test_signature_defaults_are_the_documented_ones():
+    import inspect
+
+    params = inspect.signature(spectral_mds).parameters
+    assert params["mu"].default == SMDS_DEFAULTS["mu"] and params["energy"].default == SMDS_DEFAULTS["energy"]
+    m = shapes.icosphere(1)  # 42 vertices: the default k and q are capped at n
+    _, info = spectral_mds(m, return_details=True)
+    assert info["samples"].shape == (42,) and info["alpha"].shape == (42, 42)
