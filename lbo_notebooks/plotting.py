@@ -403,3 +403,57 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     a2.set_xlabel("vertices"); a2.set_ylabel("peak MiB above baseline"); a2.legend(fontsize=8); a2.set_title("memory (recorded)")
     fig.tight_layout()
     return fig
+
+
+# --- reconstruction sliders (notebook 06) -------------------------------------------------------
+def reconstruction_sliders(
+    mesh: Mesh,
+    target: ArrayLike,
+    spectrum_for: Callable[[float], Any],
+    alphas: Sequence[float],
+    counts: Sequence[int],
+    *,
+    alpha: float | None = None,
+    count: int | None = None,
+) -> Any:
+    """Two sliders, the metric exponent alpha and the number n of functions, over one mesh figure.
+
+    The figure shows ``target`` (n_vertices, 3) rebuilt from the first n eigenfunctions of the
+    metric ``|K|^alpha g`` (``spectrum_for(alpha)`` returns a :class:`~lbo_notebooks.Spectrum`
+    with at least ``max(counts)`` pairs; cache inside it, it is called at every redraw), coloured
+    by the per-vertex error ``|x - x_hat| / diagonal``. Returns an ipywidgets ``VBox`` with
+    attributes ``alpha_slider`` and ``viewer`` (the :class:`MeshSlider` of n).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> m = shapes.icosphere(2)
+    >>> cache = {}
+    >>> spectrum_for = lambda a: cache.setdefault(a, eigenbasis(m, 20, alpha=a))
+    >>> box = reconstruction_sliders(m, m.vertices, spectrum_for, [0.0, 1.0], [5, 10, 20])
+    >>> box.alpha_slider.value = 1.0
+    >>> sorted(cache)
+    [0.0, 1.0]
+    """
+    import ipywidgets as widgets
+
+    X = np.asarray(target, dtype=np.float64)
+    if X.shape != (mesh.n_vertices, 3):
+        raise ValueError(f"target must be an ({mesh.n_vertices}, 3) array of positions, got {np.shape(target)}.")
+    alphas, counts = list(alphas), [int(c) for c in counts]
+    if not alphas or not counts:
+        raise ValueError("alphas and counts must not be empty.")
+    alpha_slider = widgets.SelectionSlider(options=alphas, value=alphas[0] if alpha is None else alpha,
+                                           description="alpha", continuous_update=False)
+
+    def frame(n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        rebuilt = spectrum_for(alpha_slider.value).reconstruct(X, n)
+        return rebuilt, np.linalg.norm(X - rebuilt, axis=1) / mesh.diagonal
+
+    viewer = mesh_slider(mesh, frame, counts, "n", colorscale="Viridis",
+                         title=lambda n: f"α = {alpha_slider.value}, n = {n}: colour = |x − x̂| / diagonal")
+    viewer.slider.value = counts[-1] if count is None else count
+    alpha_slider.observe(lambda change: viewer.update(viewer.slider.value), names="value")
+    box = widgets.VBox([alpha_slider, viewer.widget])
+    box.alpha_slider, box.viewer = alpha_slider, viewer
+    return box
