@@ -9,7 +9,8 @@ the same shape then get (nearly) the same canonical form, up to a rigid motion.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
 * :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
-  span of the first ``n_eigs`` Laplace–Beltrami eigenfunctions from q sampled rows, and the
+  span of the first ``n_eigs`` Laplace–Beltrami eigenfunctions from q sampled rows (the smoothest
+  interpolant: least biharmonic energy as in the paper, or least Dirichlet energy), and the
   scaling is done in that k x k space. O(n k^2) time, O(n k) memory; never forms an n x n matrix.
 
 Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
@@ -55,7 +56,7 @@ __all__ = [
 
 #: Defaults of :func:`spectral_mds` (``n_samples`` and ``n_eigs`` are capped at the number of
 #: vertices). Chosen on tuning shapes of 3.7-4.5k vertices (two creature poses, a bumpy sphere, a
-#: thin torus; ``benchmarks/mds.py --accuracy``) for a Gram error under 1% against classical MDS:
+#: thin torus; ``benchmarks/mds.py --energies``) for a Gram error under 1% against classical MDS:
 #: the number of eigenfunctions sets the floor (the classical embedding projected onto 300
 #: eigenfunctions already has a 0.6% Gram error on a dog), samples must be about twice as many as
 #: eigenfunctions on thin shapes, and the biharmonic energy is insensitive to mu over 0.002-0.2.
@@ -416,7 +417,7 @@ def spectral_mds(
     energy : {"biharmonic", "dirichlet"}, default "biharmonic"
         Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
         ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was as accurate or better and far
-        less sensitive to ``mu`` (``benchmarks/mds.py --accuracy``).
+        less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
     spectrum : Spectrum, optional
         A precomputed eigenbasis of ``mesh`` with at least ``n_eigs`` pairs (its first ``n_eigs``
         are used). Lets a parameter sweep pay for the eigenbasis once.
