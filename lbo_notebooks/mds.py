@@ -9,7 +9,8 @@ the same shape then get (nearly) the same canonical form, up to a rigid motion.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
 * :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
-  span of the first ``k`` Laplace–Beltrami eigenfunctions from q sampled rows, and the
+  span of the first ``k`` Laplace–Beltrami eigenfunctions from q sampled rows (the smoothest
+  interpolant: least biharmonic energy as in the paper, or least Dirichlet energy), and the
   scaling is done in that k x k space. O(n k^2) time, O(n k) memory; never forms an n x n matrix.
 
 Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
@@ -48,11 +49,20 @@ __all__ = [
     "procrustes_error",
     "scale_mu",
     "SMDS_DEFAULTS",
+    "ENERGIES",
+    "shape_distribution",
+    "shape_distribution_distances",
+    "growth_exponent",
+    "measure_cost",
 ]
 
-#: Defaults of :func:`spectral_mds`. docs/maths.md, "Multidimensional scaling": on 3-5k-vertex meshes about 150
-#: eigenfunctions and 300 samples were needed for a Gram error under 2%; mu is dimensionless.
-SMDS_DEFAULTS: dict[str, float] = {"n_samples": 300, "k": 150, "mu": 0.05}
+#: Defaults of :func:`spectral_mds` (``n_samples`` and ``k`` are capped at the number of
+#: vertices). Chosen on tuning shapes of 3.7-4.5k vertices (two creature poses, a bumpy sphere, a
+#: thin torus; ``benchmarks/mds.py --energies``) for a Gram error under 1% against classical MDS:
+#: the number of eigenfunctions sets the floor (the classical embedding projected onto 300
+#: eigenfunctions already has a 0.6% Gram error on a dog), samples must be about twice as many as
+#: eigenfunctions on thin shapes, and the biharmonic energy is insensitive to mu over 0.002-0.2.
+SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 400, "n_samples": 800, "mu": 0.05}
 
 
 # --- small helpers ----------------------------------------------------------------------------
@@ -324,15 +334,35 @@ def landmark_mds(
 
 
 # --- spectral MDS -----------------------------------------------------------------------------
-def scale_mu(mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64]) -> float:
-    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]`` (docs/maths.md, "Multidimensional scaling").
+#: The interpolation energies of :func:`spectral_mds`: the power of Lam in the regulariser.
+ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 
-    ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and ``lam`` with 1/length^2;
-    dividing them out makes ``mu`` dimensionless, so one default works for any shape, size,
-    resolution and sample count.
+
+def _check_energy(energy: Any) -> int:
+    if not isinstance(energy, str) or energy not in ENERGIES:
+        raise ValueError(f"energy must be one of {sorted(ENERGIES)} (the interpolation's smoothness term), got {energy!r}.")
+    return ENERGIES[energy]
+
+
+def scale_mu(
+    mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64], *, energy: str = "dirichlet"
+) -> float:
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]**p`` (MATH.md sections 4, 7).
+
+    ``p = 1`` for the Dirichlet energy ``sum lam_i c_i^2`` and ``p = 2`` for the biharmonic one
+    ``sum lam_i^2 c_i^2``. ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and
+    ``lam`` with 1/length^2; dividing them out makes ``mu`` dimensionless, so one default works for
+    any shape, size, resolution and sample count.
+
+    Examples
+    --------
+    >>> phi_s, lam = np.eye(3), np.array([0.0, 1.0, 4.0])
+    >>> scale_mu(0.5, phi_s, lam), scale_mu(0.5, phi_s, lam, energy="biharmonic")
+    (0.125, 0.03125)
     """
+    power = _check_energy(energy)
     top = float(np.linalg.norm(phi_s, 2)) ** 2
-    return float(mu) * top / float(eigenvalues[-1])
+    return float(mu) * top / float(eigenvalues[-1]) ** power
 
 
 @renamed({"n_eigs": "k"}, keyword_only=("n_samples", "k", "mu", "method"), n_positional=2)
@@ -340,10 +370,11 @@ def spectral_mds(
     mesh: Mesh,
     dim: int = 3,
     *,
-    n_samples: int = 300,
-    k: int = 150,
+    n_samples: int | None = None,
+    k: int | None = None,
     mu: float = 0.05,
     method: GeodesicMethod = "heat",
+    energy: str = "biharmonic",
     spectrum: Spectrum | None = None,
     sampling: tuple[ArrayLike, ArrayLike] | None = None,
     progress: bool | None = None,
@@ -354,9 +385,10 @@ def spectral_mds(
     1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples;
     2. ``D_s``: squared geodesic distances among the samples (q x q, symmetrised); ``Phi_s`` the
        rows of Phi at the samples;
-    3. ``M = (Phi_s.T Phi_s + mu_abs Lam)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
-       ``D2 ~ Phi alpha Phi.T`` is the smoothest (least Dirichlet energy) interpolant of the
-       sampled squared distances;
+    3. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
+       ``D2 ~ Phi alpha Phi.T`` is the smoothest interpolant of the sampled squared distances:
+       least biharmonic energy (``p = 2``, the paper's choice, default) or least Dirichlet energy
+       (``p = 1``);
     4. reduced scaling: thin QR ``J Phi = Q R``; eigendecompose the k x k matrix
        ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
     Cost O(n k^2 + q n) plus q geodesic solves; memory O(n (k + q)). No n x n matrix is formed.
@@ -367,14 +399,19 @@ def spectral_mds(
         A connected mesh.
     dim : int, default 3
         Embedding dimension, ``dim < k``.
-    n_samples : int, default 300
-        Number of farthest-point samples q, ``2 <= q <= n``.
-    k : int, default 150
-        Number of LBO eigenfunctions k. Accuracy depends on it far more than on mu.
+    n_samples : int, optional
+        Number of farthest-point samples q, ``2 <= q <= n``. Default ``min(800, n)``.
+    k : int, optional
+        Number of LBO eigenfunctions k. Default ``min(400, n)``. Accuracy depends on it far more
+        than on mu: the embedding lives in their span.
     mu : float, default 0.05
         Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
     method : {"heat", "exact", "fmm"}
         Geodesic method for the sample distances (passed to the geodesic solver).
+    energy : {"biharmonic", "dirichlet"}, default "biharmonic"
+        Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
+        ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was as accurate or better and far
+        less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
     spectrum : Spectrum, optional
         A precomputed eigenbasis of ``mesh`` with at least ``k`` pairs (its first ``k``
         are used). Lets a parameter sweep pay for the eigenbasis once.
@@ -385,7 +422,8 @@ def spectral_mds(
         Progress bar for the sampling.
     return_details : bool, default False
         Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
-        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs`` and ``timings`` (seconds for
+        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``alpha`` (the k x k
+        coefficients of ``D2 ~ Phi alpha Phi.T``) and ``timings`` (seconds for
         ``eigenbasis``, ``sampling`` (including the distances), ``embedding``, ``total``).
 
     Returns
@@ -405,11 +443,16 @@ def spectral_mds(
     check_connected(mesh, "spectral MDS")
     n = mesh.n_vertices
     method = check_method(method)
+    if k is None:
+        k = min(SMDS_DEFAULTS["k"], n)
+    if n_samples is None:
+        n_samples = min(SMDS_DEFAULTS["n_samples"], n)
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= n:
         raise ValueError(f"k must be an integer between 2 and the number of vertices ({n}), got {k!r}.")
     k = int(k)
     dim = _check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
     q = _check_samples(n_samples, n)
+    power = _check_energy(energy)
     if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
 
@@ -444,8 +487,8 @@ def spectral_mds(
 
     # 3. interpolation coefficients alpha (k x k)
     phi_s = phi[samples]
-    mu_abs = scale_mu(mu, phi_s, lam)
-    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam), phi_s.T, assume_a="pos")
+    mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
+    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
     alpha = M @ ds @ M.T
     alpha = 0.5 * (alpha + alpha.T)
 
@@ -464,6 +507,121 @@ def spectral_mds(
         "eigenvalues": G[: dim + 1].copy(),
         "eigengap": float(G[dim - 1] / G[dim]) if G[dim] > 0 else float("inf"),
         "mu_abs": mu_abs,
+        "alpha": alpha,
         "timings": {"eigenbasis": t1 - t0, "sampling": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
     }
     return X, details
+
+
+# --- using canonical forms ----------------------------------------------------------------------
+def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 3.0) -> NDArray[np.float64]:
+    """Histogram (a density) of all pairwise Euclidean distances, divided by their mean.
+
+    A *shape distribution* (Osada et al. 2002) of a point set: invariant to rigid motions, to
+    reflections and - because distances are divided by their mean - to uniform scaling. Applied to
+    canonical forms it compares shapes independently of pose, with no vertex correspondence.
+    O(n^2) time, O(n^2) memory for the distances (use a few thousand points).
+
+    Parameters
+    ----------
+    points : (n, d) array
+        At least two points.
+    bins : int, default 30
+        Number of equal bins on ``[0, max_ratio]``.
+    max_ratio : float, default 3.0
+        Largest distance / mean distance counted (larger ones fall outside the histogram).
+
+    Returns
+    -------
+    ndarray, shape (bins,)
+        Density values: ``sum(h) * max_ratio / bins`` is the fraction of pairs within range.
+
+    Examples
+    --------
+    >>> P = np.random.default_rng(0).normal(size=(200, 3))
+    >>> h = shape_distribution(P)
+    >>> bool(np.allclose(h, shape_distribution(-2.0 * P[:, ::-1] + 7.0)))
+    True
+    """
+    from scipy.spatial.distance import pdist
+
+    P = _as_embedding(points, "points")
+    if P.shape[0] < 2:
+        raise ValueError(f"a shape distribution needs at least two points, got {P.shape[0]}.")
+    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1:
+        raise ValueError(f"bins must be a positive integer, got {bins!r}.")
+    if not (np.isscalar(max_ratio) and np.isfinite(max_ratio) and max_ratio > 0):
+        raise ValueError(f"max_ratio must be a positive number, got {max_ratio!r}.")
+    d = pdist(P)
+    mean = d.mean()
+    if mean <= 0:
+        raise ValueError("all points coincide; their shape distribution is undefined.")
+    counts, _ = np.histogram(d / mean, bins=int(bins), range=(0.0, float(max_ratio)))
+    return counts / (d.size * float(max_ratio) / int(bins))
+
+
+def shape_distribution_distances(point_sets: list[ArrayLike], **kwargs: Any) -> NDArray[np.float64]:
+    """The L1 distances between the :func:`shape_distribution` of every pair of point sets.
+
+    ``kwargs`` go to :func:`shape_distribution`. Returns a symmetric (s, s) matrix with a zero
+    diagonal; the point sets may have different numbers of points.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> ball, line = rng.normal(size=(300, 3)), np.outer(np.linspace(0, 1, 300), [1.0, 2.0, 0.0])
+    >>> D = shape_distribution_distances([ball, 3 * ball, line])
+    >>> bool(D[0, 1] < 1e-12 < D[0, 2])
+    True
+    """
+    H = np.array([shape_distribution(P, **kwargs) for P in point_sets])
+    width = float(kwargs.get("max_ratio", 3.0)) / int(kwargs.get("bins", 30))
+    return np.abs(H[:, None, :] - H[None, :, :]).sum(-1) * width
+
+
+def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
+    """Least-squares slope of ``log(cost)`` against ``log(size)``: cost ~ size^exponent.
+
+    Examples
+    --------
+    >>> growth_exponent([100, 200, 400], [3.0, 12.0, 48.0])
+    2.0
+    """
+    n, c = np.asarray(sizes, dtype=np.float64), np.asarray(costs, dtype=np.float64)
+    if n.shape != c.shape or n.ndim != 1 or n.size < 2:
+        raise ValueError("sizes and costs must be 1-D arrays of the same length, at least 2.")
+    if np.any(n <= 0) or np.any(c <= 0) or not np.all(np.isfinite(c)):
+        raise ValueError("sizes and costs must be positive and finite (logarithms are taken).")
+    return float(round(np.polyfit(np.log(n), np.log(c), 1)[0], 12))
+
+
+def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
+    """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
+
+    ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
+    steadier than wall time. ``peak_bytes`` is the peak of Python and NumPy allocations during the
+    call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
+    factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
+
+    Examples
+    --------
+    >>> cost = measure_cost(np.ones, (1000, 1000))
+    >>> cost["peak_bytes"] >= 8 * 10**6 and cost["result"].shape == (1000, 1000)
+    True
+    """
+    import tracemalloc
+
+    started = tracemalloc.is_tracing()
+    if not started:
+        tracemalloc.start()
+    tracemalloc.reset_peak()
+    base = tracemalloc.get_traced_memory()[0]
+    cpu = time.process_time()
+    try:
+        result = function(*args, **kwargs)
+        cpu = time.process_time() - cpu
+        peak = tracemalloc.get_traced_memory()[1] - base
+    finally:
+        if not started:
+            tracemalloc.stop()
+    return {"result": result, "cpu_seconds": cpu, "peak_bytes": int(peak)}

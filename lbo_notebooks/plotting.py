@@ -441,3 +441,104 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
     >>> w.slider.value = 45
     """
     return PlaneSlider(matrix, angles)
+
+
+# --- recorded MDS benchmark (notebook 07) -------------------------------------------------------
+def plot_mds_scaling(rows: Sequence[dict]) -> Any:
+    """Time and peak memory of spectral vs classical MDS against n, from ``benchmarks/mds.py`` rows.
+
+    ``rows`` is the ``"scaling"`` list of ``benchmarks/results/mds.json``: each row has ``n`` and,
+    for ``"smds"`` and ``"classical"``, ``seconds``, ``cpu_seconds`` and ``peak_mib`` (classical
+    rows may be missing above the size it was run to). Left: wall and CPU seconds on log-log axes
+    with slope-1 and slope-2 guides; right: peak MiB with the size of two n x n float64 matrices.
+    Returns the matplotlib figure.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> row = lambda n, s: {"seconds": s, "cpu_seconds": s, "peak_mib": n / 100}
+    >>> fig = plot_mds_scaling([{"n": n, "smds": row(n, n / 1e3), "classical": row(n, (n / 1e3) ** 2)}
+    ...                         for n in (1000, 2000, 4000)])
+    >>> len(fig.axes)
+    2
+    """
+    import matplotlib.pyplot as plt
+
+    if not rows:
+        raise ValueError("rows is empty; pass the 'scaling' list of benchmarks/results/mds.json.")
+    n = np.array([r["n"] for r in rows], dtype=np.float64)
+
+    def get(kind: str, key: str) -> NDArray[np.float64]:
+        return np.array([r.get(kind, {}).get(key, np.nan) for r in rows], dtype=np.float64)
+
+    has_c = np.isfinite(get("classical", "seconds"))
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
+    for key, style, what in (("seconds", "-", "wall"), ("cpu_seconds", "--", "CPU")):
+        a1.loglog(n, get("smds", key), "o" + style, color="C0", label=f"spectral MDS ({what})")
+        a1.loglog(n[has_c], get("classical", key)[has_c], "s" + style, color="C1", label=f"classical MDS ({what})")
+    a1.loglog(n, get("smds", "cpu_seconds")[0] * n / n[0], "k:", label="slope 1")
+    if has_c.any():
+        first = np.flatnonzero(has_c)[0]
+        a1.loglog(n[has_c], get("classical", "cpu_seconds")[first] * (n[has_c] / n[first]) ** 2, "k-.", label="slope 2")
+    a1.set_xlabel("vertices"); a1.set_ylabel("seconds"); a1.legend(fontsize=8); a1.set_title("time (recorded)")
+    a2.loglog(n, get("smds", "peak_mib"), "o-", label="spectral MDS")
+    a2.loglog(n[has_c], get("classical", "peak_mib")[has_c], "s-", label="classical MDS")
+    a2.loglog(n[has_c], 2 * 8 * n[has_c] ** 2 / 2**20, "k--", label="two n x n float64 matrices")
+    a2.set_xlabel("vertices"); a2.set_ylabel("peak MiB above baseline"); a2.legend(fontsize=8); a2.set_title("memory (recorded)")
+    fig.tight_layout()
+    return fig
+
+
+# --- reconstruction sliders (notebook 06) -------------------------------------------------------
+def reconstruction_sliders(
+    mesh: Mesh,
+    target: ArrayLike,
+    spectrum_for: Callable[[float], Any],
+    alphas: Sequence[float],
+    counts: Sequence[int],
+    *,
+    alpha: float | None = None,
+    count: int | None = None,
+) -> Any:
+    """Two sliders, the metric exponent alpha and the number n of functions, over one mesh figure.
+
+    The figure shows ``target`` (n_vertices, 3) rebuilt from the first n eigenfunctions of the
+    metric ``|K|^alpha g`` (``spectrum_for(alpha)`` returns a :class:`~lbo_notebooks.Spectrum`
+    with at least ``max(counts)`` pairs; cache inside it, it is called at every redraw), coloured
+    by the per-vertex error ``|x - x_hat| / diagonal``. Returns an ipywidgets ``VBox`` with
+    attributes ``alpha_slider`` and ``viewer`` (the :class:`MeshSlider` of n).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> m = shapes.icosphere(2)
+    >>> cache = {}
+    >>> spectrum_for = lambda a: cache.setdefault(a, eigenbasis(m, 20, alpha=a))
+    >>> box = reconstruction_sliders(m, m.vertices, spectrum_for, [0.0, 1.0], [5, 10, 20])
+    >>> box.alpha_slider.value = 1.0
+    >>> sorted(cache)
+    [0.0, 1.0]
+    """
+    import ipywidgets as widgets
+
+    X = np.asarray(target, dtype=np.float64)
+    if X.shape != (mesh.n_vertices, 3):
+        raise ValueError(f"target must be an ({mesh.n_vertices}, 3) array of positions, got {np.shape(target)}.")
+    alphas, counts = list(alphas), [int(c) for c in counts]
+    if not alphas or not counts:
+        raise ValueError("alphas and counts must not be empty.")
+    alpha_slider = widgets.SelectionSlider(options=alphas, value=alphas[0] if alpha is None else alpha,
+                                           description="alpha", continuous_update=False)
+
+    def frame(n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        rebuilt = spectrum_for(alpha_slider.value).reconstruct(X, n)
+        return rebuilt, np.linalg.norm(X - rebuilt, axis=1) / mesh.diagonal
+
+    viewer = mesh_slider(mesh, frame, counts, "n", colorscale="Viridis",
+                         title=lambda n: f"α = {alpha_slider.value}, n = {n}: colour = |x − x̂| / diagonal")
+    viewer.slider.value = counts[-1] if count is None else count
+    alpha_slider.observe(lambda change: viewer.update(viewer.slider.value), names="value")
+    box = widgets.VBox([alpha_slider, viewer.widget])
+    box.alpha_slider, box.viewer = alpha_slider, viewer
+    return box

@@ -305,3 +305,32 @@ def test_bad_kind_and_where(bumpy: Mesh) -> None:
         conformal_factor(bumpy, 0.5, where="edge")
     with pytest.raises(ValueError, match="Mesh"):
         gaussian_curvature(np.zeros((3, 3)))
+
+
+# --- jittered torus: an exact surface with an irregular triangulation ------------------------------
+def test_jittered_torus_is_the_torus_with_its_exact_curvature():
+    from lbo_notebooks.curvature import jittered_torus
+
+    flat, K0 = jittered_torus(12, 0.0)
+    assert np.array_equal(flat.vertices, shapes.torus(1.0, 0.4, 30, 12).vertices)
+    mesh, K = jittered_torus(30, 0.5, seed=1)
+    x, y, z = mesh.vertices.T
+    on_surface = (np.hypot(x, y) - 1.0) ** 2 + z**2 - 0.4**2
+    assert np.abs(on_surface).max() < 1e-12 * 0.4**2 * 100
+    assert not np.allclose(mesh.vertices, jittered_torus(30, 0.0)[0].vertices)
+    # the analytic K integrates to 0 (chi = 0), as the angle defects do exactly
+    a = mass_matrix(mesh, "voronoi").diagonal()
+    assert abs(np.sum(K * a)) < 0.05 * np.sum(np.abs(K) * a)
+    # on a regular fine grid the angle-defect curvature matches K where |K| is not small
+    fine, Kf = jittered_torus(80, 0.0)
+    strong = np.abs(Kf) > 0.5
+    assert np.median(np.abs(gaussian_curvature(fine)[strong] / Kf[strong] - 1)) < 0.01
+
+
+@pytest.mark.parametrize("kwargs, match", [({"n_minor": 2}, "n_minor"), ({"n_minor": 8, "jitter": 1.0}, "jitter"),
+                                           ({"n_minor": 8, "minor_radius": 2.0}, "minor_radius")])
+def test_jittered_torus_bad_arguments(kwargs, match):
+    from lbo_notebooks.curvature import jittered_torus
+
+    with pytest.raises(ValueError, match=match):
+        jittered_torus(**kwargs)

@@ -15,7 +15,12 @@ from lbo_notebooks.mds import (
     gram_error,
     landmark_mds,
     procrustes_error,
+    growth_exponent,
+    measure_cost,
+    SMDS_DEFAULTS,
     scale_mu,
+    shape_distribution,
+    shape_distribution_distances,
     spectral_mds,
 )
 
@@ -189,12 +194,46 @@ def test_spectral_mds_details_and_determinism(blob):
     assert np.array_equal(Z1, Z2)
     assert info["eigengap"] > 1 and info["eigenvalues"].shape == (4,) and info["samples"].shape == (50,)
     assert set(info["timings"]) == {"eigenbasis", "sampling", "embedding", "total"} and info["mu_abs"] > 0
+    assert info["alpha"].shape == (30, 30) and np.array_equal(info["alpha"], info["alpha"].T)
+
+
+@pytest.mark.parametrize("energy, power", [("dirichlet", 1), ("biharmonic", 2)])
+def test_energy_is_the_penalty_of_the_interpolation(blob, energy, power):
+    # Independent oracle: alpha = M D_s M.T where M solves the stacked least-squares problem
+    # [Phi_s; sqrt(mu_abs) Lam^(p/2)] M = [I; 0], i.e. each column of D_s is interpolated by the
+    # coefficients c minimising ||Phi_s c - d||^2 + mu_abs sum lam_i^p c_i^2.
+    m, D, X, spec, sampling = blob
+    k, q, mu = 30, 60, 0.3
+    Z, info = spectral_mds(m, n_samples=q, k=k, mu=mu, energy=energy, spectrum=spec, sampling=sampling,
+                           return_details=True)
+    phi_s, lam = spec.vectors[sampling[0][:q], :k], np.maximum(spec.values[:k], 0.0)
+    mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
+    assert info["mu_abs"] == pytest.approx(mu_abs, rel=1e-12)
+    stacked = np.vstack([phi_s, np.sqrt(mu_abs) * np.diag(lam ** (power / 2))])
+    M = np.linalg.lstsq(stacked, np.vstack([np.eye(q), np.zeros((k, q))]), rcond=None)[0]
+    ds = D[np.ix_(sampling[0][:q], sampling[0][:q])] ** 2
+    alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+    assert np.linalg.norm(info["alpha"] - alpha) <= 1e-9 * np.linalg.norm(alpha)
+
+
+def test_biharmonic_is_less_sensitive_to_mu(blob):
+    # A 100-fold range of mu moves the biharmonic interpolant less than the Dirichlet one (MATH.md 7).
+    m, D, X, spec, sampling = blob
+    spread = {}
+    for energy in ("dirichlet", "biharmonic"):
+        errs = [gram_error(spectral_mds(m, n_samples=100, k=40, mu=mu, energy=energy, spectrum=spec,
+                                        sampling=sampling), X) for mu in (0.01, 0.1, 1.0)]
+        spread[energy] = max(errs) - min(errs)
+    assert spread["biharmonic"] < spread["dirichlet"]
 
 
 def test_scale_mu_is_dimensionless():
     rng = np.random.default_rng(0)
     phi_s, lam = rng.normal(size=(30, 10)), np.linspace(0, 9, 10)
     assert scale_mu(0.05, 2 * phi_s, lam / 4) == pytest.approx(16 * scale_mu(0.05, phi_s, lam))
+    # biharmonic: mu_abs lam^2 must scale like Phi_s.T Phi_s, so mu_abs gains a second factor 4
+    assert scale_mu(0.05, 2 * phi_s, lam / 4, energy="biharmonic") == pytest.approx(
+        64 * scale_mu(0.05, phi_s, lam, energy="biharmonic"))
 
 
 def test_spectral_mds_errors(blob):
@@ -205,6 +244,9 @@ def test_spectral_mds_errors(blob):
         spectral_mds(m, dim=20, k=20, n_samples=50)
     with pytest.raises(ValueError, match="mu must be a positive number"):
         spectral_mds(m, k=20, n_samples=50, mu=0.0)
+    for bad in ("laplacian", None, ["biharmonic"]):
+        with pytest.raises(ValueError, match="energy must be one of"):
+            spectral_mds(m, k=20, n_samples=50, energy=bad)
     with pytest.raises(ValueError, match="spectrum has 10 eigenpairs"):
         spectral_mds(m, k=20, n_samples=50, spectrum=eigenbasis(m, 10))
     with pytest.raises(ValueError, match="k >= 50"):
@@ -219,3 +261,52 @@ def test_disconnected_mesh_is_refused():
                  lambda: classical_mds(two)):
         with pytest.raises(MeshError, match="keep_largest_component"):
             call()
+
+
+# --- shape distributions and cost measurement ---------------------------------------------------
+def test_shape_distribution_is_a_density_invariant_to_similarities():
+    rng = np.random.default_rng(3)
+    P = rng.normal(size=(150, 3))
+    h = shape_distribution(P, bins=40, max_ratio=50.0)        # every ratio is in range
+    assert np.sum(h) * 50.0 / 40 == pytest.approx(1.0, rel=1e-12)
+    moved = 0.3 * P @ random_rotation(rng) - 2.0
+    assert np.allclose(shape_distribution(moved), shape_distribution(P), rtol=0, atol=1e-12 * shape_distribution(P).max())
+    # two points: every distance equals the mean, so all the mass is in the bin holding 1
+    h2 = shape_distribution([[0.0, 0.0], [1.0, 1.0]], bins=3, max_ratio=3.0)
+    assert np.array_equal(h2, [0.0, 1.0, 0.0])
+
+
+def test_shape_distribution_distances_and_errors():
+    rng = np.random.default_rng(4)
+    sets = [rng.normal(size=(80, 3)), rng.uniform(size=(60, 3)), rng.normal(size=(80, 3)) * [1, 1, 0.01]]
+    D = shape_distribution_distances(sets, bins=20)
+    assert np.allclose(D, D.T) and np.all(np.diag(D) == 0) and np.all(D[~np.eye(3, dtype=bool)] > 0)
+    assert np.all(D <= 2 + 1e-12)  # L1 distance of two densities on the same bins
+    for bad, match in [([[0.0, 0.0]], "at least two points"), ([[1.0, 2.0], [1.0, 2.0]], "coincide")]:
+        with pytest.raises(ValueError, match=match):
+            shape_distribution(bad)
+    with pytest.raises(ValueError, match="bins must be"):
+        shape_distribution(sets[0], bins=0)
+
+
+def test_growth_exponent_and_cost():
+    n = np.array([100.0, 300.0, 900.0])
+    assert growth_exponent(n, 5 * n**1.5) == pytest.approx(1.5, abs=1e-12)
+    with pytest.raises(ValueError, match="positive"):
+        growth_exponent([1, 2], [0.0, 1.0])
+    with pytest.raises(ValueError, match="same length"):
+        growth_exponent([1, 2, 3], [1.0, 2.0])
+    # classical MDS holds two n x n float64 matrices at once: the trace must see them
+    D = cdist(*(2 * [np.random.default_rng(0).normal(size=(300, 3))]))
+    cost = measure_cost(classical_mds, D)
+    assert cost["peak_bytes"] >= 2 * 8 * 300**2 and cost["result"].shape == (300, 3) and cost["cpu_seconds"] >= 0
+
+
+def test_signature_defaults_are_the_documented_ones():
+    import inspect
+
+    params = inspect.signature(spectral_mds).parameters
+    assert params["mu"].default == SMDS_DEFAULTS["mu"] and params["energy"].default == SMDS_DEFAULTS["energy"]
+    m = shapes.icosphere(1)  # 42 vertices: the default k and q are capped at n
+    _, info = spectral_mds(m, return_details=True)
+    assert info["samples"].shape == (42,) and info["alpha"].shape == (42, 42)
