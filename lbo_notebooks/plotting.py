@@ -387,17 +387,20 @@ def plot_meshes(
     fig = go.Figure()
     annotations = []
     last_with_values = max((p for p, v in enumerate(values) if v is not None), default=-1)
-    for p, (mesh, v, view) in enumerate(zip(meshes, values, views)):
+    shows = [v is not None and (not shared_colour_range or p == last_with_values) for p, v in enumerate(values)]
+    # With one length scale, one camera distance too (the narrowest scene's), so that equal sizes
+    # are drawn equally large in every panel.
+    narrowest_px = (1 / cols - gap - (colorbar_frac if any(shows) else 0)) * _NOMINAL_WIDTH
+    for p, (mesh, v, view, show) in enumerate(zip(meshes, values, views, shows)):
         r, c = divmod(p, cols)
         x0, x1 = c / cols + gap / 2, (c + 1) / cols - gap / 2
         y1 = 1 - r / rows
-        y0 = 1 - (r + 1) / rows + (gap / 2 if r < rows - 1 else 0)
+        y0 = 1 - (r + 1) / rows + (gap / 2 if rows > 1 else 0)
         scene_top = y1 - title_px / total_h
-        show = v is not None and (not shared_colour_range or p == last_with_values)
         scene_x1 = x1 - colorbar_frac if show else x1
         name = "scene" if p == 0 else f"scene{p + 1}"
         radius = shared_radius if same_scale else view.radius * (1 + _MARGIN)
-        width_px = (scene_x1 - x0) * _NOMINAL_WIDTH
+        width_px = narrowest_px if same_scale else (scene_x1 - x0) * _NOMINAL_WIDTH
         height_px = (scene_top - y0) * total_h
         fig.update_layout({name: _scene(view, radius, dict(x=[x0, scene_x1], y=[y0, scene_top]), width_px, height_px)})
         lo, hi = (cmin, cmax) if shared_colour_range else _colour_range(v, cmin, cmax, symmetric)

@@ -243,3 +243,13 @@ def test_static_fallback_turns_the_mesh_upright(dog):
     assert ax.get_xlim() == ax.get_ylim() == ax.get_zlim() == (-r, r)
     assert r >= np.linalg.norm(y_up - (y_up.min(0) + y_up.max(0)) / 2, axis=1).max()
     assert ax.get_title() == "0.00"
+
+
+def test_same_scale_draws_equal_sizes_equally_large_even_beside_a_colour_bar(dog):
+    fig = plotting.plot_meshes([dog, dog, dog], [dog.vertices[:, 0]] * 3, shared_colour_range=True)
+    scenes = _scenes(fig)
+    assert scenes[2].domain.x[1] - scenes[2].domain.x[0] < scenes[0].domain.x[1] - scenes[0].domain.x[0]
+    eyes = [np.linalg.norm([s.camera.eye.x, s.camera.eye.y, s.camera.eye.z]) for s in scenes]
+    heights = [s.domain.y[1] - s.domain.y[0] for s in scenes]
+    np.testing.assert_allclose(eyes, eyes[0], rtol=1e-12)      # same distance and same height:
+    np.testing.assert_allclose(heights, heights[0], rtol=1e-12)  # the same size on screen
