@@ -401,10 +401,12 @@ def _check_figure_layout(page: Page, figure, name: str, out: Path) -> None:
     x0, y0 = layout["figure"][0], layout["figure"][1]
     band = 3
     for j, (left, top, right, bottom) in enumerate(scenes):
-        crop = image.crop((round(left - x0) + 1, round(top - y0) + 1, round(right - x0) - 1, round(bottom - y0) - 1))
+        box = (max(round(left - x0) + 1, 0), max(round(top - y0) + 1, 0),
+               min(round(right - x0) - 1, image.width), min(round(bottom - y0) - 1, image.height))
+        if box[2] - box[0] <= 2 * band or box[3] - box[1] <= 2 * band:
+            continue   # a scene without size (or outside the screenshot) cannot be clipped
+        crop = image.crop(box)
         w, h = crop.size
-        if w <= 2 * band or h <= 2 * band:
-            continue
         pixels = crop.load()
         edge = [pixels[x, y] for x in range(w) for y in (*range(band), *range(h - band, h))]
         edge += [pixels[x, y] for y in range(h) for x in (*range(band), *range(w - band, w))]
