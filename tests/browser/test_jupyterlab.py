@@ -367,6 +367,17 @@ FIGURE_LAYOUT = """el => {
 }"""
 
 
+def _figure_info(page: Page, figure, timeout: float = 60) -> dict:
+    """FIGURE_INFO once a 3D figure has drawn its WebGL canvas (a FigureWidget receives its data
+    from the kernel after the output appears; under load that takes a while), or at the timeout."""
+    deadline = time.monotonic() + timeout
+    info = figure.evaluate(FIGURE_INFO)
+    while info["is3d"] and not info["glCanvas"] and time.monotonic() < deadline:
+        page.wait_for_timeout(1000)
+        info = figure.evaluate(FIGURE_INFO)
+    return info
+
+
 def _intersect(a, b, tol: float = 1.0) -> bool:
     return min(a[2], b[2]) - max(a[0], b[0]) > tol and min(a[3], b[3]) - max(a[1], b[1]) > tol
 
@@ -493,7 +504,7 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, offline: Offline, not
         fig = figures.nth(i)
         fig.scroll_into_view_if_needed()
         page.wait_for_timeout(300)
-        info = fig.evaluate(FIGURE_INFO)
+        info = _figure_info(page, fig)
         infos.append(info)
         fig.screenshot(path=str(out / f"figure_{i:02d}.png"))
         if info["is3d"]:
@@ -605,7 +616,7 @@ def test_static_site(browser, site, offline: Offline) -> None:
             fig = figures.nth(i)
             fig.scroll_into_view_if_needed()
             page.wait_for_timeout(300)
-            info = fig.evaluate(FIGURE_INFO)
+            info = _figure_info(page, fig)
             assert info["width"] > 100 and info["height"] > 100 and not info["noWebGL"], f"{name}: figure {i}: {info}"
             if info["is3d"]:
                 assert info["glCanvas"], f"{name}: 3D figure {i} has no WebGL canvas: {info}"
