@@ -8,6 +8,7 @@ with each displayed vertex taking the value of its nearest original vertex.
 
 from __future__ import annotations
 
+import re
 from typing import Any, Callable, Sequence
 
 import numpy as np
@@ -15,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh
 
-__all__ = ["plot_mesh", "plot_meshes", "plot_mesh_static", "mesh_slider", "MeshSlider", "display_mesh"]
+__all__ = ["plot_mesh", "plot_meshes", "plot_mesh_static", "mesh_slider", "MeshSlider", "display_mesh", "tidy_label"]
 
 DEFAULT_MAX_FACES = 40_000
 
@@ -61,22 +62,154 @@ def _check_scalars(mesh: Mesh, scalars: ArrayLike | None) -> NDArray[np.float64]
     return s
 
 
-def _colour_range(s: NDArray[np.float64] | None, cmin: float | None, cmax: float | None, symmetric: bool) -> tuple[float | None, float | None]:
+def _colour_range(s: NDArray[np.float64] | None, cmin: float | None, cmax: float | None,
+                  symmetric: bool) -> tuple[float | None, float | None]:
+    """The colour range for ``s``; a (numerically) constant function gets the middle colour.
+
+    A range that collapses to a point (or, with ``symmetric``, a constant function drawn at one
+    end of ``[-|c|, |c|]``) would paint the whole surface in the extreme colour, which reads as
+    "large" rather than "constant". Constant means a spread below ``sqrt(eps)`` times the size.
+    """
     if s is None:
         return cmin, cmax
+    lo, hi = float(s.min()), float(s.max())
+    size = max(abs(lo), abs(hi))
+    if cmin is None and cmax is None and hi - lo <= np.sqrt(np.finfo(float).eps) * size:
+        centre = (lo + hi) / 2
+        half = abs(centre) or 1.0
+        return centre - half, centre + half
     if symmetric and cmin is None and cmax is None:
-        r = float(np.abs(s).max()) or 1.0
+        r = size or 1.0
         return -r, r
-    return (float(s.min()) if cmin is None else cmin), (float(s.max()) if cmax is None else cmax)
+    return (lo if cmin is None else cmin), (hi if cmax is None else cmax)
+
+
+_NEGATIVE_ZERO = re.compile(r"(?<![\w.])-(0(?:\.0*)?)(?![\d.])")
+
+
+def tidy_label(text: str | None) -> str | None:
+    """``text`` with every number that was rounded to a negative zero ("-0.00") written as zero.
+
+    A value like ``-3e-16`` formatted with ``:.2f`` prints "-0.00"; the sign is round-off, not
+    information.
+
+    Examples
+    --------
+    >>> tidy_label("λ = -0.00, μ = -0.01, t = -0")
+    'λ = 0.00, μ = -0.01, t = 0'
+    """
+    return None if text is None else _NEGATIVE_ZERO.sub(r"\1", text)
+
+
+# --- the camera ------------------------------------------------------------------------------
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+_FOV_Y = np.pi / 4             # plotly's perspective camera: 45 degree vertical field of view
+_NOMINAL_WIDTH = 800           # px; the figure is at least this wide in JupyterLab and on the site
+_MARGIN = 0.06                 # empty border around the bounding sphere, as a fraction of its radius
+_ELEVATION, _AZIMUTH = np.radians(18.0), np.radians(28.0)
+
+
+def _up_vector(up: str | ArrayLike, vertices: NDArray[np.float64]) -> NDArray[np.float64]:
+    if isinstance(up, str):
+        key = up.strip().lower()
+        if key == "auto":
+            # Meshes are authored axis-aligned, y-up (most file formats) or z-up (CAD, our creatures):
+            # the vertical axis is the one of middle extent (an animal is longer than tall, taller
+            # than wide). Principal axes would tilt an animal by the mass of its head and legs.
+            extent = np.ptp(vertices, axis=0)
+            axis = int(np.argsort(extent, kind="stable")[1])
+            return np.eye(3)[axis]
+        sign = -1.0 if key.startswith("-") else 1.0
+        if key.lstrip("+-") not in _AXES:
+            raise ValueError(f'up={up!r}: use "auto", "x", "y", "z" (optionally with a sign, e.g. "-y") '
+                             "or a 3-vector.")
+        return sign * np.eye(3)[_AXES[key.lstrip("+-")]]
+    u = np.asarray(up, dtype=np.float64)
+    if u.shape != (3,) or not np.all(np.isfinite(u)) or np.linalg.norm(u) == 0:
+        raise ValueError(f"up must be a finite non-zero 3-vector or one of 'auto', 'x', 'y', 'z'; got {up!r}.")
+    return u / np.linalg.norm(u)
+
+
+class _View:
+    """Where the camera looks from: a unit ``up``, a unit ``toward`` (centre to eye), and the
+    bounding sphere (``centre``, ``radius``) of the vertices."""
+
+    def __init__(self, vertices: NDArray[np.float64], up: str | ArrayLike) -> None:
+        v = np.asarray(vertices, dtype=np.float64)
+        self.up = _up_vector(up, v)
+        lo, hi = v.min(axis=0), v.max(axis=0)
+        self.centre = (lo + hi) / 2
+        self.radius = float(np.linalg.norm(v - self.centre, axis=1).max()) or 1.0
+        # Look along the thinnest horizontal direction (a side view of an animal), from slightly
+        # above and to one side so that depth reads.
+        plane = np.eye(3) - np.outer(self.up, self.up)
+        d = (v - self.centre) @ plane
+        if np.count_nonzero(np.abs(self.up) > 1e-12) == 1:   # an axis: compare the other two axes
+            others = [a for a in range(3) if abs(self.up[a]) <= 1e-12]
+            extent = np.ptp(d[:, others], axis=0)
+            thin = np.eye(3)[others[int(np.argmin(extent))]]
+        else:                                                  # a general vector: principal axes in the plane
+            w, vecs = np.linalg.eigh(d.T @ d)                  # one eigenvector is up itself (w = 0)
+            in_plane = [i for i in range(3) if i != int(np.argmax(np.abs(vecs.T @ self.up)))]
+            thin = vecs[:, in_plane[0]]                        # eigh sorts ascending
+        # The eye is on the side of -thin (thin's largest component made positive): for a z-up
+        # animal that is x to the right, as in a textbook front view.
+        self.front = -thin * np.sign(thin[np.argmax(np.abs(thin))])       # horizontal, centre to eye
+        self.right = np.cross(self.up, self.front)                           # screen right
+        horizontal = np.cos(_AZIMUTH) * self.front + np.sin(_AZIMUTH) * self.right
+        self.toward = np.cos(_ELEVATION) * horizontal + np.sin(_ELEVATION) * self.up
+
+    def ranges(self, radius: float) -> list[list[float]]:
+        """Axis ranges: a cube of half-side ``radius`` around the centre (equal aspect ratio)."""
+        return [[float(c - radius), float(c + radius)] for c in self.centre]
+
+    def camera(self, radius: float, width_px: float, height_px: float) -> dict[str, Any]:
+        """A plotly camera that shows the whole bounding sphere in a ``width_px`` x ``height_px`` scene.
+
+        plotly maps the axis ranges to the cube [-0.5, 0.5]^3 and draws with a perspective
+        camera of vertical field of view 45 degrees; the sphere of normalised radius
+        ``rho`` is inside the view when ``rho / distance <= sin(half field of view)`` in both
+        directions.
+        """
+        rho = 0.5 * self.radius / radius
+        half_v = _FOV_Y / 2
+        half_h = np.arctan(np.tan(half_v) * width_px / height_px)
+        distance = rho * (1 + _MARGIN) / np.sin(min(half_v, half_h))
+        eye = distance * self.toward
+        return dict(up=dict(zip("xyz", map(float, self.up))), eye=dict(zip("xyz", map(float, eye))),
+                    center=dict(x=0.0, y=0.0, z=0.0), projection=dict(type="perspective"))
+
+
+def _scene(view: _View, radius: float, domain: dict[str, list[float]] | None, width_px: float,
+           height_px: float) -> dict[str, Any]:
+    axes = [dict(visible=False, range=r, autorange=False) for r in view.ranges(radius)]
+    scene: dict[str, Any] = dict(xaxis=axes[0], yaxis=axes[1], zaxis=axes[2], aspectmode="manual",
+                                 aspectratio=dict(x=1, y=1, z=1), camera=view.camera(radius, width_px, height_px))
+    if domain is not None:
+        scene["domain"] = domain
+    return scene
+
+
+def _wrap(text: str, width_chars: int) -> str:
+    """Break ``text`` at spaces into lines of at most ``width_chars`` characters (plotly ``<br>``)."""
+    lines: list[str] = []
+    for word in text.split():
+        if lines and len(lines[-1]) + 1 + len(word) <= width_chars:
+            lines[-1] += " " + word
+        else:
+            lines.append(word)
+    return "<br>".join(lines)
 
 
 def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin: float | None, cmax: float | None,
-           showscale: bool, name: str | None = None, colorbar_x: float | None = None) -> Any:
+           showscale: bool, name: str | None = None, scene: str = "scene",
+           colorbar: dict[str, Any] | None = None) -> Any:
     import plotly.graph_objects as go
 
     v, f = d.vertices, d.faces
     kwargs: dict[str, Any] = dict(
-        x=v[:, 0], y=v[:, 1], z=v[:, 2], i=f[:, 0], j=f[:, 1], k=f[:, 2], name=name,
+        x=v[:, 0], y=v[:, 1], z=v[:, 2], i=f[:, 0], j=f[:, 1], k=f[:, 2], name=name, scene=scene,
         flatshading=False, lighting=dict(ambient=0.45, diffuse=0.8, specular=0.15, roughness=0.6),
         lightposition=dict(x=100, y=200, z=300), hoverinfo="skip",
     )
@@ -85,12 +218,13 @@ def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin:
     else:
         kwargs.update(intensity=d.values(s), intensitymode="vertex", colorscale=colorscale, cmin=cmin, cmax=cmax,
                       showscale=showscale)
-        if colorbar_x is not None:
-            kwargs["colorbar"] = dict(x=colorbar_x, len=0.8, thickness=12)
+        if colorbar is not None:
+            kwargs["colorbar"] = colorbar
     return go.Mesh3d(**kwargs)
 
 
-_SCENE = dict(aspectmode="data", xaxis=dict(visible=False), yaxis=dict(visible=False), zaxis=dict(visible=False))
+_TITLE_FONT = 13               # px; about 7 px per character
+_COLORBAR_PX = 70              # room for a colour bar and its tick labels, in px
 
 
 def plot_mesh(
@@ -102,10 +236,14 @@ def plot_mesh(
     cmin: float | None = None,
     cmax: float | None = None,
     symmetric: bool = False,
+    up: str | ArrayLike = "auto",
     max_faces: int = DEFAULT_MAX_FACES,
     height: int = 450,
 ) -> Any:
     """An interactive 3D plotly figure of ``mesh``, coloured by per-vertex ``scalars``.
+
+    The axes have equal scale and the camera shows the whole mesh with a margin from any
+    direction (its bounding sphere fits the view), so rotating never clips it.
 
     Parameters
     ----------
@@ -117,8 +255,13 @@ def plot_mesh(
         Any plotly colour scale name.
     cmin, cmax : float, optional
         Colour range; by default the range of ``scalars`` (or ``[-r, r]`` with ``symmetric``).
+        A constant function is drawn in the middle colour.
     symmetric : bool
         Centre the colour range on zero (good for eigenfunctions).
+    up : {"auto", "x", "y", "z", "-x", "-y", "-z"} or array_like, shape (3,)
+        The direction drawn upwards. ``"auto"`` takes the axis of middle extent (the height of
+        an animal, whether the file is y-up or z-up) and looks along the thinnest horizontal
+        axis, slightly from above.
     max_faces : int
         Meshes with more triangles are decimated for display.
     height : int
@@ -132,16 +275,22 @@ def plot_mesh(
     --------
     >>> from lbo_notebooks import shapes
     >>> sphere = shapes.icosphere(2)
-    >>> fig = plot_mesh(sphere, sphere.vertices[:, 2], title="z")
-    >>> fig.data[0].type
-    'mesh3d'
+    >>> fig = plot_mesh(sphere, sphere.vertices[:, 2], title="z", up="y")
+    >>> fig.data[0].type, fig.layout.scene.camera.up.y
+    ('mesh3d', 1.0)
     """
     import plotly.graph_objects as go
 
     s = _check_scalars(mesh, scalars)
     lo, hi = _colour_range(s, cmin, cmax, symmetric)
-    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi, showscale=s is not None))
-    fig.update_layout(title=title, scene=_SCENE, height=height, margin=dict(l=0, r=0, t=40 if title else 10, b=0))
+    view = _View(mesh.vertices, up)
+    radius = view.radius * (1 + _MARGIN)
+    top = 40 if title else 10
+    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi,
+                           showscale=s is not None, colorbar=dict(len=0.8, thickness=12)))
+    scene_width = _NOMINAL_WIDTH - (_COLORBAR_PX if s is not None else 0)
+    fig.update_layout(title=tidy_label(title), height=height, margin=dict(l=0, r=0, t=top, b=0),
+                      scene=_scene(view, radius, None, scene_width, height - top))
     return fig
 
 
@@ -155,23 +304,54 @@ def plot_meshes(
     cmax: float | None = None,
     symmetric: bool = False,
     shared_colour_range: bool = False,
+    up: str | ArrayLike = "auto",
+    same_scale: bool = True,
+    cols: int | None = None,
     max_faces: int = DEFAULT_MAX_FACES // 2,
     height: int = 380,
 ) -> Any:
-    """Several meshes side by side in one plotly figure, one 3D scene each.
+    """Several meshes in one plotly figure, one 3D scene per panel, on a grid.
 
-    ``scalars`` is a list with one entry (or ``None``) per mesh. With ``shared_colour_range``
-    all panels use one colour range, so colours compare across panels.
+    Each panel has its own domain; its colour bar (if any) sits inside that domain, right of the
+    scene, and its title is wrapped to the panel's width above it. With ``same_scale`` every
+    panel uses the same length scale (the largest bounding sphere), so sizes compare across
+    panels; each mesh is centred in its panel and never clipped.
+
+    Parameters
+    ----------
+    meshes : sequence of Mesh
+    scalars : sequence of (array_like or None), optional
+        One function per mesh (or ``None`` for a plain surface).
+    titles : sequence of str, optional
+    colorscale, cmin, cmax, symmetric :
+        As in :func:`plot_mesh`.
+    shared_colour_range : bool
+        One colour range (and one colour bar, in the last panel) for all panels, so colours
+        compare across panels.
+    up : str or array_like
+        As in :func:`plot_mesh`; ``"auto"`` is decided per mesh.
+    same_scale : bool
+        One length scale for all panels.
+    cols : int, optional
+        Panels per row; by default all in one row up to 4 meshes, else two rows.
+    max_faces : int
+        Meshes with more triangles are decimated for display.
+    height : int
+        Height of one row of panels, in pixels.
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
 
     Examples
     --------
     >>> from lbo_notebooks import shapes
     >>> a, b = shapes.icosphere(1), shapes.torus(n_major=16, n_minor=8)
     >>> fig = plot_meshes([a, b], titles=["sphere", "torus"])
-    >>> len(fig.data)
-    2
+    >>> len(fig.data), fig.layout.scene2.domain.x[0] >= fig.layout.scene.domain.x[1]
+    (2, True)
     """
-    from plotly.subplots import make_subplots
+    import plotly.graph_objects as go
 
     meshes = list(meshes)
     if not meshes:
@@ -182,21 +362,64 @@ def plot_meshes(
         raise ValueError(f"got {len(scalars)} scalar arrays for {len(meshes)} meshes; pass one (or None) per mesh.")
     if titles is not None and len(titles) != len(meshes):
         raise ValueError(f"got {len(titles)} titles for {len(meshes)} meshes.")
+    if cols is not None and (int(cols) != cols or cols < 1):
+        raise ValueError(f"cols must be a positive integer; got {cols!r}.")
     values = [_check_scalars(m, s) for m, s in zip(meshes, scalars)]
     if shared_colour_range and any(v is not None for v in values):
         allv = np.concatenate([v for v in values if v is not None])
         cmin, cmax = _colour_range(allv, cmin, cmax, symmetric)
-    cols = len(meshes)
-    fig = make_subplots(rows=1, cols=cols, specs=[[{"type": "scene"}] * cols],
-                        subplot_titles=list(titles) if titles else None, horizontal_spacing=0.01)
-    for c, (m, v) in enumerate(zip(meshes, values), start=1):
+    n = len(meshes)
+    cols = int(cols) if cols is not None else (n if n <= 4 else -(-n // 2))
+    cols = min(cols, n)
+    rows = -(-n // cols)
+    views = [_View(m.vertices, up) for m in meshes]
+    shared_radius = max(v.radius for v in views) * (1 + _MARGIN)
+
+    panel_px = _NOMINAL_WIDTH / cols
+    chars = max(10, int(panel_px / (0.58 * _TITLE_FONT)))
+    wrapped = [_wrap(tidy_label(t) or "", chars) for t in titles] if titles else None
+    lines = max((w.count("<br>") + 1 for w in wrapped), default=0) if wrapped else 0
+    title_px = (_TITLE_FONT + 5) * lines + (6 if lines else 0)
+    total_h = height * rows
+    colorbar_frac = min(0.3, _COLORBAR_PX / panel_px) / cols    # as a fraction of the figure width
+    gap = 0.01
+
+    fig = go.Figure()
+    annotations = []
+    last_with_values = max((p for p, v in enumerate(values) if v is not None), default=-1)
+    shows = [v is not None and (not shared_colour_range or p == last_with_values) for p, v in enumerate(values)]
+    # With one length scale, one camera distance too (the narrowest scene's), so that equal sizes
+    # are drawn equally large in every panel.
+    narrowest_px = (1 / cols - gap - (colorbar_frac if any(shows) else 0)) * _NOMINAL_WIDTH
+    for p, (mesh, v, view, show) in enumerate(zip(meshes, values, views, shows)):
+        r, c = divmod(p, cols)
+        x0, x1 = c / cols + gap / 2, (c + 1) / cols - gap / 2
+        y1 = 1 - r / rows
+        y0 = 1 - (r + 1) / rows + (gap / 2 if rows > 1 else 0)
+        scene_top = y1 - title_px / total_h
+        scene_x1 = x1 - colorbar_frac if show else x1
+        name = "scene" if p == 0 else f"scene{p + 1}"
+        radius = shared_radius if same_scale else view.radius * (1 + _MARGIN)
+        width_px = narrowest_px if same_scale else (scene_x1 - x0) * _NOMINAL_WIDTH
+        height_px = (scene_top - y0) * total_h
+        fig.update_layout({name: _scene(view, radius, dict(x=[x0, scene_x1], y=[y0, scene_top]), width_px, height_px)})
         lo, hi = (cmin, cmax) if shared_colour_range else _colour_range(v, cmin, cmax, symmetric)
-        show = v is not None and (not shared_colour_range or c == cols)
-        fig.add_trace(_trace(_Display(m, max_faces), v, colorscale=colorscale, cmin=lo, cmax=hi, showscale=show,
-                             colorbar_x=(c / cols) - 0.02 if show else None), row=1, col=c)
-    fig.update_scenes(**_SCENE)
-    fig.update_layout(height=height, margin=dict(l=0, r=0, t=40 if titles else 10, b=0), showlegend=False)
+        colorbar = dict(x=scene_x1, xanchor="left", xref="paper", y=(y0 + scene_top) / 2, yanchor="middle",
+                        len=0.8 * (scene_top - y0), lenmode="fraction", thickness=10,
+                        tickfont=dict(size=10)) if show else None
+        fig.add_trace(_trace(_Display(mesh, max_faces), v, colorscale=colorscale, cmin=lo, cmax=hi, showscale=show,
+                             scene=name, colorbar=colorbar))
+        if wrapped:
+            annotations.append(dict(text=wrapped[p], x=(x0 + x1) / 2, y=y1, xref="paper", yref="paper",
+                                    xanchor="center", yanchor="top", showarrow=False,
+                                    font=dict(size=_TITLE_FONT)))
+    fig.update_layout(height=total_h, margin=dict(l=0, r=0, t=4, b=0), showlegend=False, annotations=annotations)
     return fig
+
+
+def _view_rotation(view: _View) -> NDArray[np.float64]:
+    """Rows: screen right, into the screen, up -- a rotation (right = into x up)."""
+    return np.array([view.right, -view.front, view.up])
 
 
 def plot_mesh_static(
@@ -205,12 +428,18 @@ def plot_mesh_static(
     *,
     ax: Any = None,
     cmap: str = "RdBu_r",
-    elev: float = 20.0,
-    azim: float = -60.0,
+    up: str | ArrayLike = "auto",
+    elev: float | None = None,
+    azim: float | None = None,
+    symmetric: bool = False,
     title: str | None = None,
     max_faces: int = 20_000,
 ) -> Any:
     """A static matplotlib rendering of ``mesh`` (for print, PDFs and environments without plotly).
+
+    The mesh is turned so that ``up`` (as in :func:`plot_mesh`) points up and seen from the same
+    direction as the interactive figure, with equal scale on all axes and its whole bounding
+    sphere inside the axes. ``elev`` and ``azim`` (degrees) override the viewing angles.
 
     Returns the matplotlib 3D axes.
 
@@ -219,7 +448,7 @@ def plot_mesh_static(
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from lbo_notebooks import shapes
-    >>> ax = plot_mesh_static(shapes.icosphere(1))
+    >>> ax = plot_mesh_static(shapes.icosphere(1), up="y")
     """
     import matplotlib.pyplot as plt
     from matplotlib import colormaps
@@ -227,28 +456,34 @@ def plot_mesh_static(
 
     s = _check_scalars(mesh, scalars)
     d = _Display(mesh, max_faces)
+    view = _View(mesh.vertices, up)
+    # Rotate into the view frame: x to the right, y away from the viewer, z up; matplotlib then
+    # looks from -y (azimuth -90) at the given elevation.
+    rotation = _view_rotation(view)
+    shown = (d.vertices - view.centre) @ rotation.T
     if ax is None:
         ax = plt.figure(figsize=(5, 5)).add_subplot(projection="3d")
-    tris = d.vertices[d.faces]
+    tris = shown[d.faces]
     normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
-    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-    shade = 0.55 + 0.45 * np.clip(normals @ np.array([0.3, -0.4, 0.85]), 0, 1)
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = np.divide(normals, lengths, out=np.zeros_like(normals), where=lengths > 0)
+    shade = 0.55 + 0.45 * np.clip(normals @ np.array([0.3, -0.85, 0.45]), 0, 1)
     if s is None:
         colours = np.column_stack([np.outer(shade, [0.72, 0.78, 0.85]), np.ones(len(shade))])
     else:
         face_values = d.values(s)[d.faces].mean(axis=1)
-        lo, hi = float(s.min()), float(s.max())
-        colours = colormaps[cmap]((face_values - lo) / (hi - lo if hi > lo else 1.0))
+        lo, hi = _colour_range(s, None, None, symmetric)
+        colours = colormaps[cmap]((face_values - lo) / (hi - lo))
         colours[:, :3] *= shade[:, None]
     ax.add_collection3d(Poly3DCollection(tris, facecolors=colours, edgecolors="none"))
-    lo, hi = d.vertices.min(axis=0), d.vertices.max(axis=0)
-    centre, r = (lo + hi) / 2, (hi - lo).max() / 2
-    ax.set(xlim=(centre[0] - r, centre[0] + r), ylim=(centre[1] - r, centre[1] + r), zlim=(centre[2] - r, centre[2] + r))
+    r = view.radius * (1 + _MARGIN)
+    ax.set(xlim=(-r, r), ylim=(-r, r), zlim=(-r, r))
     ax.set_box_aspect((1, 1, 1))
-    ax.view_init(elev=elev, azim=azim)
+    ax.view_init(elev=np.degrees(_ELEVATION) if elev is None else elev,
+                 azim=-90 + np.degrees(_AZIMUTH) if azim is None else azim)
     ax.set_axis_off()
     if title:
-        ax.set_title(title)
+        ax.set_title(tidy_label(title))
     return ax
 
 
@@ -260,29 +495,36 @@ class MeshSlider:
     """
 
     def __init__(self, mesh: Mesh, frame: Callable[[Any], Any], values: Sequence[Any], description: str,
-                 *, colorscale: str, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None) -> None:
+                 *, colorscale: str, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None,
+                 up: str | ArrayLike = "auto", start: Any = None) -> None:
         import ipywidgets as widgets
         import plotly.graph_objects as go
 
         values = list(values)
         if not values:
             raise ValueError("mesh_slider needs at least one slider value.")
+        if start is None:
+            start = values[0]
+        elif start not in values:
+            raise ValueError(f"start={start!r} is not one of the slider values {values[:3]}...; pick one of them.")
         self.mesh, self._frame, self._values, self._title = mesh, frame, values, title
         self._symmetric, self._colorscale = symmetric, colorscale
         self._display = _Display(mesh, max_faces)
-        self.figure = go.FigureWidget(plot_mesh(mesh, None, max_faces=max_faces, height=height))
+        self.figure = go.FigureWidget(plot_mesh(mesh, None, max_faces=max_faces, height=height, up=up))
+        self._view = _View(mesh.vertices, up)
+        self._radius = self._view.radius * (1 + _MARGIN)
         if title is not None:  # leave room for the title that update() sets
             self.figure.layout.margin.t = 40
         if all(isinstance(v, (int, np.integer)) for v in values) and values == list(range(values[0], values[-1] + 1)):
-            self.slider = widgets.IntSlider(value=values[0], min=values[0], max=values[-1], description=description,
+            self.slider = widgets.IntSlider(value=start, min=values[0], max=values[-1], description=description,
                                             continuous_update=False)
         else:
-            self.slider = widgets.SelectionSlider(options=values, value=values[0], description=description,
+            self.slider = widgets.SelectionSlider(options=values, value=start, description=description,
                                                   continuous_update=False)
         self.slider.layout.width = "60%"
         self.slider.observe(lambda change: self.update(change["new"]), names="value")
         self.widget = widgets.VBox([self.slider, self.figure])
-        self.update(values[0])
+        self.update(start)
 
     def update(self, value: Any) -> None:
         """Redraw the figure for slider value ``value`` (called when the slider moves)."""
@@ -300,13 +542,24 @@ class MeshSlider:
             trace = self.figure.data[0]
             if vertices is not None:
                 trace.x, trace.y, trace.z = v[:, 0], v[:, 1], v[:, 2]
+                self._fit(v)
             if arr is not None:
                 s = _check_scalars(self.mesh, arr)
                 lo, hi = _colour_range(s, None, None, self._symmetric)
                 trace.intensity, trace.intensitymode = self._display.values(s), "vertex"
                 trace.colorscale, trace.cmin, trace.cmax, trace.showscale = self._colorscale, lo, hi, True
             if self._title is not None:
-                self.figure.layout.title = self._title(value)
+                self.figure.layout.title = tidy_label(self._title(value))
+
+    def _fit(self, v: NDArray[np.float64]) -> None:
+        """Grow the (cubic) axis ranges if moved vertices leave them; never shrink, so the view stays still."""
+        reach = float(np.abs(v - self._view.centre).max()) * (1 + _MARGIN)
+        if reach <= self._radius:
+            return
+        self._radius = reach
+        scene = self.figure.layout.scene
+        for axis, r in zip((scene.xaxis, scene.yaxis, scene.zaxis), self._view.ranges(reach)):
+            axis.range = r
 
     def _ipython_display_(self) -> None:
         from IPython.display import display
@@ -325,6 +578,8 @@ def mesh_slider(
     max_faces: int = DEFAULT_MAX_FACES,
     height: int = 450,
     title: Callable[[Any], str] | None = None,
+    up: str | ArrayLike = "auto",
+    start: Any = None,
 ) -> MeshSlider:
     """A 3D figure of ``mesh`` with a slider; moving the slider calls ``frame(value)`` and redraws.
 
@@ -339,7 +594,12 @@ def mesh_slider(
     description : str
         Slider label.
     title : callable, optional
-        ``title(value)`` gives the figure title for each value.
+        ``title(value)`` gives the figure title for each value (a rounded "-0.00" shows as "0.00").
+    up : str or array_like
+        The direction drawn upwards, as in :func:`plot_mesh`.
+    start : optional
+        The value shown first (default: the first value). E.g. ``start=1`` for eigenfunctions,
+        whose index 0 is the constant function.
 
     Returns
     -------
@@ -351,11 +611,11 @@ def mesh_slider(
     >>> from lbo_notebooks import shapes, eigenbasis
     >>> sphere = shapes.icosphere(2)
     >>> basis = eigenbasis(sphere, 10)
-    >>> w = mesh_slider(sphere, lambda i: basis.vectors[:, i], range(10), "index", symmetric=True)
+    >>> w = mesh_slider(sphere, lambda i: basis.vectors[:, i], range(10), "index", symmetric=True, start=1)
     >>> w.slider.value = 3
     """
     return MeshSlider(mesh, frame, values, description, colorscale=colorscale, symmetric=symmetric,
-                      max_faces=max_faces, height=height, title=title)
+                      max_faces=max_faces, height=height, title=title, up=up, start=start)
 
 
 # --- min-max (notebook 05): the Rayleigh quotient on the unit sphere of R^3 ------------------------

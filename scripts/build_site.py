@@ -15,11 +15,14 @@ The site works offline, from ``file://`` or any static host:
   over precomputed frames (see ``scripts/site_prelude.py``); other widgets are replaced by a note;
 - solutions (cells hidden with ``{"jupyter": {"source_hidden": true}}``) are folded in a
   ``<details>`` block;
-- formulas use MathJax from ``--mathjax`` (a local MathJax 2 folder, copied into the site; by default
-  Debian's ``libjs-mathjax`` at /usr/share/javascript/mathjax if installed), else the CDN, in which
-  case formulas show as LaTeX source when offline;
-- ``index.html`` lists every notebook with its title, its one-line description (the first item of
-  "What you will learn" in its first cell), its run time and a link to the clean ``.ipynb``.
+- formulas are typeset by MathJax 2 copied into the site (``mathjax/``) from the installed Python
+  package ``jupyter-server-mathjax`` (a ``[test]`` dependency; ``--mathjax`` names another local
+  MathJax 2 folder, e.g. Debian's ``libjs-mathjax``), so no page loads anything from the network;
+- progress bars are switched off while executing (a notebook-widget bar would be a dead widget on a
+  static page), and the kernel talks to the builder over IPC sockets rather than TCP;
+- ``index.html`` lists every notebook with its title line, its topic (its row in the series map of
+  ``00_start_here``, else the "What you will learn" sentence), its run time and a link to the clean
+  ``.ipynb``.
 
 Exit code 1 if a notebook fails to execute (its page is still written, with the error shown).
 """
@@ -44,7 +47,11 @@ from nbconvert import HTMLExporter
 REPO = Path(__file__).resolve().parent.parent
 PRELUDE = Path(__file__).resolve().parent / "site_prelude.py"
 DEBIAN_MATHJAX = Path("/usr/share/javascript/mathjax")
-MATHJAX_CDN = "https://cdnjs.cloudflare.com/ajax/libs/mathjax/2.7.7/latest.js?config=TeX-AMS_CHTML-full,Safe"
+# MathJax 2 options set before MathJax.js loads: typeset with the web fonts shipped in the copy
+# (jupyter-server-mathjax ships STIX-Web only), never ask the network for others.
+MATHJAX_PRECONFIG = ('<script>window.MathJax = {"HTML-CSS": {availableFonts: [], preferredFont: null, '
+                     'webFont: "STIX-Web", imageFont: null}, messageStyle: "none", '
+                     'tex2jax: {inlineMath: [["$", "$"], ["\\\\(", "\\\\)"]], processEscapes: true}};</script>')
 WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
 WIDGET_NOTE = ('<p class="lbo-widget-note"><em>An interactive widget appears here when the notebook runs in '
                'JupyterLab.</em></p>')
@@ -60,37 +67,87 @@ class Page:
     error: str | None
 
 
-def title_and_description(nb: nbformat.NotebookNode) -> tuple[str, str]:
-    """Title (first ``#`` heading) and a one-line description from the first markdown cell."""
+def series_map(nb: nbformat.NotebookNode) -> dict[str, str]:
+    """Topics from a notebook's map of the series: markdown table rows ``| NN | [name](file.ipynb) | topic |``.
+
+    Returns ``{file stem: topic}``; ``00_start_here`` holds the map the index uses.
+    """
+    topics = {}
+    for cell in nb.cells:
+        if cell.cell_type != "markdown":
+            continue
+        for line in cell.source.splitlines():
+            cols = [c.strip() for c in line.strip().strip("|").split("|")]
+            link = re.search(r"\]\(([^)]+)\.ipynb\)", line)
+            if link and len(cols) >= 3 and line.lstrip().startswith("|"):
+                topics[Path(link.group(1)).name] = cols[-1]
+    return topics
+
+
+def title_and_description(nb: nbformat.NotebookNode, topic: str | None = None) -> tuple[str, str]:
+    """The title line (first ``#`` heading) and a one-line description.
+
+    The description is ``topic`` when the series map gives one, else the "What you will learn"
+    text when it is a sentence on the label's line, else empty (a list of aims is not a topic).
+    """
     first = next((c for c in nb.cells if c.cell_type == "markdown"), None)
     if first is None:
-        return "Untitled", ""
+        return "Untitled", topic or ""
     lines = [ln.strip() for ln in first.source.splitlines()]
     title = next((ln.lstrip("#").strip() for ln in lines if ln.startswith("# ")), lines[0] if lines else "Untitled")
-    description = ""
-    for i, ln in enumerate(lines):
+    if topic:
+        return title, topic
+    for ln in lines:
         m = re.match(r"\**what you will learn\**\s*:?\**\s*:?\s*(.*)", ln, re.IGNORECASE)
         if m:
-            rest = m.group(1).strip()
-            if not rest:  # the aims are a list below the label: take the first item
-                rest = next((re.sub(r"^[-*]\s+|^\d+\.\s+", "", x) for x in lines[i + 1:] if x), "")
-            description = rest
-            break
-    if not description:  # otherwise the first paragraph that is not a heading
-        description = next((ln for ln in lines if ln and not ln.startswith("#")), "")
-    description = re.sub(r"[;,:]\s*$", "", description)
-    return title, description
+            return title, re.sub(r"[;,:.]\s*$", "", m.group(1).strip())
+    return title, ""
+
+
+_MATH = re.compile(r"\$\$.+?\$\$|\$[^$]+\$", re.S)
+
+
+def markdown_inline(text: str) -> str:
+    r"""One line of markdown as HTML, with ``$...$`` formulas passed through untouched for MathJax.
+
+    (Markdown would otherwise eat TeX's backslash escapes: ``\,`` becomes ``,``.)
+
+    >>> markdown_inline(r"the top of $(A X X^\top A - \mu W)\,p = \sigma A p$ and **bold** <b>")
+    'the top of $(A X X^\\top A - \\mu W)\\,p = \\sigma A p$ and <strong>bold</strong> &lt;b&gt;'
+    """
+    formulas: list[str] = []
+
+    def stash(m: re.Match) -> str:
+        formulas.append(html.escape(m.group(0), quote=False))
+        return f"@@MATH{len(formulas) - 1}@@"  # letters and digits: markdown leaves them alone
+
+    body = mistune.create_markdown(escape=True)(_MATH.sub(stash, text)).strip()
+    body = body.removeprefix("<p>").removesuffix("</p>")
+    return re.sub(r"@@MATH(\d+)@@", lambda m: formulas[int(m.group(1))], body)
 
 
 def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int) -> str | None:
-    """Run the notebook in place in a fresh kernel started with the site prelude; return the error, if any."""
-    client = NotebookClient(nb, timeout=timeout, kernel_name="python3", store_widget_state=False,
-                            extra_arguments=[f"--IPKernelApp.exec_files={PRELUDE}"],
-                            resources={"metadata": {"path": str(cwd)}})
-    try:
-        client.execute()
-    except CellExecutionError as exc:
-        return f"{exc.ename}: {exc.evalue}"
+    """Run the notebook in place in a fresh kernel started with the site prelude; return the error, if any.
+
+    The kernel listens on IPC (unix) sockets: a TCP kernel warns that its traffic is unencrypted.
+    """
+    import tempfile
+
+    from jupyter_client.manager import KernelManager
+
+    with tempfile.TemporaryDirectory(prefix="lbo-kernel-") as sockets:
+        # An absolute socket path: the kernel runs in ``cwd``, the builder wherever it was started.
+        km = KernelManager(kernel_name="python3", transport="ipc", ip=str(Path(sockets) / "kernel"))
+        client = NotebookClient(nb, km=km, timeout=timeout, kernel_name="python3", store_widget_state=False,
+                                extra_arguments=[f"--IPKernelApp.exec_files={PRELUDE}"],
+                                resources={"metadata": {"path": str(cwd)}})
+        try:
+            client.execute()
+        except CellExecutionError as exc:
+            return f"{exc.ename}: {exc.evalue}"
+        finally:
+            if km.has_kernel:  # nbclient shuts down only kernel managers it created itself
+                km.shutdown_kernel()
     return None
 
 
@@ -114,36 +171,51 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
     nb.metadata.pop("widgets", None)
 
 
-# The parts of MathJax 2 that the TeX-AMS_CHTML-full configuration loads (about 1.3 MB of 54 MB).
-MATHJAX_PARTS = ["MathJax.js", "config/TeX-AMS_CHTML-full.js", "jax/input/TeX", "jax/output/CommonHTML",
-                 "jax/element", "extensions", "localization/en", "fonts/HTML-CSS/TeX/woff"]
+# MathJax 2 configurations, best first: CommonHTML output where the copy has it, else HTML-CSS.
+MATHJAX_CONFIGS = ["TeX-AMS_CHTML-full", "TeX-AMS-MML_HTMLorMML-full"]
+
+
+def installed_mathjax() -> Path | None:
+    """MathJax 2 shipped by the ``jupyter-server-mathjax`` package, if installed."""
+    try:
+        import jupyter_server_mathjax
+    except ImportError:
+        return None
+    return Path(jupyter_server_mathjax.__file__).parent / "static"
 
 
 def copy_mathjax(source: Path, target: Path) -> None:
-    """Copy the MathJax 2 files the pages need (following symlinks, as Debian's package uses them)."""
-    for part in MATHJAX_PARTS:
-        src, dst = source / part, target / part
-        if not src.exists():
-            continue
-        dst.parent.mkdir(parents=True, exist_ok=True)
-        if src.is_dir():
-            shutil.copytree(src, dst, symlinks=False, dirs_exist_ok=True)
-        else:
-            shutil.copy2(src, dst)
+    """Copy MathJax 2 without what the pages never load: other languages, SVG output, unpacked sources."""
+
+    def skip(folder: str, names: list[str]) -> list[str]:
+        rel = Path(folder).relative_to(source).as_posix()
+        if rel == "localization":
+            return [n for n in names if n != "en"]
+        if rel == "jax/output":
+            return [n for n in names if n == "SVG"]
+        return [n for n in names if n in ("unpacked", "test", "docs")]
+
+    shutil.copytree(source, target, ignore=skip, symlinks=False, dirs_exist_ok=True)
 
 
 def mathjax_setting(out: Path, mathjax: str | None) -> str:
-    """The MathJax URL for the pages, copying a local MathJax 2 into the site when there is one."""
-    source = Path(mathjax) if mathjax and not mathjax.startswith("http") else (DEBIAN_MATHJAX if mathjax is None else None)
-    if source is not None and (source / "MathJax.js").exists():
-        copy_mathjax(source, out / "mathjax")
-        return "mathjax/MathJax.js?config=TeX-AMS_CHTML-full,Safe"
-    if mathjax and mathjax.startswith("http"):
-        return mathjax
-    if mathjax:
-        raise SystemExit(f"--mathjax {mathjax}: no MathJax.js there")
-    print("note: no local MathJax (apt-get install libjs-mathjax): formulas load MathJax from the CDN", file=sys.stderr)
-    return MATHJAX_CDN
+    """Copy MathJax 2 into ``out/mathjax`` and return the pages' relative URL for it.
+
+    ``mathjax`` is a local MathJax 2 folder; by default the ``jupyter-server-mathjax`` package's
+    copy (or Debian's ``libjs-mathjax``). A site that loaded MathJax from the network would show
+    raw LaTeX offline, so there is no network fallback.
+    """
+    candidates = [Path(mathjax)] if mathjax else [p for p in (installed_mathjax(), DEBIAN_MATHJAX) if p is not None]
+    source = next((p for p in candidates if (p / "MathJax.js").exists()), None)
+    if source is None:
+        where = f"--mathjax {mathjax}: no MathJax.js there" if mathjax else "no MathJax 2 installed"
+        raise SystemExit(f"{where}. Install it with: pip install jupyter-server-mathjax "
+                         "(part of the [test] extra, which ./make.sh site installs).")
+    config = next((c for c in MATHJAX_CONFIGS if (source / "config" / f"{c}.js").exists()), None)
+    if config is None:
+        raise SystemExit(f"{source}: none of the MathJax configurations {MATHJAX_CONFIGS} is there.")
+    copy_mathjax(source, out / "mathjax")
+    return f"mathjax/MathJax.js?config={config},Safe"
 
 
 def render(nb: nbformat.NotebookNode, mathjax_url: str, title: str) -> str:
@@ -152,6 +224,7 @@ def render(nb: nbformat.NotebookNode, mathjax_url: str, title: str) -> str:
     body, _ = exporter.from_notebook_node(nb, resources={"metadata": {"name": title}})
     # No require.js from a CDN (nothing needs it: no widget state is embedded); load plotly.js locally.
     body = body.replace(f'<script src="{exporter.require_js_url}"></script>', "")
+    body = body.replace(f'<script src="{mathjax_url}">', MATHJAX_PRECONFIG + f'\n<script src="{mathjax_url}">', 1)
     nav = ('<nav class="lbo-nav" style="padding:0.5em 1em;font-family:sans-serif">'
            '<a href="index.html">&larr; all notebooks</a></nav>')
     body = body.replace("<head>", '<head>\n<script src="plotly.min.js"></script>', 1)
@@ -165,20 +238,19 @@ def _remove_input_preprocessor():
 
 
 def index_page(pages: list[Page], mathjax_url: str) -> str:
-    md = mistune.create_markdown(escape=True)
     rows = []
     for p in pages:
         status = f' <span class="err">(failed: {html.escape(p.error)})</span>' if p.error else ""
         rows.append(
             f'<li><a href="{p.html_name}"><strong>{html.escape(p.title)}</strong></a>{status}'
-            f'<div class="desc">{md(p.description).strip().removeprefix("<p>").removesuffix("</p>")}</div>'
+            f'<div class="desc">{markdown_inline(p.description)}</div>'
             f'<div class="meta"><a href="notebooks/{p.source.name}" download>{p.source.name}</a> · '
             f'runs in {p.seconds:.0f} s</div></li>')
     built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
 <title>lbo_notebooks: spectral shape analysis with the Laplace–Beltrami operator</title>
-<script type="text/x-mathjax-config">MathJax.Hub.Config({{tex2jax: {{inlineMath: [['$','$'], ['\\\\(','\\\\)']], processEscapes: true}}}});</script>
+{MATHJAX_PRECONFIG}
 <script src="{mathjax_url}"></script>
 <style>
 body {{ font-family: system-ui, sans-serif; max-width: 52em; margin: 2em auto; padding: 0 1em; line-height: 1.5; color: #222; }}
@@ -202,7 +274,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("notebooks", nargs="*", type=Path, help="notebooks (default: notebooks/*.ipynb)")
     parser.add_argument("--out", type=Path, default=REPO / "build" / "site", help="output folder (default build/site)")
     parser.add_argument("--timeout", type=int, default=600, help="per-cell timeout in seconds")
-    parser.add_argument("--mathjax", help="local MathJax 2 folder to copy into the site, or a MathJax URL")
+    parser.add_argument("--mathjax", help="local MathJax 2 folder to copy into the site "
+                        "(default: the jupyter-server-mathjax package's)")
     args = parser.parse_args(argv)
 
     # The series' entry point first, then the numbered notebooks in order.
@@ -218,10 +291,12 @@ def main(argv: list[str] | None = None) -> int:
     (out / "plotly.min.js").write_text(plotly.offline.get_plotlyjs(), encoding="utf-8")
     mathjax_url = mathjax_setting(out, args.mathjax)
 
+    start_here = REPO / "notebooks" / "00_start_here.ipynb"
+    topics = series_map(nbformat.read(start_here, as_version=4)) if start_here.exists() else {}
     pages = []
     for src in sources:
         nb = nbformat.read(src, as_version=4)
-        title, description = title_and_description(nb)
+        title, description = title_and_description(nb, topics.get(src.stem))
         start = time.perf_counter()
         error = execute(nb, src.parent, args.timeout)
         seconds = time.perf_counter() - start

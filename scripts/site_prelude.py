@@ -9,7 +9,9 @@ It changes only how results are *displayed*, so that the static HTML works offli
   ``LBO_SITE_SLIDER_STEPS`` (default 16) precomputed frames, so the figure stays interactive
   without a kernel; an ipywidgets box that contains such a viewer (e.g. with an extra control)
   shows the viewer's static figure at the other controls' current values. The viewer objects
-  themselves are untouched: later cells can still drive them.
+  themselves are untouched: later cells can still drive them;
+- ``tqdm.auto`` progress bars are switched off: in a kernel they are notebook widgets, which a
+  static page can only show as a dead placeholder, and a finished bar says nothing to a reader.
 """
 
 
@@ -35,6 +37,17 @@ def _lbo_site_setup() -> None:
 
     pio.renderers["lbo_site"] = _SiteRenderer()
     pio.renderers.default = "lbo_site"
+
+    import tqdm.auto
+    import tqdm.std
+
+    class _SilentTqdm(tqdm.std.tqdm):
+        def __init__(self, *args, **kwargs):
+            kwargs["disable"] = True
+            super().__init__(*args, **kwargs)
+
+    tqdm.auto.tqdm = _SilentTqdm
+    tqdm.auto.trange = lambda *args, **kwargs: _SilentTqdm(range(*args), **kwargs)
 
     def _slider_values(viewer) -> list:
         values = getattr(viewer, "_values", None)

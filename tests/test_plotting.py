@@ -57,3 +57,199 @@ def test_static_fallback_and_bad_scalars(sphere):
         plotting.plot_mesh(sphere, np.ones(3))
     with pytest.raises(ValueError, match="NaN"):
         plotting.plot_mesh(sphere, np.full(sphere.n_vertices, np.nan))
+
+
+# --- layout: panels, colour bars, titles, camera ------------------------------------------------
+
+from lbo_notebooks.plotting import _MARGIN, _NOMINAL_WIDTH  # noqa: E402  (the layout's stated assumptions)
+
+
+@pytest.fixture(scope="module")
+def dog():
+    return shapes.creature("dog", n_vertices=1000)
+
+
+def _scenes(fig):
+    return [fig.layout[f"scene{'' if p == 0 else p + 1}"] for p in range(len(fig.data))]
+
+
+def _overlap(a, b):
+    return min(a[1], b[1]) - max(a[0], b[0]) > 1e-12
+
+
+def test_panels_do_not_overlap_and_colour_bars_sit_in_their_own_panel(dog):
+    meshes = [dog, dog.with_vertices(1.6 * dog.vertices), dog, dog, dog]
+    values = [m.vertices[:, 0] for m in meshes]
+    fig = plotting.plot_meshes(meshes, values, titles=[f"panel {p}" for p in range(5)], cols=3)
+    scenes = _scenes(fig)
+    boxes = [(s.domain.x, s.domain.y) for s in scenes]
+    for p in range(len(boxes)):
+        for q in range(p + 1, len(boxes)):
+            assert not (_overlap(boxes[p][0], boxes[q][0]) and _overlap(boxes[p][1], boxes[q][1])), (p, q)
+    for p, (trace, scene) in enumerate(zip(fig.data, scenes)):
+        c = p % 3
+        cb = trace.colorbar
+        # Right of its own scene, left of the next panel's scene, in its own column.
+        assert scene.domain.x[1] <= cb.x < (c + 1) / 3 and cb.xanchor == "left"
+        assert scene.domain.y[0] <= cb.y - cb.len / 2 and cb.y + cb.len / 2 <= scene.domain.y[1]
+        assert (c + 1) / 3 - cb.x >= 0.8 * 70 / _NOMINAL_WIDTH   # room for the bar and its tick labels
+
+
+def test_shared_colour_range_has_one_colour_bar_in_the_last_panel(dog, sphere):
+    fig = plotting.plot_meshes([dog, sphere], [dog.vertices[:, 0], sphere.vertices[:, 0]], shared_colour_range=True)
+    assert [t.showscale for t in fig.data] == [False, True]
+    assert fig.data[0].cmin == fig.data[1].cmin and fig.data[0].cmax == fig.data[1].cmax
+    assert fig.layout.scene2.domain.x[1] <= fig.data[1].colorbar.x < 1
+
+
+def test_titles_are_wrapped_to_their_panel_and_leave_room_above_the_scene(dog):
+    long = "canonical form of the head_turned pose, computed by spectral MDS"
+    fig = plotting.plot_meshes([dog] * 6, titles=[long] * 6)
+    scenes = _scenes(fig)
+    assert len(fig.layout.annotations) == 6
+    panel_px = _NOMINAL_WIDTH / 3            # six panels: two rows of three
+    for note, scene in zip(fig.layout.annotations, scenes):
+        lines = note.text.split("<br>")
+        assert " ".join(lines) == long
+        assert max(map(len, lines)) * 0.58 * note.font.size <= panel_px
+        assert scene.domain.x[0] <= note.x <= scene.domain.x[1]
+        # The title hangs from the top of the panel; the scene starts below its last line.
+        room = (note.y - scene.domain.y[1]) * fig.layout.height
+        assert note.yanchor == "top" and room >= len(lines) * note.font.size
+
+
+def _project(vertices, scene, width_px, height_px, eye=None):
+    """Screen coordinates in [-1, 1]^2 of ``vertices`` under plotly's camera (measured in chromium:
+    axis ranges map to [-0.5, 0.5]^3, perspective with a 45 degree vertical field of view)."""
+    ranges = np.array([scene.xaxis.range, scene.yaxis.range, scene.zaxis.range])
+    ratio = np.array([scene.aspectratio.x, scene.aspectratio.y, scene.aspectratio.z])
+    p = ((vertices - ranges[:, 0]) / (ranges[:, 1] - ranges[:, 0]) - 0.5) * ratio
+    cam = scene.camera
+    e = np.array([cam.eye.x, cam.eye.y, cam.eye.z]) if eye is None else eye
+    up = np.array([cam.up.x, cam.up.y, cam.up.z])
+    forward = -e / np.linalg.norm(e)
+    right = np.cross(forward, up)
+    right /= np.linalg.norm(right)
+    true_up = np.cross(right, forward)
+    rel = p - e
+    depth = rel @ forward
+    t = np.tan(np.pi / 8)
+    return (rel @ right) / depth / (t * width_px / height_px), (rel @ true_up) / depth / t
+
+
+@pytest.mark.parametrize("up", ["auto", "y", "z", "-x", (1.0, 1.0, 0.2)])
+def test_the_camera_shows_every_vertex_from_any_direction(dog, up):
+    height = 400
+    fig = plotting.plot_mesh(dog, dog.vertices[:, 2], up=up, height=height)
+    scene = fig.layout.scene
+    # Equal scale on all axes, and ranges that contain every vertex with a margin.
+    widths = [r[1] - r[0] for r in (scene.xaxis.range, scene.yaxis.range, scene.zaxis.range)]
+    np.testing.assert_allclose(widths, widths[0], rtol=1e-12)
+    assert scene.aspectratio.x == scene.aspectratio.y == scene.aspectratio.z
+    for a, r in enumerate((scene.xaxis.range, scene.yaxis.range, scene.zaxis.range)):
+        margin = 0.5 * _MARGIN * widths[0] / 2
+        assert r[0] + margin <= dog.vertices[:, a].min() and dog.vertices[:, a].max() <= r[1] - margin
+    width_px, height_px = _NOMINAL_WIDTH - 70, height - fig.layout.margin.t
+    cam = scene.camera.eye
+    distance = np.linalg.norm([cam.x, cam.y, cam.z])
+    rng = np.random.default_rng(0)
+    for eye in [None, *(distance * d / np.linalg.norm(d) for d in rng.normal(size=(20, 3)))]:
+        x, y = _project(dog.vertices, scene, width_px, height_px, eye)
+        assert np.abs(x).max() < 1 and np.abs(y).max() < 1
+    x, y = _project(dog.vertices, scene, width_px, height_px)
+    assert max(np.abs(x).max(), np.abs(y).max()) > 0.4   # ... and the mesh is not a speck
+
+
+def test_up_is_respected_and_auto_finds_the_height_of_an_animal(dog):
+    cam = lambda fig: fig.layout.scene.camera
+    vec = lambda v: np.array([v.x, v.y, v.z])
+    z_up = plotting.plot_mesh(dog)                                      # the creatures are z-up
+    np.testing.assert_allclose(vec(cam(z_up).up), [0, 0, 1])
+    y_up = dog.with_vertices(dog.vertices[:, [0, 2, 1]] * [1, 1, -1])  # as read from a y-up file
+    np.testing.assert_allclose(vec(cam(plotting.plot_mesh(y_up)).up), [0, 1, 0])
+    np.testing.assert_allclose(vec(cam(plotting.plot_mesh(y_up, up="z")).up), [0, 0, 1])
+    np.testing.assert_allclose(vec(cam(plotting.plot_mesh(dog, up="-y")).up), [0, -1, 0])
+    np.testing.assert_allclose(vec(cam(plotting.plot_mesh(dog, up=[0, 3, 4])).up), [0, 0.6, 0.8])
+    # A side view, slightly from above: the eye is mostly along the dog's thin axis (y).
+    eye = vec(cam(z_up).eye)
+    assert np.argmax(np.abs(eye)) == 1 and 0 < eye[2] < np.abs(eye[1])
+    for bad in ("w", [0, 0, 0], [1, 2], [np.nan, 0, 1]):
+        with pytest.raises(ValueError, match="up"):
+            plotting.plot_mesh(dog, up=bad)
+
+
+def test_same_scale_compares_sizes_across_panels(dog):
+    big = dog.with_vertices(2 * dog.vertices)
+    same = _scenes(plotting.plot_meshes([dog, big]))
+    own = _scenes(plotting.plot_meshes([dog, big], same_scale=False))
+    width = lambda s: s.xaxis.range[1] - s.xaxis.range[0]
+    assert width(same[0]) == width(same[1])
+    np.testing.assert_allclose(width(own[1]), 2 * width(own[0]), rtol=1e-12)
+
+
+def test_a_constant_function_gets_the_middle_colour_not_an_extreme(sphere):
+    c = np.full(sphere.n_vertices, 0.28209479177387814)
+    c[::7] += 1e-17                                          # round-off noise on a constant
+    for symmetric in (True, False):
+        trace = plotting.plot_mesh(sphere, c, symmetric=symmetric).data[0]
+        assert trace.cmin < c.min() and c.max() < trace.cmax
+        np.testing.assert_allclose((trace.cmin + trace.cmax) / 2, c.mean(), rtol=1e-12)
+    zero = plotting.plot_mesh(sphere, np.zeros(sphere.n_vertices), symmetric=True).data[0]
+    assert zero.cmin < 0 < zero.cmax
+    # A function that varies is still drawn over its own range.
+    trace = plotting.plot_mesh(sphere, sphere.vertices[:, 0] + 5).data[0]
+    assert (trace.cmin, trace.cmax) == (sphere.vertices[:, 0].min() + 5, sphere.vertices[:, 0].max() + 5)
+
+
+def test_no_negative_zero_in_titles(sphere):
+    assert plotting.tidy_label(f"λ = {-3e-16:.2f}, μ = {-0.004:.3f}, t = {-1e-9:.1e}") == "λ = 0.00, μ = -0.004, t = -1.0e-09"
+    assert plotting.tidy_label("-0.0 and x-0.0 and -0.05 and 10-0") == "0.0 and x-0.0 and -0.05 and 10-0"
+    basis = eigenbasis(sphere, 4)
+    assert basis.values[0] < 1e-12                          # the constant's eigenvalue: zero up to round-off
+    w = plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", symmetric=True,
+                             title=lambda i: f"λ = {-abs(basis.values[i]):.2f}")
+    assert w.figure.layout.title.text == "λ = 0.00"
+    fig = plotting.plot_meshes([sphere], titles=[f"{-1e-20:.3f}"])
+    assert fig.layout.annotations[0].text == "0.000"
+
+
+def test_slider_starts_where_asked_and_keeps_moving_vertices_in_view(sphere):
+    basis = eigenbasis(sphere, 4)
+    w = plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", symmetric=True, start=1)
+    assert w.slider.value == 1
+    np.testing.assert_allclose(w.figure.data[0].intensity, basis.vectors[:, 1])
+    with pytest.raises(ValueError, match="start"):
+        plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", start=7)
+    grow = plotting.mesh_slider(sphere, lambda t: sphere.vertices * t, [1.0, 3.0], "scale")
+    before = list(grow.figure.layout.scene.xaxis.range)
+    grow.slider.value = 3.0
+    after = grow.figure.layout.scene.xaxis.range
+    assert after[0] < before[0] and after[1] > before[1]
+    assert after[0] < 3 * sphere.vertices[:, 0].min() and 3 * sphere.vertices[:, 0].max() < after[1]
+
+
+def test_static_fallback_turns_the_mesh_upright(dog):
+    from lbo_notebooks.plotting import _View, _view_rotation
+
+    y_up = dog.vertices[:, [0, 2, 1]] * [1, 1, -1]
+    for vertices, up in ((dog.vertices, "auto"), (y_up, "auto"), (y_up, "y"), (dog.vertices, [1.0, 0.0, 1.0])):
+        view = _View(vertices, up)
+        rotation = _view_rotation(view)
+        np.testing.assert_allclose(rotation @ rotation.T, np.eye(3), atol=1e-12)
+        assert np.linalg.det(rotation) > 0
+        np.testing.assert_allclose(rotation @ view.up, [0, 0, 1], atol=1e-12)   # up is drawn up
+    ax = plotting.plot_mesh_static(dog.with_vertices(y_up), y_up[:, 0], title=f"{-1e-9:.2f}")
+    r = ax.get_xlim()[1]
+    assert ax.get_xlim() == ax.get_ylim() == ax.get_zlim() == (-r, r)
+    assert r >= np.linalg.norm(y_up - (y_up.min(0) + y_up.max(0)) / 2, axis=1).max()
+    assert ax.get_title() == "0.00"
+
+
+def test_same_scale_draws_equal_sizes_equally_large_even_beside_a_colour_bar(dog):
+    fig = plotting.plot_meshes([dog, dog, dog], [dog.vertices[:, 0]] * 3, shared_colour_range=True)
+    scenes = _scenes(fig)
+    assert scenes[2].domain.x[1] - scenes[2].domain.x[0] < scenes[0].domain.x[1] - scenes[0].domain.x[0]
+    eyes = [np.linalg.norm([s.camera.eye.x, s.camera.eye.y, s.camera.eye.z]) for s in scenes]
+    heights = [s.domain.y[1] - s.domain.y[0] for s in scenes]
+    np.testing.assert_allclose(eyes, eyes[0], rtol=1e-12)      # same distance and same height:
+    np.testing.assert_allclose(heights, heights[0], rtol=1e-12)  # the same size on screen

@@ -21,14 +21,31 @@ the menu bar, waits until every cell has run and the kernel is idle, and checks 
 - pressing the arrow keys on the first slider's handle changes the plotly data of its figure and the
   picture itself (screenshots before and after differ);
 - the "Build Recommended" dialog never appears (``make.sh`` / ``binder/postBuild`` write a
-  ``page_config.json`` that switches the build check off).
+  ``page_config.json`` that switches the build check off);
+- figures are laid out as drawn: subplot titles and colour bars do not overlap each other or
+  another panel's scene, and no 3D scene is clipped (the border of every scene is background);
+- the browser console shows no error outside the short allow-list ``CONSOLE_ALLOWED`` below.
+
+The browser has no network: every request to a host other than 127.0.0.1 is aborted (and fails
+the test), and the browser's own resolver maps every other name to nowhere.
+
+``test_static_site`` builds the static site (``scripts/build_site.py``) for ``SITE_NOTEBOOKS``
+(or opens an existing build named by ``LBO_BROWSER_SITE=/path/to/site``), serves it from
+127.0.0.1 and checks each page the same way, plus: formulas typeset by the site's own MathJax
+(no ``$...$`` left as text), no request that fails, no slider title with a negative zero.
+
+Select notebooks with pytest's ``-k``, e.g. ``-k "laplace or static_site"``.
 
 Screenshots (the page after the run, every figure, the slider before/after) and the browser console
-log go to ``artifacts/browser/<notebook>/`` (override with ``LBO_BROWSER_ARTIFACTS``).
+log go to ``artifacts/browser/<notebook>/`` (override with ``LBO_BROWSER_ARTIFACTS``), the static
+site's to ``artifacts/browser/site/``.
 """
 
 from __future__ import annotations
 
+import functools
+import http.server
+import io
 import json
 import os
 import re
@@ -37,8 +54,10 @@ import shutil
 import socket
 import subprocess
 import sys
+import threading
 import time
 import urllib.error
+import urllib.parse
 import urllib.request
 from pathlib import Path
 
@@ -60,7 +79,33 @@ CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic"
                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
                  # WebGL without a GPU is SwiftShader; headless Chromium 156 falls back to it on its
                  # own, newer releases only with this flag.
-                 "--enable-unsafe-swiftshader"]
+                 "--enable-unsafe-swiftshader",
+                 # No network but this machine: other host names resolve to nowhere (requests are
+                 # also aborted, and recorded, by the page's route handler).
+                 "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"]
+LOCAL_HOSTS = {"127.0.0.1"}
+# Requests to anywhere else. The pattern is matched by the browser driver, so local requests are
+# never paused waiting for Python (the sync API runs route handlers only inside Playwright calls).
+NOT_LOCAL = re.compile(r"^(https?|wss?)://(?!127\.0\.0\.1[:/])")
+# Browser-console errors that are not ours to fix, each with the reason. Everything else fails.
+CONSOLE_ALLOWED = [
+    # SwiftShader (WebGL without a GPU) reports slow pixel read-backs; a performance note, not a fault.
+    (re.compile(r"GL Driver Message .*GPU stall due to ReadPixels"), "software WebGL performance note"),
+    # MathJax 2's HTML-CSS output declares `@font-face {font-family: MathJax_Blank; src: url(about:blank)}`
+    # to time web-font loading; Chromium reports the (intended) failure.
+    (re.compile(r"Access to font at 'about:blank' from origin 'http://127\.0\.0\.1:\d+' has been blocked by CORS"),
+     "MathJax 2's font-loading probe"),
+]
+# Requests that may fail, with the reason; each one also allows one console line "Failed to load
+# resource: ..." (the console does not say which resource).
+ALLOWED_FAILURES = [
+    (re.compile(r"^about:blank$"), "MathJax 2's font-loading probe (above)"),
+    # jupyter-server-mathjax ships the STIX-Web fonts only; for a few AMS symbols MathJax first
+    # tries its TeX AMS font, then draws the symbol with STIX-Web (typesetting errors are checked).
+    (re.compile(r"/mathjax/fonts/HTML-CSS/TeX/otf/MathJax_AMS-Regular\.otf$"), "MathJax 2 AMS font probe"),
+]
+RESOURCE_FAILURE = "console error: Failed to load resource:"
+SITE_NOTEBOOKS = ["00_start_here", "02_laplace_beltrami"]
 ARTIFACTS = Path(os.environ.get("LBO_BROWSER_ARTIFACTS", REPO / "artifacts" / "browser"))
 RUN_TIMEOUT = float(os.environ.get("LBO_BROWSER_TIMEOUT", "900"))  # seconds for Run All Cells
 VIEWPORT = {"width": 1400, "height": 1000}
@@ -161,19 +206,74 @@ def browser():
         b.close()
 
 
+class Offline:
+    """A browser context without network (only 127.0.0.1) that records console errors and
+    blocked or failed requests."""
+
+    def __init__(self, browser) -> None:
+        self.context = browser.new_context(viewport=VIEWPORT, device_scale_factor=1)
+        self.console: list[str] = []
+        self.errors: list[str] = []
+        self.blocked: list[str] = []
+        self.failed: list[str] = []
+        self.context.route(NOT_LOCAL, self._block)
+        self.page = self.context.new_page()
+        self.page.on("console", self._console)
+        self.page.on("pageerror", lambda e: self._error(f"pageerror: {e}"))
+        self.allowed_failures = 0
+        self.page.on("requestfailed", lambda r: self._failed(r.url, str(r.failure)))
+        self.page.on("response", lambda r: self._failed(r.url, f"HTTP {r.status}") if r.status >= 400 else None)
+
+    def _failed(self, url: str, why: str) -> None:
+        if any(pattern.search(url) for pattern, _ in ALLOWED_FAILURES):
+            self.allowed_failures += 1
+        elif urllib.parse.urlsplit(url).hostname in LOCAL_HOSTS:
+            self.failed.append(f"{url} ({why})")
+
+    def _block(self, route) -> None:
+        self.blocked.append(route.request.url)
+        route.abort("internetdisconnected")
+
+    def _console(self, message) -> None:
+        self.console.append(f"{message.type}: {message.text}")
+        if message.type == "error":
+            self._error(f"console error: {message.text}")
+
+    def _error(self, text: str) -> None:
+        self.console.append(text)
+        if not any(pattern.search(text) for pattern, _ in CONSOLE_ALLOWED):
+            self.errors.append(text)
+
+    def check(self, what: str) -> None:
+        """No unexpected console error, no request left the machine."""
+        assert not self.blocked, f"{what}: requests to the network (blocked): {self.blocked[:10]}"
+        errors, allowance = [], self.allowed_failures
+        for e in self.errors:
+            if e.startswith(RESOURCE_FAILURE) and allowance > 0:
+                allowance -= 1
+            else:
+                errors.append(e)
+        assert not errors, f"{what}: browser-console errors:\n" + "\n".join(errors[:20])
+
+    def save(self, out: Path) -> None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "console.log").write_text("\n".join(self.console + [f"blocked: {u}" for u in self.blocked]
+                                                  + [f"failed: {u}" for u in self.failed]))
+
+
 @pytest.fixture
-def page(browser, lab, request):
-    context = browser.new_context(viewport=VIEWPORT, device_scale_factor=1)
-    page = context.new_page()
-    console: list[str] = []
-    page.on("console", lambda m: console.append(f"{m.type}: {m.text}"))
-    page.on("pageerror", lambda e: console.append(f"pageerror: {e}"))
-    page.console_log = console
-    yield page
-    out = ARTIFACTS / request.node.callspec.id if hasattr(request.node, "callspec") else ARTIFACTS / request.node.name
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "console.log").write_text("\n".join(console))
-    context.close()
+def offline(browser, request):
+    session = Offline(browser)
+    yield session
+    name = request.node.callspec.id if hasattr(request.node, "callspec") else request.node.name
+    session.save(ARTIFACTS / name)
+    session.context.close()
+
+
+@pytest.fixture
+def page(offline, lab):
+    offline.page.console_log = offline.console
+    yield offline.page
     lab.shutdown_kernels()
 
 
@@ -253,6 +353,78 @@ FIGURE_INFO = """el => {
 }"""
 
 
+FIGURE_LAYOUT = """el => {
+    const gd = el.classList.contains('js-plotly-plot') ? el : el.querySelector('.js-plotly-plot');
+    const box = e => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
+    const scenes = gd && gd._fullLayout ? Object.keys(gd._fullLayout).filter(k => /^scene\\d*$/.test(k))
+        .map(k => gd._fullLayout[k]._scene).filter(s => s && s.container).map(s => box(s.container)) : [];
+    return {
+        scenes: scenes,
+        titles: Array.from(el.querySelectorAll('.infolayer g.annotation')).map(box),
+        colorbars: Array.from(el.querySelectorAll('.infolayer g.colorbar')).map(box),
+        figure: box(el),
+    };
+}"""
+
+
+def _figure_info(page: Page, figure, timeout: float = 60) -> dict:
+    """FIGURE_INFO once a 3D figure has drawn its WebGL canvas (a FigureWidget receives its data
+    from the kernel after the output appears; under load that takes a while), or at the timeout."""
+    deadline = time.monotonic() + timeout
+    info = figure.evaluate(FIGURE_INFO)
+    while info["is3d"] and not info["glCanvas"] and time.monotonic() < deadline:
+        page.wait_for_timeout(1000)
+        info = figure.evaluate(FIGURE_INFO)
+    return info
+
+
+def _intersect(a, b, tol: float = 1.0) -> bool:
+    return min(a[2], b[2]) - max(a[0], b[0]) > tol and min(a[3], b[3]) - max(a[1], b[1]) > tol
+
+
+def _check_figure_layout(page: Page, figure, name: str, out: Path) -> None:
+    """Titles and colour bars overlap nothing they should not; no scene is clipped.
+
+    Clipping is read from pixels: with titles and colour bars hidden, a band along the border of
+    each 3D scene must be background, i.e. the drawn surface ends inside its scene.
+    """
+    layout = figure.evaluate(FIGURE_LAYOUT)
+    titles, bars, scenes = layout["titles"], layout["colorbars"], layout["scenes"]
+    for i in range(len(titles)):
+        for j in range(i + 1, len(titles)):
+            assert not _intersect(titles[i], titles[j]), f"{name}: titles {i} and {j} overlap: {titles[i]} {titles[j]}"
+    for i, bar in enumerate(bars):
+        for j, scene in enumerate(scenes):
+            assert not _intersect(bar, scene), f"{name}: colour bar {i} overlaps scene {j}: {bar} {scene}"
+    if not scenes:
+        return
+    from PIL import Image
+
+    figure.evaluate("el => el.querySelectorAll('.infolayer, .modebar-container').forEach(e => e.style.visibility = 'hidden')")
+    try:
+        png = page.screenshot(full_page=False, clip=dict(zip(("x", "y", "width", "height"), (
+            layout["figure"][0], layout["figure"][1], layout["figure"][2] - layout["figure"][0],
+            layout["figure"][3] - layout["figure"][1]))))
+    finally:
+        figure.evaluate("el => el.querySelectorAll('.infolayer, .modebar-container').forEach(e => e.style.visibility = '')")
+    image = Image.open(io.BytesIO(png)).convert("L")
+    (out / f"{name}_bare.png").write_bytes(png)
+    x0, y0 = layout["figure"][0], layout["figure"][1]
+    band = 3
+    for j, (left, top, right, bottom) in enumerate(scenes):
+        box = (max(round(left - x0) + 1, 0), max(round(top - y0) + 1, 0),
+               min(round(right - x0) - 1, image.width), min(round(bottom - y0) - 1, image.height))
+        if box[2] - box[0] <= 2 * band or box[3] - box[1] <= 2 * band:
+            continue   # a scene without size (or outside the screenshot) cannot be clipped
+        crop = image.crop(box)
+        w, h = crop.size
+        pixels = crop.load()
+        edge = [pixels[x, y] for x in range(w) for y in (*range(band), *range(h - band, h))]
+        edge += [pixels[x, y] for y in range(h) for x in (*range(band), *range(w - band, w))]
+        drawn = sum(v < 235 for v in edge) / len(edge)
+        assert drawn < 0.01, f"{name}: scene {j} is clipped ({drawn:.1%} of its border is drawn on); see {name}_bare.png"
+
+
 def _move_a_slider(page: Page, notebook: Path, out: Path) -> None:
     """Press arrow keys on the first slider that drives a figure; its figure must change.
 
@@ -298,7 +470,7 @@ def _move_a_slider(page: Page, notebook: Path, out: Path) -> None:
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
-def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> None:
+def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, offline: Offline, notebook: Path) -> None:
     out = ARTIFACTS / notebook.stem
     if out.exists():
         shutil.rmtree(out)
@@ -332,9 +504,11 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> No
         fig = figures.nth(i)
         fig.scroll_into_view_if_needed()
         page.wait_for_timeout(300)
-        info = fig.evaluate(FIGURE_INFO)
+        info = _figure_info(page, fig)
         infos.append(info)
         fig.screenshot(path=str(out / f"figure_{i:02d}.png"))
+        if info["is3d"]:
+            _check_figure_layout(page, fig, f"figure_{i:02d}", out)
         assert not info["noWebGL"], f"{notebook.name}: figure {i} says WebGL is not supported"
         assert info["width"] > 100 and info["height"] > 100, f"{notebook.name}: figure {i} has no size: {info}"
         if info["is3d"]:
@@ -355,9 +529,10 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, notebook: Path) -> No
     assert _build_dialog(page) == 0, f"{notebook.name}: the 'Build Recommended' dialog appeared"
     dialogs = page.locator(".jp-Dialog").all_inner_texts()
     assert not dialogs, f"{notebook.name}: unexpected dialog(s): {dialogs}"
+    offline.check(notebook.name)
 
 
-def test_no_build_recommended_dialog(page: Page, lab: Lab) -> None:
+def test_no_build_recommended_dialog(page: Page, lab: Lab, offline: Offline) -> None:
     """JupyterLab must not ask to rebuild (dash's extension triggers it unless page_config.json says no)."""
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     page.goto(f"{lab.url}/lab?reset&token={lab.token}")
@@ -367,3 +542,90 @@ def test_no_build_recommended_dialog(page: Page, lab: Lab) -> None:
     assert _build_dialog(page) == 0, (
         "JupyterLab shows 'Build Recommended': write {\"buildCheck\": false, \"buildAvailable\": false} to "
         "<sys.prefix>/etc/jupyter/labconfig/page_config.json (./make.sh install does this)")
+    offline.check("JupyterLab start page")
+
+
+class _QuietHandler(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args) -> None:
+        pass
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    """The static site, built for SITE_NOTEBOOKS (or LBO_BROWSER_SITE), served from 127.0.0.1."""
+    root = Path(os.environ["LBO_BROWSER_SITE"]) if os.environ.get("LBO_BROWSER_SITE") else None
+    if root is None:
+        root = tmp_path_factory.mktemp("site")
+        notebooks = [str(REPO / "notebooks" / f"{stem}.ipynb") for stem in SITE_NOTEBOOKS]
+        build = subprocess.run([sys.executable, str(REPO / "scripts" / "build_site.py"), "--out", str(root), *notebooks],
+                               capture_output=True, text=True, timeout=1800)
+        (ARTIFACTS / "site").mkdir(parents=True, exist_ok=True)
+        (ARTIFACTS / "site" / "build.log").write_text(build.stdout + build.stderr)
+        assert build.returncode == 0, f"build_site.py failed:\n{build.stdout}\n{build.stderr}"
+        # The build's own output is for people: no warnings a reader cannot act on.
+        assert "without encryption" not in build.stderr, build.stderr
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_QuietHandler, directory=str(root)))
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    yield root, f"http://127.0.0.1:{server.server_address[1]}"
+    server.shutdown()
+    server.server_close()
+
+
+MATH_STATE = """() => ({
+    typeset: document.querySelectorAll('.MathJax, .MathJax_CHTML, .MathJax_Display, mjx-container').length,
+    failed: document.querySelectorAll('.noError, .MathJax_Error, .MathJax .merror').length,
+    raw: Array.from(document.querySelectorAll('.jp-MarkdownOutput, .desc, p, li, td'))
+        .map(e => e.innerText).filter(t => /\\$[^$\\s][^$]*\\$/.test(t)).slice(0, 5),
+    mathjax: window.MathJax && window.MathJax.Hub ? window.MathJax.version : null,
+    scripts: Array.from(document.scripts).map(s => s.src).filter(s => s),
+})"""
+
+
+def _wait_for_math(page: Page) -> dict:
+    page.wait_for_function("() => window.MathJax && window.MathJax.Hub && MathJax.Hub.queue.pending === 0 "
+                           "&& !MathJax.Hub.queue.running", timeout=60_000)
+    page.wait_for_timeout(500)
+    return page.evaluate(MATH_STATE)
+
+
+def test_static_site(browser, site, offline: Offline) -> None:
+    root, url = site
+    out = ARTIFACTS / "site"
+    out.mkdir(parents=True, exist_ok=True)
+    page = offline.page
+    page.goto(f"{url}/index.html", timeout=180_000)
+    math = _wait_for_math(page)
+    page.screenshot(path=str(out / "index.png"), full_page=True)
+    assert math["mathjax"], "the index did not load MathJax"
+    assert all(s.startswith(url) for s in math["scripts"]), f"scripts from elsewhere: {math['scripts']}"
+    assert math["typeset"] > 0 and not math["raw"], f"index: formulas left as LaTeX: {math}"
+    assert "W),p" not in page.inner_text("body")
+    pages = sorted(p.name for p in root.glob("*.html") if p.name != "index.html")
+    assert pages, f"no notebook pages in {root}"
+    for name in pages:
+        page.goto(f"{url}/{name}", timeout=180_000)
+        math = _wait_for_math(page)
+        stem = name.removesuffix(".html")
+        page.screenshot(path=str(out / f"{stem}.png"), full_page=True)
+        assert math["typeset"] > 0 and not math["raw"] and not math["failed"], f"{name}: formulas left as LaTeX: {math}"
+        assert all(s.startswith(url) for s in math["scripts"]), f"{name}: scripts from elsewhere: {math['scripts']}"
+        figures = page.locator(".js-plotly-plot")
+        assert figures.count() > 0, f"{name}: no figure"
+        for i in range(figures.count()):
+            fig = figures.nth(i)
+            fig.scroll_into_view_if_needed()
+            page.wait_for_timeout(300)
+            info = _figure_info(page, fig)
+            assert info["width"] > 100 and info["height"] > 100 and not info["noWebGL"], f"{name}: figure {i}: {info}"
+            if info["is3d"]:
+                assert info["glCanvas"], f"{name}: 3D figure {i} has no WebGL canvas: {info}"
+                fig.screenshot(path=str(out / f"{stem}_figure_{i:02d}.png"))
+                _check_figure_layout(page, fig, f"{stem}_figure_{i:02d}", out)
+            titles = fig.evaluate("el => [el.layout && el.layout.title ? (el.layout.title.text || '') : '']"
+                                  ".concat((el.layout && el.layout.sliders || []).flatMap(s => s.steps.map("
+                                  "st => JSON.stringify(st.args[1] || {}))))")
+            assert not any(re.search(r"(?<![\w.])-0\.0*(?!\d)", t) for t in titles), f"{name}: negative zero in {titles}"
+        offline.check(name)
+    local_failures = [f for f in offline.failed if f.startswith(url)]
+    assert not local_failures, f"requests to the site that failed: {local_failures[:10]}"
