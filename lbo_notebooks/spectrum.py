@@ -173,6 +173,7 @@ def eigenbasis(
     alpha: float = 0.0,
     shift: float | None = None,
     curvature_floor: float | None = None,
+    solver: str = "slicing",
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
@@ -197,6 +198,11 @@ def eigenbasis(
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
         :mod:`lbo_notebooks.curvature`). Default ``curvature.DEFAULT_FLOOR`` (1e-3).
+    solver : {"slicing", "arpack"}
+        Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs several small shift-invert Lanczos
+        solves whose inertia counts prove no eigenvalue is missed
+        (:func:`~lbo_notebooks.eigensolver.slice_eigsh`); ``"arpack"`` is the single
+        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make.
 
     Returns
     -------
@@ -238,14 +244,22 @@ def eigenbasis(
     elif not (np.isfinite(shift) and shift > 0):
         raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
 
+    if solver not in ("slicing", "arpack"):
+        raise ValueError(f"solver must be 'slicing' or 'arpack', got {solver!r}.")
+
     if n <= DENSE_LIMIT or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
         # A fixed start vector makes ARPACK deterministic.
         v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
-        values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=v0)
-        order = np.argsort(values)
-        values, vectors = values[order], vectors[:, order]
+        if solver == "slicing":
+            from .eigensolver import slice_eigsh
+
+            values, vectors, _ = slice_eigsh(W, A, k, v0=v0, shift=shift)
+        else:
+            values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=v0)
+            order = np.argsort(values)
+            values, vectors = values[order], vectors[:, order]
         # ARPACK returns M-orthonormal vectors up to round-off; one Rayleigh-Ritz-free
         # re-orthonormalisation keeps Phi.T A Phi = I to machine precision.
         gram = vectors.T @ (A @ vectors)
