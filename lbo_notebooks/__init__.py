@@ -27,6 +27,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "io": ("load_mesh", "save_mesh", "clean_mesh"),
     "operators": ("stiffness_matrix", "mass_matrix"),
     "spectrum": ("Spectrum", "eigenbasis"),
+    "eigensolver": ("slice_eigsh", "count_below"),
     "plotting": ("plot_mesh",),
     "creatures": ("creature", "creature_poses", "creature_parts", "pose_distortion"),
     "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "a_orthonormalize", "witness_function"),
