@@ -206,9 +206,9 @@ def slice_eigsh(
             radius = float(np.max(np.abs(values - current.shift)))
             if previous is None:
                 break
-            # Both sets are complete strictly inside (current.shift - radius, carry_top).
-            # (The previous set may reach past this shift: the interval ends here.)
-            low, top = current.shift - radius, min(carry_top, current.shift)
+            # Both sets are complete strictly inside (current.shift - radius, carry_top); either may
+            # reach past the interval (previous.shift, current.shift), so clip to it.
+            low, top = max(current.shift - radius, previous.shift), min(carry_top, current.shift)
             inside = np.sort(np.concatenate(([low, top], carry_values[(carry_values > low) & (carry_values < top)])))
             taken = -1
             if low < top:

@@ -87,6 +87,15 @@ def test_near_degenerate_clusters():
     check_pairs(W, A, values, vectors)
 
 
+def test_torus_pairs_with_sets_reaching_past_the_neighbouring_shift():
+    # Exact double eigenvalues (rotational symmetry) and Lanczos sets wider than one interval.
+    W, A = operators(shapes.torus(1.0, 0.4, 100, 32))
+    exact = dense_values(W, A)
+    values, vectors, _ = slice_eigsh(W, A, 300, v0=start(W.shape[0]), shift=0.01, slice_size=60)
+    np.testing.assert_allclose(values[1:], exact[1:300], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
 def test_k_close_to_n():
     W, A = operators(shapes.icosphere(2))
     n = W.shape[0]
