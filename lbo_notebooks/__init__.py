@@ -33,7 +33,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "a_orthonormalize", "witness_function"),
     "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling", "GeodesicSolver"),
-    "mds": ("classical_mds", "landmark_mds", "spectral_mds", "gram_error", "procrustes_error"),
+    "mds": ("classical_mds", "landmark_mds", "spectral_mds", "fast_classical_scaling", "gram_error", "procrustes_error"),
     "rpca": ("regularized_pca", "RegularizedPCA", "mu_from_beta", "reconstruction_error", "principal_angles"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax"}
