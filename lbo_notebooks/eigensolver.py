@@ -194,8 +194,11 @@ def slice_eigsh(
         covered = np.count_nonzero(carry_values < carry_top)
         below_need = max(interval - covered, 0) + margin
         if last:
+            # Lanczos for the eigenvalues just below the shift (which="SA") keeps converging to
+            # the unwanted ones just above it; asking for the nearest on both sides is faster
+            # even though the upper half is discarded.
             nxt = None
-            nev, which = min(below_need + margin, current.n_below), "SA"
+            nev, which = 2 * below_need + margin, "LM"
         else:
             nxt = _next_shift(W, A, current, min(slice_size, target - current.n_below), slope, k)
             slope = nxt.n_below / max(nxt.shift, np.finfo(float).tiny)
@@ -221,7 +224,7 @@ def slice_eigsh(
                 found_values += [carry_values[from_carry], values[mine]]
                 found_vectors += [carry_vectors[:, from_carry], vectors[:, mine]]
                 break
-            if nev >= n - 1 or (last and nev >= current.n_below):
+            if nev >= n - 1:
                 attempt = 3
                 break
             nev += max(interval - max(taken, 0), 0) + 2 * margin
