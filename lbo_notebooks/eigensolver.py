@@ -5,12 +5,12 @@ orthogonalising it costs ``O(n k^2)`` per restart: at 50k vertices and ``k = 300
 sparse solves, is most of the time. Slicing (Vallet & Lévy 2008) cuts the spectrum into intervals
 ``(b_{j-1}, b_j]`` of a few dozen eigenvalues and runs one small Lanczos per interval.
 
-Each boundary ``b`` is factorised once, ``P (W - b A) P^T = L U`` with a symmetric ordering and no
+Each shift ``b`` is factorised once, ``P (W - b A) P^T = L U`` with a symmetric ordering and no
 row pivoting, so that ``U = D L^T`` and, by Sylvester's law of inertia, the number of negative
-pivots in ``D`` *is* the number of eigenvalues below ``b``. The same factorisation runs the slice:
-with shift ``b`` and ``which="SA"`` Lanczos converges to the most negative ``1 / (lam - b)``, the
-eigenvalues just below ``b``. So every slice knows exactly how many eigenpairs it must return, and
-a slice that returns fewer raises instead of silently dropping one.
+pivots in ``D`` *is* the number of eigenvalues below ``b``. The same factorisation runs a
+shift-invert Lanczos for the eigenvalues nearest ``b``. Between two consecutive shifts the
+difference of their counts says exactly how many eigenpairs the interval holds, and a slice that
+comes back with a different number raises instead of silently dropping one.
 """
 
 from __future__ import annotations
@@ -203,7 +203,8 @@ def slice_eigsh(
             nxt = _next_shift(W, A, current, min(slice_size, target - current.n_below), slope, k)
             slope = nxt.n_below / max(nxt.shift, np.finfo(float).tiny)
             nev, which = below_need + (nxt.n_below - current.n_below) // 2 + 1, "LM"
-        for attempt in range(3):
+        taken = -1
+        for _ in range(3):
             nev = min(nev, n - 1)
             values, vectors = _nearest(W, A, current, nev, which, v0)
             radius = float(np.max(np.abs(values - current.shift)))
@@ -214,7 +215,7 @@ def slice_eigsh(
             low, top = max(current.shift - radius, previous.shift), min(carry_top, current.shift)
             inside = np.sort(np.concatenate(([low, top], carry_values[(carry_values > low) & (carry_values < top)])))
             taken = -1
-            if low < top:
+            if low < top:  # the overlap is not empty
                 gaps = np.diff(inside)
                 split = float(inside[np.argmax(gaps)] + gaps.max() / 2)
                 from_carry = carry_values < split
@@ -225,10 +226,9 @@ def slice_eigsh(
                 found_vectors += [carry_vectors[:, from_carry], vectors[:, mine]]
                 break
             if nev >= n - 1:
-                attempt = 3
                 break
             nev += max(interval - max(taken, 0), 0) + 2 * margin
-        if attempt == 3 or (previous is not None and taken != interval):
+        if previous is not None and taken != interval:
             raise RuntimeError(
                 f"spectrum slicing found {max(taken, 0)} eigenvalues between the shifts {previous.shift:.6g} and "
                 f"{current.shift:.6g} where the inertia counts say {interval}; use solver='arpack'."
