@@ -503,7 +503,7 @@ def fast_classical_scaling(
        ``M = (S.T S + mu E)^-1 S.T`` (n x q), ``S`` the q x n sampling matrix and ``E = W A^-1 W``
        the biharmonic energy. One sparse factorisation, q right-hand sides;
     3. with ``D2 ~ (M F + F.T M.T) / 2`` (symmetrised), ``B = -1/2 J D2 J`` lives in the span of
-       ``[J M, J F.T]``: a thin QR ``[J M, J F.T] = Q R`` and the 2q x 2q eigenproblem of
+       ``[J M, J F.T]``: with ``[J M, J F.T] = Q R``, Q orthonormal, the 2q x 2q eigenproblem of
        ``-1/4 R [[0, I], [I, 0]] R.T`` give the top ``dim`` eigenpairs of the approximate B.
 
     Cost O(n q^2) after the sampling, memory O(n q); never an n x n matrix.
@@ -592,14 +592,20 @@ def fast_classical_scaling(
     del lu, rhs
     t2 = time.perf_counter()
 
-    # 3. classical scaling in span[J M, J F.T]
+    # 3. classical scaling in span[J M, J F.T] = span(basis). Any basis = Q R with Q orthonormal
+    # will do: from basis.T basis = V S V.T, R = S^(1/2) V.T and Q = basis V S^(-1/2), so only
+    # one n x 2q product is needed and Q is never formed (cheaper than a Householder QR).
     basis = np.hstack([M - M.mean(axis=0), F.T - F.T.mean(axis=0)])
-    Q, R = np.linalg.qr(basis)
+    del M
+    S, V = np.linalg.eigh(basis.T @ basis)
+    keep = S > S.max() * 2 * q * np.finfo(float).eps  # drop directions the columns do not span
+    S, V = S[keep], V[:, keep]
+    R = np.sqrt(S)[:, None] * V.T
     swap = np.block([[np.zeros((q, q)), np.eye(q)], [np.eye(q), np.zeros((q, q))]])
     small = -0.25 * (R @ swap @ R.T)
     G, U = np.linalg.eigh(0.5 * (small + small.T))
     G, U = G[::-1], U[:, ::-1]
-    X = Q @ (U[:, :dim] * np.sqrt(np.maximum(G[:dim], 0.0)))
+    X = basis @ (V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None])))
     X = _fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
