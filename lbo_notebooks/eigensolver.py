@@ -210,17 +210,25 @@ def slice_eigsh(
             radius = float(np.max(np.abs(values - current.shift)))
             if previous is None:
                 break
-            # Both sets are complete strictly inside (current.shift - radius, carry_top); either may
-            # reach past the interval (previous.shift, current.shift), so clip to it.
+            # Both sets should hold every eigenvalue strictly inside (current.shift - radius,
+            # carry_top); either may reach past the interval (previous.shift, current.shift).
             low, top = max(current.shift - radius, previous.shift), min(carry_top, current.shift)
             inside = np.sort(np.concatenate(([low, top], carry_values[(carry_values > low) & (carry_values < top)])))
-            taken = -1
+            # Split candidates: the widest gap of the overlap (no cluster cut), else one set alone.
+            # Lanczos can return only part of an exactly multiple eigenvalue and farther ones
+            # instead, so "complete inside its radius" is a hope, not a fact: the count decides.
+            splits = [float(previous.shift)]
             if low < top:  # the overlap is not empty
                 gaps = np.diff(inside)
-                split = float(inside[np.argmax(gaps)] + gaps.max() / 2)
+                splits.insert(0, float(inside[np.argmax(gaps)] + gaps.max() / 2))
+            if carry_top > current.shift:
+                splits.append(float(current.shift))
+            for split in splits:
                 from_carry = carry_values < split
                 mine = (values > split) & (values < current.shift)
                 taken = np.count_nonzero(from_carry) + np.count_nonzero(mine)
+                if taken == interval:
+                    break
             if taken == interval:
                 found_values += [carry_values[from_carry], values[mine]]
                 found_vectors += [carry_vectors[:, from_carry], vectors[:, mine]]

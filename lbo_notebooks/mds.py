@@ -512,7 +512,7 @@ def fast_classical_scaling(
     centring on a flat patch, and the discrete (Neumann) biharmonic energy does not vanish on
     linear functions at boundary vertices: on a flat rectangle the error is about 2% for 40
     samples and 1.2% for 80, where classical MDS is exact. Closed surfaces have no such term
-    (0.3% Gram error for 100 samples on a bumpy sphere).
+    (at most 0.5% Gram error for 100 samples on a bumpy sphere).
 
     Parameters
     ----------
