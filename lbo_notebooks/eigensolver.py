@@ -26,7 +26,7 @@ __all__ = ["SliceFactor", "count_below", "slice_eigsh"]
 
 # Eigenvalues per slice: the orthogonalisation cost n * ncv^2 per slice against one
 # factorisation per slice (about as costly as 30-40 solves at 50k vertices).
-SLICE_SIZE = 60
+SLICE_SIZE = 100
 # Lanczos convergence tolerance (ARPACK's, relative to the shifted-inverted eigenvalue).
 TOL = 1e-10
 
