@@ -3,7 +3,7 @@
 Run: ``.venv/bin/python benchmarks/eigen.py [--quick]``. For each mesh size and ``k`` it prints the
 wall time and the growth of peak memory (RSS, each call in a fresh process, all in the same run) of
 
-- ``ours``: ``eigenbasis(mesh, k)`` (operators + slicing + checks, the default ``solver="slicing"``);
+- ``ours``: ``eigenbasis(mesh, k)`` (operators + solver + checks; ``solver="auto"`` slices when k > 100);
 - ``plain``: operators + ``eigsh(W, k, M=A, sigma=-s, which="LM")``, the call LaPy, pyFM, geomfum and
   robust-laplacian users make (also ``eigenbasis(..., solver="arpack")``);
 - ``lapy``: ``lapy.Solver(TriaMesh(v, f), lump=True).eigs(k)``;

@@ -173,7 +173,7 @@ def eigenbasis(
     alpha: float = 0.0,
     shift: float | None = None,
     curvature_floor: float | None = None,
-    solver: str = "slicing",
+    solver: str = "auto",
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
@@ -198,11 +198,12 @@ def eigenbasis(
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
         :mod:`lbo_notebooks.curvature`). Default ``curvature.DEFAULT_FLOOR`` (1e-3).
-    solver : {"slicing", "arpack"}
+    solver : {"auto", "slicing", "arpack"}
         Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs several small shift-invert Lanczos
         solves whose inertia counts prove no eigenvalue is missed
         (:func:`~lbo_notebooks.eigensolver.slice_eigsh`); ``"arpack"`` is the single
-        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make.
+        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices when ``k``
+        exceeds one slice (``eigensolver.SLICE_SIZE``), where one large Krylov space is slow.
 
     Returns
     -------
@@ -244,17 +245,17 @@ def eigenbasis(
     elif not (np.isfinite(shift) and shift > 0):
         raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
 
-    if solver not in ("slicing", "arpack"):
-        raise ValueError(f"solver must be 'slicing' or 'arpack', got {solver!r}.")
+    if solver not in ("auto", "slicing", "arpack"):
+        raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
 
     if n <= DENSE_LIMIT or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
         # A fixed start vector makes ARPACK deterministic.
         v0 = 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
-        if solver == "slicing":
-            from .eigensolver import slice_eigsh
+        from .eigensolver import SLICE_SIZE, slice_eigsh
 
+        if solver == "slicing" or (solver == "auto" and k > SLICE_SIZE):
             values, vectors, _ = slice_eigsh(W, A, k, v0=v0, shift=shift)
         else:
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=v0)
