@@ -81,14 +81,14 @@ def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
 
 
 def _nearest(
-    W: sp.csr_matrix, A: sp.csr_matrix, factor: SliceFactor, nev: int, which: str, v0: NDArray[np.float64]
+    W: sp.csr_matrix, A: sp.csr_matrix, factor: SliceFactor, nev: int, v0: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The ``nev`` eigenpairs nearest ``factor.shift`` (``which="LM"``) or just below it (``"SA"``), ascending."""
+    """The ``nev`` eigenpairs nearest ``factor.shift`` (shift-invert Lanczos), ascending."""
     n = W.shape[0]
     op = spla.LinearOperator((n, n), matvec=factor.lu.solve, dtype=np.float64)
     ncv = min(n, max(2 * nev + 1, 20))
     # tol bounds the residual relative to 1 / (lam - shift); eigenvalues then err by its square.
-    values, vectors = spla.eigsh(W, k=nev, M=A, sigma=factor.shift, which=which, OPinv=op, v0=v0, ncv=ncv, tol=TOL)
+    values, vectors = spla.eigsh(W, k=nev, M=A, sigma=factor.shift, which="LM", OPinv=op, v0=v0, ncv=ncv, tol=TOL)
     order = np.argsort(values)
     return values[order], vectors[:, order]
 
@@ -198,15 +198,15 @@ def slice_eigsh(
             # the unwanted ones just above it; asking for the nearest on both sides is faster
             # even though the upper half is discarded.
             nxt = None
-            nev, which = 2 * below_need + margin, "LM"
+            nev = 2 * below_need + margin
         else:
             nxt = _next_shift(W, A, current, min(slice_size, target - current.n_below), slope, k)
             slope = nxt.n_below / max(nxt.shift, np.finfo(float).tiny)
-            nev, which = below_need + (nxt.n_below - current.n_below) // 2 + 1, "LM"
+            nev = below_need + (nxt.n_below - current.n_below) // 2 + 1
         taken = -1
         for _ in range(3):
             nev = min(nev, n - 1)
-            values, vectors = _nearest(W, A, current, nev, which, v0)
+            values, vectors = _nearest(W, A, current, nev, v0)
             radius = float(np.max(np.abs(values - current.shift)))
             if previous is None:
                 break
