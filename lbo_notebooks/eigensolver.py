@@ -121,12 +121,13 @@ def slice_eigsh(
 
     Shifts ``sigma_0 = -shift < sigma_1 < ... < sigma_m`` are placed about ``slice_size``
     eigenvalues apart, each factorised once (which counts the eigenvalues below it). At each shift
-    Lanczos finds the eigenvalues nearest to it (at the last, those just below it). Consecutive
-    shifts' sets overlap; the interval between two shifts takes the lower set's eigenvalues below
-    a split point and the upper set's above it, the split sitting in the widest gap of the overlap
-    so that no cluster of (near-)equal eigenvalues is cut. The number taken must equal the
-    difference of the two inertia counts, or the shift is rerun with a larger set and finally a
-    ``RuntimeError`` is raised: an eigenvalue is never silently missed.
+    Lanczos finds the eigenvalues nearest to it (at the last shift only those below it are kept).
+    Consecutive shifts' sets overlap; the interval between two shifts takes the lower set's
+    eigenvalues below a split point and the upper set's above it, the split sitting in the widest
+    gap of the overlap so that no cluster of (near-)equal eigenvalues is cut (or, failing that, one
+    set alone). The number taken must equal the difference of the two inertia counts, or the shift
+    is rerun with a larger set and finally a ``RuntimeError`` is raised: an eigenvalue is never
+    silently missed.
 
     Parameters
     ----------
