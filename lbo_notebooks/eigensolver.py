@@ -183,8 +183,11 @@ def slice_eigsh(
     slope = float(A.sum()) / (4.0 * np.pi)
     target = k + max(2, k // 50)  # the last shift only needs to clear lam_k
     margin = max(3, slice_size // 10)
-    found_values: list[NDArray[np.float64]] = []
-    found_vectors: list[NDArray[np.float64]] = []
+    # Intervals come in increasing order and each is ascending, so results fill in order; only
+    # the first k are kept (preallocated: no list of blocks plus a concatenated copy).
+    out_values = np.empty(k)
+    out_vectors = np.empty((n, k))
+    filled = 0
     carry_values = np.empty(0)  # the previous set's eigenpairs above the previous shift
     carry_vectors = np.empty((n, 0))
     carry_top = -np.inf  # ... complete (all eigenvalues present) below this value
@@ -231,8 +234,11 @@ def slice_eigsh(
                 if taken == interval:
                     break
             if taken == interval:
-                found_values += [carry_values[from_carry], values[mine]]
-                found_vectors += [carry_vectors[:, from_carry], vectors[:, mine]]
+                for vals, vecs in ((carry_values[from_carry], carry_vectors[:, from_carry]), (values[mine], vectors[:, mine])):
+                    take = min(vals.size, k - filled)
+                    out_values[filled : filled + take] = vals[:take]
+                    out_vectors[:, filled : filled + take] = vecs[:, :take]
+                    filled += take
                 break
             if nev >= n - 1:
                 break
@@ -248,6 +254,4 @@ def slice_eigsh(
         carry_values, carry_vectors = values[above], vectors[:, above]
         carry_top = current.shift + radius
         previous, current = current, nxt
-    all_values = np.concatenate(found_values)
-    all_vectors = np.hstack(found_vectors)
-    return all_values[:k], all_vectors[:, :k], current.n_below
+    return out_values, out_vectors, current.n_below
