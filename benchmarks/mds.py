@@ -1,5 +1,7 @@
 """Spectral MDS against classical MDS: accuracy at 3-5k vertices, time and memory up to 50k.
 
+Part 3 compares all four methods (classical, landmark, spectral, fast classical scaling).
+
 Run from the repository root::
 
     .venv/bin/python benchmarks/mds.py                    # full run (several minutes)
@@ -40,7 +42,15 @@ from pathlib import Path
 import numpy as np
 
 from lbo_notebooks import Mesh, shapes
-from lbo_notebooks.mds import SMDS_DEFAULTS, classical_mds, gram_error, landmark_mds, procrustes_error, spectral_mds
+from lbo_notebooks.mds import (
+    SMDS_DEFAULTS,
+    classical_mds,
+    fast_classical_scaling,
+    gram_error,
+    landmark_mds,
+    procrustes_error,
+    spectral_mds,
+)
 
 
 # --- shapes ------------------------------------------------------------------------------------
@@ -115,6 +125,11 @@ def measure(kind: str, n: int) -> dict:
         X, info = spectral_mds(mesh, return_details=True, progress=False)
         out["timings"] = info["timings"]
         out["eigengap"] = info["eigengap"]
+    elif kind == "fcs":
+        X, info = fast_classical_scaling(mesh, return_details=True, progress=False)
+        out["timings"] = info["timings"]
+    elif kind == "landmark":
+        X = landmark_mds(mesh, n_samples=int(SMDS_DEFAULTS["n_samples"]), progress=False)
     else:
         X = classical_mds(mesh, progress=False)
     out["seconds"] = time.perf_counter() - t0
@@ -238,6 +253,29 @@ def part_scaling(quick: bool, classical_max: int, sizes: list[int] | None = None
     return rows
 
 
+def part_four(quick: bool, classical_max: int, sizes: list[int] | None = None) -> list[dict]:
+    """Classical, landmark, spectral and fast classical scaling side by side, in one run."""
+    if sizes is None:
+        sizes = [1000, 2000] if quick else [4000, 8000, 51200]
+    kinds = ["classical", "landmark", "smds", "fcs"]
+    print("\nPart 3: the four methods on deformed tori (fresh subprocess each; Gram error against classical)")
+    print(f"{'n':>6s} " + " ".join(f"{k + ' s':>12s} {'MiB':>6s} {'Gram':>7s}" for k in kinds))
+    rows = []
+    for n in sizes:
+        res = {k: run_child(k, n) for k in kinds if k != "classical" or n <= classical_max}
+        cells = []
+        for k in kinds:
+            r = res.get(k, {})
+            err = float("nan")
+            if "seconds" in r and "seconds" in res.get("classical", {}):
+                err = gram_error(np.load(f"/tmp/mds_bench_{k}_{n}.npy"), np.load(f"/tmp/mds_bench_classical_{n}.npy"))
+            r["gram_error"] = err
+            cells.append(f"{r.get('seconds', float('nan')):12.2f} {r.get('peak_mib', float('nan')):6.0f} {err:7.4f}")
+        rows.append({"n": n, **res})
+        print(f"{n:6d} " + " ".join(cells))
+    return rows
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small sizes only")
@@ -289,6 +327,7 @@ def main() -> None:
             print(f"results written to {args.json}")
         return
     result["scaling"] = part_scaling(args.quick, args.classical_max, args.sizes)
+    result["four_methods"] = part_four(args.quick, args.classical_max, args.sizes)
     if args.merge and args.json and args.json.exists():
         old = json.loads(args.json.read_text())
         new_n = {r["n"] for r in result["scaling"]}

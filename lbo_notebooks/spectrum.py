@@ -123,6 +123,7 @@ def eigenbasis(
     curvature_floor: float | None = None,
     laplacian: str = "auto",
     n_neighbors: int = 30,
+    solver: str = "auto",
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
@@ -158,6 +159,12 @@ def eigenbasis(
         point-cloud Laplacian.
     n_neighbors : int
         Point clouds only: neighbours in each point's local triangulation.
+    solver : {"auto", "slicing", "arpack"}
+        Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs several small shift-invert Lanczos
+        solves whose inertia counts prove no eigenvalue is missed
+        (:func:`~lbo_notebooks.eigensolver.slice_eigsh`); ``"arpack"`` is the single
+        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices when ``k``
+        exceeds one slice (``eigensolver.SLICE_SIZE``), where one large Krylov space is slow.
 
     Returns
     -------
@@ -207,12 +214,20 @@ def eigenbasis(
     elif not (np.isfinite(shift) and shift > 0):
         raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
 
+    if solver not in ("auto", "slicing", "arpack"):
+        raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
+
     if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n))
-        order = np.argsort(values)
-        values, vectors = values[order], vectors[:, order]
+        from .eigensolver import SLICE_SIZE, slice_eigsh
+
+        if solver == "slicing" or (solver == "auto" and k > SLICE_SIZE):
+            values, vectors, _ = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift)
+        else:
+            values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n))
+            order = np.argsort(values)
+            values, vectors = values[order], vectors[:, order]
         # ARPACK returns M-orthonormal vectors up to round-off; re-orthonormalising in order
         # (no mixing) keeps Phi.T A Phi = I to machine precision.
         vectors = a_orthonormalize(vectors, A, refine=True)

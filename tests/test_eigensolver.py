@@ -1,0 +1,147 @@
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.sparse as sp
+
+from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.eigensolver import SliceFactor, count_below, slice_eigsh
+
+
+def operators(mesh):
+    return stiffness_matrix(mesh), mass_matrix(mesh)
+
+
+def dense_values(W, A):
+    return scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+
+
+def check_pairs(W, A, values, vectors):
+    """Residuals and A-orthonormality relative to the scale of the operators."""
+    eps = np.finfo(float).eps
+    n, k = vectors.shape
+    scale = abs(W).sum(axis=1).max() + abs(values).max() * abs(A).sum(axis=1).max()
+    residual = W @ vectors - (A @ vectors) * values
+    assert np.abs(residual).max() <= 1e6 * eps * scale * np.abs(vectors).max()
+    gram = vectors.T @ (A @ vectors)
+    assert np.abs(gram - np.eye(k)).max() <= 1e5 * eps * np.sqrt(k)
+
+
+def start(n):
+    return 1.0 + 0.5 * np.cos(np.arange(n, dtype=np.float64))
+
+
+@pytest.mark.parametrize("mesh", [shapes.icosphere(3), shapes.bumpy_sphere(3), shapes.torus(1.0, 0.4, 30, 12)])
+def test_count_below_is_the_inertia(mesh):
+    W, A = operators(mesh)
+    exact = dense_values(W, A)
+    for value in np.quantile(exact, [0.01, 0.2, 0.5, 0.9]) * 1.0001:
+        assert count_below(W, A, value) == np.count_nonzero(exact < value)
+
+
+@pytest.mark.parametrize("slice_size", [5, 12, 60])
+def test_agrees_with_the_dense_solver_and_finds_every_eigenvalue(slice_size):
+    W, A = operators(shapes.bumpy_sphere(3))
+    exact = dense_values(W, A)
+    k = 80  # several slices for slice_size 5 and 12: k larger than one slice holds
+    values, vectors, n_below = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size)
+    np.testing.assert_allclose(values[1:], exact[1:k], rtol=1e-8)
+    assert abs(values[0]) <= 1e-8 * values[1]
+    assert n_below >= k and count_below(W, A, 0.5 * (exact[n_below - 1] + exact[n_below])) == n_below
+    check_pairs(W, A, values, vectors)
+
+
+def test_agrees_with_plain_arpack_through_eigenbasis():
+    mesh = shapes.bumpy_sphere(4)
+    ours = eigenbasis(mesh, 120, solver="slicing")
+    plain = eigenbasis(mesh, 120, solver="arpack")
+    np.testing.assert_allclose(ours.values[1:], plain.values[1:], rtol=1e-8)
+    # Same A-orthogonal projector on every well-separated leading subspace.
+    for m in (10, 60, 119):
+        if ours.values[m] / ours.values[m - 1] - 1 > 1e-3:
+            p = ours.vectors[:, :m].T @ (ours.mass @ plain.vectors[:, :m])
+            assert abs(np.linalg.svd(p, compute_uv=False).min() - 1) < 1e-6
+
+
+def test_sphere_multiplicities_survive_slices_that_cut_through_clusters():
+    W, A = operators(shapes.icosphere(4))
+    k = 64  # l = 0..7
+    values, vectors, _ = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=7)
+    l = np.repeat(np.arange(8), 2 * np.arange(8) + 1)
+    exact = l * (l + 1.0)
+    assert np.all(np.abs(values[1:] / exact[1:] - 1) < 0.03)  # O(h^2) discretisation error
+    for j in range(1, 8):  # the inertia between clusters is exactly (l + 1)^2
+        between = 0.5 * (j * (j - 1) + j * (j + 1))
+        assert count_below(W, A, between) == j * j
+        assert np.count_nonzero(values < between) == j * j
+    check_pairs(W, A, values, vectors)
+
+
+def test_near_degenerate_clusters():
+    # A sphere stretched by 1e-5 splits each 2l+1 cluster by ~1e-5 relative: all members must be found.
+    sphere = shapes.icosphere(3)
+    mesh = Mesh(sphere.vertices * np.array([1.0, 1.0 + 1e-5, 1.0 - 1e-5]), sphere.faces)
+    W, A = operators(mesh)
+    exact = dense_values(W, A)
+    values, vectors, _ = slice_eigsh(W, A, 49, v0=start(W.shape[0]), shift=0.01, slice_size=6)
+    np.testing.assert_allclose(values[1:], exact[1:49], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
+def test_torus_pairs_with_sets_reaching_past_the_neighbouring_shift():
+    # Exact double eigenvalues (rotational symmetry) and Lanczos sets wider than one interval.
+    W, A = operators(shapes.torus(1.0, 0.4, 100, 32))
+    exact = dense_values(W, A)
+    values, vectors, _ = slice_eigsh(W, A, 300, v0=start(W.shape[0]), shift=0.01, slice_size=60)
+    np.testing.assert_allclose(values[1:], exact[1:300], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
+def test_k_close_to_n():
+    W, A = operators(shapes.icosphere(2))
+    n = W.shape[0]
+    exact = dense_values(W, A)
+    k = n - 12
+    values, vectors, _ = slice_eigsh(W, A, k, v0=start(n), shift=0.01, slice_size=40)
+    np.testing.assert_allclose(values[1:], exact[1:k], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
+def test_partial_multiple_eigenvalue_from_lanczos_is_caught_and_recovered():
+    # Lanczos at -s with 11 vectors returns 3 of the 5 l=2 eigenvalues of this icosphere and four
+    # l=3 ones instead; the inertia count at the next shift exposes it and the slice is redone.
+    W, A = operators(shapes.icosphere(3))
+    values, vectors, _ = slice_eigsh(W, A, 9, v0=start(W.shape[0]), shift=0.01 * 4 * np.pi / A.sum())
+    np.testing.assert_allclose(values[1:], dense_values(W, A)[1:9], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
+def test_deterministic():
+    W, A = operators(shapes.bumpy_sphere(3))
+    a = eigenbasis((W, A), 50, solver="slicing")
+    b = eigenbasis((W, A), 50, solver="slicing")
+    assert np.array_equal(a.values, b.values) and np.array_equal(a.vectors, b.vectors)
+
+
+def test_bad_arguments():
+    W, A = operators(shapes.icosphere(2))
+    n = W.shape[0]
+    for k in (0, n, 2.5, True):
+        with pytest.raises(ValueError, match="k must be"):
+            slice_eigsh(W, A, k, v0=start(n), shift=0.01)
+    with pytest.raises(ValueError, match="shift must be"):
+        slice_eigsh(W, A, 5, v0=start(n), shift=-1.0)
+    with pytest.raises(ValueError, match="slice_size"):
+        slice_eigsh(W, A, 5, v0=start(n), shift=0.01, slice_size=0)
+    with pytest.raises(ValueError, match="v0 must be"):
+        slice_eigsh(W, A, 5, v0=np.ones(3), shift=0.01)
+    with pytest.raises(ValueError, match="positive semidefinite"):
+        slice_eigsh(-W, A, 5, v0=start(n), shift=0.01)
+    with pytest.raises(ValueError, match="solver must be"):
+        eigenbasis(shapes.icosphere(2), 5, solver="lapack")
+
+
+def test_inputs_are_not_modified():
+    W, A = operators(shapes.bumpy_sphere(3))
+    W0, A0 = W.copy(), A.copy()
+    slice_eigsh(W, A, 20, v0=start(W.shape[0]), shift=0.01, slice_size=8)
+    assert (W != W0).nnz == 0 and (A != A0).nnz == 0
