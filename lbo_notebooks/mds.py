@@ -51,10 +51,6 @@ __all__ = [
     "scale_mu",
     "SMDS_DEFAULTS",
     "ENERGIES",
-    "shape_distribution",
-    "shape_distribution_distances",
-    "growth_exponent",
-    "measure_cost",
 ]
 
 #: Defaults of :func:`spectral_mds` (``n_samples`` and ``k`` are capped at the number of
@@ -514,120 +510,6 @@ def spectral_mds(
     return X, details
 
 
-# --- using canonical forms ----------------------------------------------------------------------
-def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 3.0) -> NDArray[np.float64]:
-    """Histogram (a density) of all pairwise Euclidean distances, divided by their mean.
-
-    A *shape distribution* (Osada et al. 2002) of a point set: invariant to rigid motions, to
-    reflections and - because distances are divided by their mean - to uniform scaling. Applied to
-    canonical forms it compares shapes independently of pose, with no vertex correspondence.
-    O(n^2) time, O(n^2) memory for the distances (use a few thousand points).
-
-    Parameters
-    ----------
-    points : (n, d) array
-        At least two points.
-    bins : int, default 30
-        Number of equal bins on ``[0, max_ratio]``.
-    max_ratio : float, default 3.0
-        Largest distance / mean distance counted (larger ones fall outside the histogram).
-
-    Returns
-    -------
-    ndarray, shape (bins,)
-        Density values: ``sum(h) * max_ratio / bins`` is the fraction of pairs within range.
-
-    Examples
-    --------
-    >>> P = np.random.default_rng(0).normal(size=(200, 3))
-    >>> h = shape_distribution(P)
-    >>> bool(np.allclose(h, shape_distribution(-2.0 * P[:, ::-1] + 7.0)))
-    True
-    """
-    from scipy.spatial.distance import pdist
-
-    P = _as_embedding(points, "points")
-    if P.shape[0] < 2:
-        raise ValueError(f"a shape distribution needs at least two points, got {P.shape[0]}.")
-    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1:
-        raise ValueError(f"bins must be a positive integer, got {bins!r}.")
-    if not (np.isscalar(max_ratio) and np.isfinite(max_ratio) and max_ratio > 0):
-        raise ValueError(f"max_ratio must be a positive number, got {max_ratio!r}.")
-    d = pdist(P)
-    mean = d.mean()
-    if mean <= 0:
-        raise ValueError("all points coincide; their shape distribution is undefined.")
-    counts, _ = np.histogram(d / mean, bins=int(bins), range=(0.0, float(max_ratio)))
-    return counts / (d.size * float(max_ratio) / int(bins))
-
-
-def shape_distribution_distances(point_sets: list[ArrayLike], **kwargs: Any) -> NDArray[np.float64]:
-    """The L1 distances between the :func:`shape_distribution` of every pair of point sets.
-
-    ``kwargs`` go to :func:`shape_distribution`. Returns a symmetric (s, s) matrix with a zero
-    diagonal; the point sets may have different numbers of points.
-
-    Examples
-    --------
-    >>> rng = np.random.default_rng(1)
-    >>> ball, line = rng.normal(size=(300, 3)), np.outer(np.linspace(0, 1, 300), [1.0, 2.0, 0.0])
-    >>> D = shape_distribution_distances([ball, 3 * ball, line])
-    >>> bool(D[0, 1] < 1e-12 < D[0, 2])
-    True
-    """
-    H = np.array([shape_distribution(P, **kwargs) for P in point_sets])
-    width = float(kwargs.get("max_ratio", 3.0)) / int(kwargs.get("bins", 30))
-    return np.abs(H[:, None, :] - H[None, :, :]).sum(-1) * width
-
-
-def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
-    """Least-squares slope of ``log(cost)`` against ``log(size)``: cost ~ size^exponent.
-
-    Examples
-    --------
-    >>> growth_exponent([100, 200, 400], [3.0, 12.0, 48.0])
-    2.0
-    """
-    n, c = np.asarray(sizes, dtype=np.float64), np.asarray(costs, dtype=np.float64)
-    if n.shape != c.shape or n.ndim != 1 or n.size < 2:
-        raise ValueError("sizes and costs must be 1-D arrays of the same length, at least 2.")
-    if np.any(n <= 0) or np.any(c <= 0) or not np.all(np.isfinite(c)):
-        raise ValueError("sizes and costs must be positive and finite (logarithms are taken).")
-    return float(round(np.polyfit(np.log(n), np.log(c), 1)[0], 12))
-
-
-def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
-    """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
-
-    ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
-    steadier than wall time. ``peak_bytes`` is the peak of Python and NumPy allocations during the
-    call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
-    factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
-
-    Examples
-    --------
-    >>> cost = measure_cost(np.ones, (1000, 1000))
-    >>> cost["peak_bytes"] >= 8 * 10**6 and cost["result"].shape == (1000, 1000)
-    True
-    """
-    import tracemalloc
-
-    started = tracemalloc.is_tracing()
-    if not started:
-        tracemalloc.start()
-    tracemalloc.reset_peak()
-    base = tracemalloc.get_traced_memory()[0]
-    cpu = time.process_time()
-    try:
-        result = function(*args, **kwargs)
-        cpu = time.process_time() - cpu
-        peak = tracemalloc.get_traced_memory()[1] - base
-    finally:
-        if not started:
-            tracemalloc.stop()
-    return {"result": result, "cpu_seconds": cpu, "peak_bytes": int(peak)}
-
-
 # --- fast classical scaling -------------------------------------------------------------------
 #: Defaults of :func:`fast_classical_scaling` (mu is dimensionless, see ``_interpolation_mu``).
 FCS_DEFAULTS: dict[str, float] = {"n_samples": 100, "mu": 1e-3}
@@ -760,7 +642,7 @@ def fast_classical_scaling(
     G, U = np.linalg.eigh(0.5 * (small + small.T))
     G, U = G[::-1], U[:, ::-1]
     X = basis @ (V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None])))
-    X = _fix_signs(X - X.mean(axis=0))
+    X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
         return X

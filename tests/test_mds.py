@@ -10,17 +10,15 @@ from scipy.spatial.distance import cdist
 
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
+from lbo_notebooks.cost import growth_exponent, measure_cost
+from lbo_notebooks.shape_distribution import shape_distribution, shape_distribution_distances
 from lbo_notebooks.mds import (
     classical_mds,
     gram_error,
     landmark_mds,
     procrustes_error,
-    growth_exponent,
-    measure_cost,
     SMDS_DEFAULTS,
     scale_mu,
-    shape_distribution,
-    shape_distribution_distances,
     spectral_mds,
 )
 

@@ -1,0 +1,63 @@
+"""Measuring what a computation costs: CPU time, traced peak memory and growth exponents.
+
+Used by the notebooks to show live how classical and spectral MDS scale with the number of
+vertices (small sizes, measured in the same run), and by the benchmarks.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+__all__ = ["growth_exponent", "measure_cost"]
+
+
+def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
+    """Least-squares slope of ``log(cost)`` against ``log(size)``: cost ~ size^exponent.
+
+    Examples
+    --------
+    >>> growth_exponent([100, 200, 400], [3.0, 12.0, 48.0])
+    2.0
+    """
+    n, c = np.asarray(sizes, dtype=np.float64), np.asarray(costs, dtype=np.float64)
+    if n.shape != c.shape or n.ndim != 1 or n.size < 2:
+        raise ValueError("sizes and costs must be 1-D arrays of the same length, at least 2.")
+    if np.any(n <= 0) or np.any(c <= 0) or not np.all(np.isfinite(c)):
+        raise ValueError("sizes and costs must be positive and finite (logarithms are taken).")
+    return float(round(np.polyfit(np.log(n), np.log(c), 1)[0], 12))
+
+
+def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
+    """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
+
+    ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
+    steadier than wall time. ``peak_bytes`` is the peak of Python and NumPy allocations during the
+    call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
+    factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
+
+    Examples
+    --------
+    >>> cost = measure_cost(np.ones, (1000, 1000))
+    >>> cost["peak_bytes"] >= 8 * 10**6 and cost["result"].shape == (1000, 1000)
+    True
+    """
+    import tracemalloc
+
+    started = tracemalloc.is_tracing()
+    if not started:
+        tracemalloc.start()
+    tracemalloc.reset_peak()
+    base = tracemalloc.get_traced_memory()[0]
+    cpu = time.process_time()
+    try:
+        result = function(*args, **kwargs)
+        cpu = time.process_time() - cpu
+        peak = tracemalloc.get_traced_memory()[1] - base
+    finally:
+        if not started:
+            tracemalloc.stop()
+    return {"result": result, "cpu_seconds": cpu, "peak_bytes": int(peak)}
