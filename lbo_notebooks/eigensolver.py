@@ -94,17 +94,32 @@ def _nearest(
 
 
 def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: int, slope: float, k: int) -> SliceFactor:
-    """Factorise a shift about ``want`` eigenvalues above ``current`` (``slope``: eigenvalues per unit)."""
-    step = want / slope
+    """Factorise a shift about ``want`` eigenvalues above ``current`` (``slope``: eigenvalues per unit).
+
+    Too few or too many new eigenvalues move the shift (by the counts' slope, then by bisection
+    between the last shifts that gave too few and too many). A cluster larger than a slice cannot
+    be split: once the bracket is that narrow, the shift above the whole cluster is taken.
+    """
+    low, high = current.shift, None
+    best_high: SliceFactor | None = None
+    shift = current.shift + want / slope
     for _ in range(60):
-        nxt = SliceFactor.of(W, A, current.shift + step)
+        nxt = SliceFactor.of(W, A, shift)
         gained = nxt.n_below - current.n_below
         if gained > 2 * want + 8:
-            step *= 0.7 * want / gained
+            high, best_high = shift, nxt
         elif gained < max(1, want // 3) and nxt.n_below < k:
-            step *= 2.0 if gained == 0 else min(2.0, want / gained)
+            low = shift
         else:
             return nxt
+        if high is None:
+            shift = low + 2.0 * (low - current.shift) if gained == 0 else low + (low - current.shift) * min(2.0, want / gained)
+        elif high - low <= 1e-9 * abs(high):
+            return best_high
+        else:
+            shift = 0.5 * (low + high)
+    if best_high is not None:
+        return best_high
     raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")
 
 

@@ -8,6 +8,7 @@ product.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Union
 
@@ -222,8 +223,16 @@ def eigenbasis(
     else:
         from .eigensolver import SLICE_SIZE, slice_eigsh
 
+        sliced = None
         if solver == "slicing" or (solver == "auto" and k > SLICE_SIZE):
-            values, vectors, _ = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift)
+            try:
+                sliced = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift)
+            except RuntimeError as error:
+                if solver == "slicing":
+                    raise
+                warnings.warn(f"{error} Falling back to one ARPACK run for k={k}.", RuntimeWarning, stacklevel=2)
+        if sliced is not None:
+            values, vectors, _ = sliced
         else:
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n))
             order = np.argsort(values)

@@ -61,7 +61,7 @@ def test_static_fallback_and_bad_scalars(sphere):
 
 # --- layout: panels, colour bars, titles, camera ------------------------------------------------
 
-from lbo_notebooks.plotting import _MARGIN, _NOMINAL_WIDTH  # noqa: E402  (the layout's stated assumptions)
+from lbo_notebooks.plotting.meshes import _MARGIN, _NOMINAL_WIDTH  # noqa: E402  (the layout's stated assumptions)
 
 
 @pytest.fixture(scope="module")
@@ -229,7 +229,7 @@ def test_slider_starts_where_asked_and_keeps_moving_vertices_in_view(sphere):
 
 
 def test_static_fallback_turns_the_mesh_upright(dog):
-    from lbo_notebooks.plotting import _View, _view_rotation
+    from lbo_notebooks.plotting.meshes import _View, _view_rotation
 
     y_up = dog.vertices[:, [0, 2, 1]] * [1, 1, -1]
     for vertices, up in ((dog.vertices, "auto"), (y_up, "auto"), (y_up, "y"), (dog.vertices, [1.0, 0.0, 1.0])):
