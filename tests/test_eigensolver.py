@@ -145,3 +145,13 @@ def test_inputs_are_not_modified():
     W0, A0 = W.copy(), A.copy()
     slice_eigsh(W, A, 20, v0=start(W.shape[0]), shift=0.01, slice_size=8)
     assert (W != W0).nnz == 0 and (A != A0).nnz == 0
+
+
+def test_a_cluster_larger_than_the_remaining_count_is_stepped_over():
+    # k = 101 on a sphere: l = 0..9 fill exactly 100 eigenvalues, the 101st opens the 21-fold
+    # l = 10 cluster, so no shift gains exactly one new eigenvalue (this once looped and failed).
+    sphere = shapes.icosphere(4)
+    sliced = eigenbasis(sphere, 101, solver="slicing")
+    plain = eigenbasis(sphere, 101, solver="arpack")
+    assert np.abs(sliced.values - plain.values).max() <= 1e-8 * plain.values[-1]
+    assert count_below(sliced.stiffness, sliced.mass, sliced.values[-1] * (1 + 1e-6)) >= 101
