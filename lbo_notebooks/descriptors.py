@@ -42,7 +42,7 @@ def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
         )
     if spectrum.k < minimum:
         raise ValueError(f"this descriptor needs at least {minimum} eigenpairs; compute eigenbasis(mesh, k) with k >= {minimum}.")
-    if spectrum.values[1] <= 0:
+    if spectrum.values[1] <= 1e-9 * abs(spectrum.values[-1]):  # a zero eigenvalue up to round-off
         raise MeshError(
             "the second eigenvalue is not positive: the mesh has several connected components. "
             "Keep the largest one with lbo_notebooks.clean_mesh(mesh, keep_largest_component=True)."
