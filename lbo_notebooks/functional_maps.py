@@ -34,6 +34,7 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 
+from .inner_product import a_norms
 from .mesh import Mesh
 from .spectrum import Spectrum
 
@@ -226,7 +227,7 @@ def _commutator_normal(X: NDArray[np.float64], Y: NDArray[np.float64], sign: flo
 
 
 def _unit_columns(D: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
-    norms = np.sqrt(np.einsum("np,np->p", D, mass @ D))
+    norms = a_norms(D, mass)
     return D / np.where(norms > 0, norms, 1.0)
 
 
