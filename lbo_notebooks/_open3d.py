@@ -37,11 +37,35 @@ def _load() -> ModuleType:
     if previous is None:
         os.environ[key] = "true"
     try:
+        _import_dash_without_its_comm()
         import open3d
     finally:
         if previous is None:
             os.environ.pop(key, None)
     return open3d
+
+
+def _import_dash_without_its_comm() -> None:
+    # open3d imports dash, whose Jupyter helper opens a "dash" comm at import time; JupyterLab has
+    # no handler for it and logs "Exception opening new comm". We never run a dash app, so dash's
+    # helper is imported with comm creation answered by None, which dash itself treats as "no
+    # Jupyter comm available". Nothing changes if dash is absent or was imported already.
+    import sys
+
+    if "dash._jupyter" in sys.modules:
+        return
+    try:
+        import comm
+    except ImportError:
+        return
+    create = comm.create_comm
+    comm.create_comm = lambda *args, **kwargs: None
+    try:
+        import dash._jupyter  # noqa: F401
+    except ImportError:
+        pass
+    finally:
+        comm.create_comm = create
 
 
 def import_open3d() -> ModuleType:

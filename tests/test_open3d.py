@@ -39,3 +39,21 @@ def test_the_hook_itself_is_what_we_switch_off():
 def test_a_users_own_setting_is_kept():
     out = _run("os.environ['OPEN3D_DISABLE_WEB_VISUALIZER'] = 'false'")
     assert "env after: false" in out
+
+
+def test_dash_opens_no_comm_when_open3d_is_imported():
+    # open3d imports dash, whose Jupyter helper opens a "dash" comm that JupyterLab cannot answer
+    # ("Exception opening new comm"). Fresh interpreter, comm creation recorded.
+    code = (
+        "import comm\n"
+        "opened = []\n"
+        "comm.create_comm = lambda *a, **k: opened.append(k.get('target_name')) or object()\n"
+        "from lbo_notebooks._open3d import import_open3d\n"
+        "import_open3d()\n"
+        "import dash._jupyter\n"
+        "assert 'dash' not in opened, opened\n"
+        "assert dash._jupyter._dash_comm is None\n"
+        "print('ok')\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0 and "ok" in result.stdout, result.stderr[-2000:]
