@@ -45,3 +45,18 @@ def random_meshes(draw: st.DrawFn) -> Mesh:
     if draw(st.booleans()):
         return convex_hull_mesh(seed, draw(st.integers(8, 80)))
     return wavy_sheet(seed, draw(st.integers(2, 9)), draw(st.integers(2, 9)))
+
+
+def corrupted_copies(source: bytes, rng: np.random.Generator, count: int = 24):
+    """``count`` damaged copies of a file's bytes, in turn truncated, overwritten or padded."""
+    for k in range(count):
+        data = bytearray(source)
+        if k % 3 == 0:
+            data = data[: rng.integers(len(data))]
+        elif k % 3 == 1:
+            for _ in range(rng.integers(1, 8)):
+                data[rng.integers(len(data))] = rng.integers(256)
+        else:
+            at = rng.integers(len(data))
+            data[at:at] = bytes(rng.integers(0, 256, rng.integers(1, 20), dtype=np.uint8))
+        yield k, bytes(data)

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from .strategies import corrupted_copies
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks import _open3d
 from lbo_notebooks.io import (
@@ -552,17 +553,8 @@ def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary
     """Truncated, overwritten or padded bytes: never a crash, a hang or another exception."""
     source = save_mesh(shapes.icosphere(1), tmp_path / f"src{ext}", binary=binary).read_bytes()
     rng = np.random.default_rng(WRITE_MODES.index((ext, binary)))
-    for k in range(24):
-        data = bytearray(source)
-        if k % 3 == 0:
-            data = data[: rng.integers(len(data))]
-        elif k % 3 == 1:
-            for _ in range(rng.integers(1, 8)):
-                data[rng.integers(len(data))] = rng.integers(256)
-        else:
-            at = rng.integers(len(data))
-            data[at:at] = bytes(rng.integers(0, 256, rng.integers(1, 20), dtype=np.uint8))
-        path = write(tmp_path / f"c{k}{ext}", bytes(data))
+    for k, data in corrupted_copies(source, rng):
+        path = write(tmp_path / f"c{k}{ext}", data)
         start = time.perf_counter()
         try:
             with warnings.catch_warnings():

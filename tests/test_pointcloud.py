@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import lbo_notebooks as lbo
+from .strategies import corrupted_copies
 from lbo_notebooks import MeshError, PointCloud, load_points, shapes
 from lbo_notebooks.io import MeshRepairWarning, save_mesh
 
@@ -197,18 +198,9 @@ def test_randomly_corrupted_point_files_load_or_raise_mesh_error(tmp_path, ext, 
     else:
         source = save_mesh(mesh, tmp_path / f"src{ext}", binary=binary).read_bytes()
     rng = np.random.default_rng(11 + bool(binary))
-    for k in range(24):
-        data = bytearray(source)
-        if k % 3 == 0:
-            data = data[: rng.integers(len(data))]
-        elif k % 3 == 1:
-            for _ in range(rng.integers(1, 8)):
-                data[rng.integers(len(data))] = rng.integers(256)
-        else:
-            at = rng.integers(len(data))
-            data[at:at] = bytes(rng.integers(0, 256, rng.integers(1, 20), dtype=np.uint8))
+    for k, data in corrupted_copies(source, rng):
         path = tmp_path / f"c{k}{ext}"
-        path.write_bytes(bytes(data))
+        path.write_bytes(data)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
