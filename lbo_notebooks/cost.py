@@ -35,7 +35,9 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
 
     ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
-    steadier than wall time. ``peak_bytes`` is the peak of Python and NumPy allocations during the
+    steadier than wall time. The call runs with one BLAS thread (``threadpoolctl``): otherwise
+    idle BLAS threads spinning for work are counted as CPU time too, and on a busy machine they
+    can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
     call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
     factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
 
@@ -47,6 +49,8 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """
     import tracemalloc
 
+    from threadpoolctl import threadpool_limits
+
     started = tracemalloc.is_tracing()
     if not started:
         tracemalloc.start()
@@ -54,7 +58,8 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     base = tracemalloc.get_traced_memory()[0]
     cpu = time.process_time()
     try:
-        result = function(*args, **kwargs)
+        with threadpool_limits(limits=1, user_api="blas"):
+            result = function(*args, **kwargs)
         cpu = time.process_time() - cpu
         peak = tracemalloc.get_traced_memory()[1] - base
     finally:
