@@ -226,6 +226,10 @@ def _commutator_normal(X: NDArray[np.float64], Y: NDArray[np.float64], sign: flo
     return H
 
 
+#: Default weights of the energy terms of :func:`estimate_map` (also :func:`~lbo_notebooks.match`'s).
+LAPLACIAN_WEIGHT, COMMUTATIVITY_WEIGHT, ORIENTATION_WEIGHT = 1e-2, 1e-1, 1e-1
+
+
 def _unit_columns(D: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
     norms = a_norms(D, mass)
     return D / np.where(norms > 0, norms, 1.0)
@@ -240,9 +244,9 @@ def estimate_map(
     target_descriptors: ArrayLike,
     *,
     k: int = 30,
-    laplacian_weight: float = 1e-2,
-    commutativity_weight: float = 1e-1,
-    orientation_weight: float = 1e-1,
+    laplacian_weight: float = LAPLACIAN_WEIGHT,
+    commutativity_weight: float = COMMUTATIVITY_WEIGHT,
+    orientation_weight: float = ORIENTATION_WEIGHT,
     n_operators: int = 20,
 ) -> NDArray[np.float64]:
     """Functional map ``C`` (k x k) minimising the quadratic energy of the module docstring.

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
 from .mesh import Mesh
 from .spectrum import eigenbasis
 
@@ -43,9 +44,9 @@ def match(
     k_final: int = 80,
     alpha: float = 0.0,
     n_descriptors: int = 100,
-    laplacian_weight: float = 1e-2,
-    commutativity_weight: float = 1e-1,
-    orientation_weight: float = 1e-1,
+    laplacian_weight: float = LAPLACIAN_WEIGHT,
+    commutativity_weight: float = COMMUTATIVITY_WEIGHT,
+    orientation_weight: float = ORIENTATION_WEIGHT,
     zoomout_step: int = 2,
 ) -> NDArray[np.int64]:
     """Point-to-point correspondence from ``target`` to ``source`` by functional maps.
