@@ -15,12 +15,18 @@ comes back with a different number raises instead of silently dropping one.
 
 from __future__ import annotations
 
+import ctypes
+import os
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
+from threadpoolctl import threadpool_limits
+
+from .krylov import nearest_eigenpairs
 
 __all__ = ["SliceFactor", "count_below", "slice_eigsh"]
 
@@ -29,6 +35,10 @@ __all__ = ["SliceFactor", "count_below", "slice_eigsh"]
 SLICE_SIZE = 100
 # Lanczos convergence tolerance (ARPACK's, relative to the shifted-inverted eigenvalue).
 TOL = 1e-10
+# Fewest eigenpairs worth a Lanczos set of their own (a set costs a factorisation).
+MIN_SET = 20
+# Neighbouring sets' windows overlap by this fraction of the interval between their shifts.
+OVERLAP = 0.1
 
 
 @dataclass(frozen=True)
@@ -41,13 +51,14 @@ class SliceFactor:
         The point ``b`` of the spectrum.
     n_below : int
         Number of eigenvalues of ``W phi = lam A phi`` strictly below ``shift`` (Sylvester inertia).
-    lu : scipy.sparse.linalg.SuperLU
-        The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``.
+    lu : scipy.sparse.linalg.SuperLU or None
+        The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``. ``None`` once dropped (a
+        factorisation takes about as much memory as 60 eigenvectors; the count is what remains).
     """
 
     shift: float
     n_below: int
-    lu: spla.SuperLU
+    lu: spla.SuperLU | None
 
     @classmethod
     def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float) -> "SliceFactor":
@@ -80,17 +91,13 @@ def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
     return SliceFactor.of(stiffness, mass, value).n_below
 
 
-def _nearest(
-    W: sp.csr_matrix, A: sp.csr_matrix, factor: SliceFactor, nev: int, v0: NDArray[np.float64]
+def _window_set(
+    W: sp.csr_matrix, A: sp.csr_matrix, factor: SliceFactor, window: tuple[float, float], expected: int, v0: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The ``nev`` eigenpairs nearest ``factor.shift`` (shift-invert Lanczos), ascending."""
-    n = W.shape[0]
-    op = spla.LinearOperator((n, n), matvec=factor.lu.solve, dtype=np.float64)
-    ncv = min(n, max(2 * nev + 1, 20))
-    # tol bounds the residual relative to 1 / (lam - shift); eigenvalues then err by its square.
-    values, vectors = spla.eigsh(W, k=nev, M=A, sigma=factor.shift, which="LM", OPinv=op, v0=v0, ncv=ncv, tol=TOL)
-    order = np.argsort(values)
-    return values[order], vectors[:, order]
+    """The eigenpairs with ``window[0] < lam < window[1]`` (block shift-invert Lanczos at ``factor.shift``), ascending."""
+    return nearest_eigenpairs(
+        factor.lu.solve, W, A, factor.shift, int(min(max(expected, 1), W.shape[0] - 1)), start=v0, window=window, tol=TOL
+    )
 
 
 def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: int, slope: float, k: int) -> SliceFactor:
@@ -103,8 +110,15 @@ def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: 
     low, high = current.shift, None
     best_high: SliceFactor | None = None
     shift = current.shift + want / slope
+    spacing = 1.0 / slope  # typical distance between eigenvalues
     for _ in range(60):
-        nxt = SliceFactor.of(W, A, shift)
+        try:
+            nxt = SliceFactor.of(W, A, shift)
+        except ValueError as error:  # the shift hit an eigenvalue (e.g. 0 on a mesh of many pieces): step off it
+            if "singular" not in str(error):
+                raise
+            shift += 1e-6 * spacing
+            continue
         gained = nxt.n_below - current.n_below
         if gained > 2 * want + 8:
             high, best_high = shift, nxt
@@ -114,7 +128,7 @@ def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: 
             return nxt
         if high is None:
             shift = low + 2.0 * (low - current.shift) if gained == 0 else low + (low - current.shift) * min(2.0, want / gained)
-        elif high - low <= 1e-9 * abs(high):
+        elif high - low <= 1e-9 * max(abs(high), spacing):
             return best_high
         else:
             shift = 0.5 * (low + high)
@@ -131,6 +145,7 @@ def slice_eigsh(
     v0: NDArray[np.float64],
     shift: float,
     slice_size: int = SLICE_SIZE,
+    workers: int | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The ``k`` smallest eigenpairs of ``stiffness phi = lam mass phi`` by spectrum slicing.
 
@@ -190,83 +205,255 @@ def slice_eigsh(
     v0 = np.asarray(v0, dtype=np.float64)
     if v0.shape != (n,) or not np.all(np.isfinite(v0)):
         raise ValueError(f"v0 must be a finite vector of shape ({n},), got shape {v0.shape}.")
-    current = SliceFactor.of(W, A, -float(shift))
-    if current.n_below:
+    if workers is None:
+        workers = default_workers()
+    elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be a positive integer, got {workers!r}.")
+    first = SliceFactor.of(W, A, -float(shift))
+    if first.n_below:
         raise ValueError(f"stiffness + {shift:g} mass is not positive definite: stiffness must be positive semidefinite.")
+    first = SliceFactor(shift=first.shift, n_below=0, lu=None)  # no set at -shift: free its memory
+    n_sets = plan_sets(k, slice_size, int(workers))
+    # One BLAS thread per worker: no oversubscription, and the same round-off for any `workers`.
+    with threadpool_limits(1), ThreadPoolExecutor(max_workers=int(workers)) as pool:
+        shifts, counts, plans, sets = _submit_sets(pool, int(workers), W, A, first, k, v0, n_sets)
+        return _stitch(W, A, k, v0, shifts, counts, plans, sets)
+
+
+def _return_freed_memory() -> None:
+    """Ask glibc to hand freed heap pages back to the system (a factorisation leaves many behind)."""
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc (macOS, Windows, musl): nothing to do
+        pass
+
+
+def default_workers() -> int:
+    """Threads for the slices: the usable cores, at most 2 (each holds a factorisation and a Krylov basis)."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(2, cores))
+
+
+def plan_sets(k: int, slice_size: int, workers: int) -> int:
+    """Number of Lanczos sets for ``k`` eigenpairs: about ``k / slice_size``, a multiple of ``workers``.
+
+    Examples
+    --------
+    >>> plan_sets(300, 100, 2), plan_sets(100, 100, 2), plan_sets(100, 100, 1), plan_sets(9, 100, 2)
+    (4, 2, 1, 1)
+    """
+    sets = -(-k // slice_size)
+    if workers > 1 and k >= MIN_SET * workers:  # balance: every worker gets as many sets
+        sets = workers * -(-sets // workers)
+    return max(1, min(sets, k // MIN_SET))
+
+
+@dataclass(frozen=True)
+class _Set:
+    """One Lanczos run: its shift, the window of eigenvalues it returns, and how many it expects there."""
+
+    shift: float
+    low: float
+    high: float
+    expected: int
+
+
+def _plan_set(shifts: list[float], counts: list[int], previous: _Set | None, k: int, n_sets: int, slope: float) -> _Set:
+    """The window of the set at the newest shift ``j = len(shifts) - 1``.
+
+    It reaches from about the middle of the interval below (all of it for the first set) to about
+    the middle of the interval above, whose end is not known yet: the next shift's target and the
+    local count slope stand in for it. The last set reaches past ``lam_k`` instead, so that the
+    final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by
+    ``OVERLAP`` of the interval between them, so that the split between them can sit in a gap.
+    """
+    j = len(shifts) - 1
+    shift, below_count = shifts[j], counts[j] - counts[j - 1]
+    width_below = shift - shifts[j - 1]
+    if previous is None:
+        low = shifts[0]
+        expected = counts[j]
+    else:
+        low = min(shift - (0.5 + OVERLAP) * width_below, previous.high - OVERLAP * width_below)
+        expected = int(np.ceil(below_count * (shift - low) / width_below))
+    if j == n_sets:
+        above = max(k - counts[j], 0) + max(3, k // (10 * n_sets))
+    else:
+        above = max(round((j + 0.5) * k / n_sets) - counts[j], 1) * (0.5 + OVERLAP)
+    high = shift + above / slope
+    return _Set(shift=shift, low=low, high=high, expected=expected + int(np.ceil(above)) + 2)
+
+
+def _submit_sets(
+    pool: ThreadPoolExecutor,
+    workers: int,
+    W: sp.csr_matrix,
+    A: sp.csr_matrix,
+    first: SliceFactor,
+    k: int,
+    v0: NDArray[np.float64],
+    n_sets: int,
+) -> tuple[list[float], list[int], list[_Set], list[Future]]:
+    """Place the shifts (in this thread) and start each one's Lanczos set in ``pool`` at once.
+
+    Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
+    ``k / n_sets`` of them, centred on its shift. A factorisation is large (about the size of 60
+    eigenvectors), so the next shift is factorised only when fewer than ``workers`` sets are
+    unfinished: at most ``workers`` factorisations are alive, and a set drops its own when it ends.
+    Returns the shifts, their counts, the sets' plans and one future per set (index 0: an empty
+    set at ``-shift``).
+    """
     # Weyl's law N(lam) ~ area lam / (4 pi) sets the first spacing; later ones extrapolate the
     # measured counts (N grows about linearly in lam on a surface).
     slope = float(A.sum()) / (4.0 * np.pi)
-    target = k + max(2, k // 50)  # the last shift only needs to clear lam_k
-    margin = max(3, slice_size // 10)
+    shifts, counts = [first.shift], [first.n_below]
+    empty: Future = Future()
+    empty.set_result((np.empty(0), np.empty((W.shape[0], 0))))
+    futures: list[Future] = [empty]
+    plans: list[_Set] = [_Set(shift=first.shift, low=-np.inf, high=first.shift, expected=0)]
+    # Factorisations are made and freed in this thread: glibc keeps much of a large block that
+    # another thread frees, so a factorisation freed by a worker would stay resident.
+    alive: dict[int, SliceFactor] = {}
+
+    def run(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0)
+
+    def release_finished() -> None:
+        finished = [j for j in alive if futures[j].done()]
+        for j in finished:
+            del alive[j]
+        if finished:
+            _return_freed_memory()
+
+    previous = first
+    for j in range(1, n_sets + 1):
+        running = [f for f in futures if not f.done()]
+        if len(running) >= workers:
+            wait(running, return_when=FIRST_COMPLETED)
+        release_finished()
+        want = max(1, round((j - 0.5) * k / n_sets) - counts[-1])
+        alive[j] = _next_shift(W, A, previous, want, slope, k)
+        shifts.append(alive[j].shift)
+        counts.append(alive[j].n_below)
+        # Local density of eigenvalues (per unit of lam) from the last two counts.
+        slope = max(counts[j] - counts[j - 1], 1) / (shifts[j] - shifts[j - 1])
+        plans.append(_plan_set(shifts, counts, plans[j - 1] if j > 1 else None, k, n_sets, slope))
+        previous = SliceFactor(shift=alive[j].shift, n_below=alive[j].n_below, lu=None)
+        futures.append(pool.submit(run, j))
+    wait(futures)
+    alive.clear()
+    return shifts, counts, plans, futures
+
+
+def _split(
+    carry: NDArray[np.float64], carry_top: float, values: NDArray[np.float64], low_shift: float, shift: float, trusted: float, count: int
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_]] | None:
+    """Masks of ``carry`` and ``values`` that together hold exactly ``count`` eigenvalues of ``(low_shift, shift)``.
+
+    ``carry`` (the lower set's eigenvalues above ``low_shift``) is trusted below ``carry_top``, the
+    set at ``shift`` above ``trusted`` (the bounds of their windows). The split sits in the widest gap of the overlap (no
+    cluster is cut), or one set alone is taken. ``None`` when no split gives ``count``: Lanczos can
+    return only part of an exactly multiple eigenvalue and farther ones instead, so "complete
+    inside its window" is a hope, not a fact; the count decides.
+    """
+    low, top = max(trusted, low_shift), min(carry_top, shift)
+    splits = [low_shift]
+    if low < top:  # the overlap is not empty
+        inside = np.sort(np.concatenate(([low, top], carry[(carry > low) & (carry < top)])))
+        gaps = np.diff(inside)
+        splits.insert(0, float(inside[np.argmax(gaps)] + gaps.max() / 2))
+    if carry_top > shift:
+        splits.append(shift)
+    for split in splits:
+        from_carry = carry < split
+        mine = (values > split) & (values < shift)
+        if np.count_nonzero(from_carry) + np.count_nonzero(mine) == count:
+            return from_carry, mine
+    return None
+
+
+def _stitch(
+    W: sp.csr_matrix,
+    A: sp.csr_matrix,
+    k: int,
+    v0: NDArray[np.float64],
+    shifts: list[float],
+    counts: list[int],
+    plans: list[_Set],
+    sets: list[Future],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+    """Join consecutive sets interval by interval, each holding exactly its inertia count; certify the top.
+
+    Between the last shift and ``lam_k`` there is no shift: a last count at a point in a gap just
+    above ``lam_k`` (among the last set's eigenvalues) proves that none below it is missing. A set
+    that comes out short is redone with a window twice as wide.
+    """
+    n = W.shape[0]
     # Intervals come in increasing order and each is ascending, so results fill in order; only
     # the first k are kept (preallocated: no list of blocks plus a concatenated copy).
     out_values = np.empty(k)
     out_vectors = np.empty((n, k))
     filled = 0
-    carry_values = np.empty(0)  # the previous set's eigenpairs above the previous shift
-    carry_vectors = np.empty((n, 0))
-    carry_top = -np.inf  # ... complete (all eigenvalues present) below this value
-    previous: SliceFactor | None = None
-    while True:
-        last = previous is not None and current.n_below >= k
-        interval = 0 if previous is None else current.n_below - previous.n_below
-        covered = np.count_nonzero(carry_values < carry_top)
-        below_need = max(interval - covered, 0) + margin
-        if last:
-            # Lanczos for the eigenvalues just below the shift (which="SA") keeps converging to
-            # the unwanted ones just above it; asking for the nearest on both sides is faster
-            # even though the upper half is discarded.
-            nxt = None
-            nev = 2 * below_need + margin
-        else:
-            nxt = _next_shift(W, A, current, min(slice_size, target - current.n_below), slope, k)
-            slope = nxt.n_below / max(nxt.shift, np.finfo(float).tiny)
-            nev = below_need + (nxt.n_below - current.n_below) // 2 + 1
-        taken = -1
-        for _ in range(3):
-            nev = min(nev, n - 1)
-            values, vectors = _nearest(W, A, current, nev, v0)
-            radius = float(np.max(np.abs(values - current.shift)))
-            if previous is None:
+
+    def fill(vals: NDArray[np.float64], vecs: NDArray[np.float64]) -> None:
+        nonlocal filled
+        take = min(vals.size, k - filled)
+        out_values[filled : filled + take] = vals[:take]
+        out_vectors[:, filled : filled + take] = vecs[:, :take]
+        filled += take
+
+    def redo(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        # Twice the window (its factorisation was dropped: factorise again, same result).
+        old = plans[j]
+        plans[j] = _Set(
+            shift=old.shift,
+            low=max(old.shift - 2 * (old.shift - old.low), shifts[0]),
+            high=old.shift + 2 * (old.high - old.shift),
+            expected=2 * old.expected,
+        )
+        window = (plans[j].low, plans[j].high)
+        return _window_set(W, A, SliceFactor.of(W, A, shifts[j]), window, plans[j].expected, v0)
+
+    carry_values, carry_vectors, carry_top = np.empty(0), np.empty((n, 0)), shifts[0]
+    for j in range(1, len(shifts)):
+        interval = counts[j] - counts[j - 1]
+        values, vectors = sets[j].result()
+        sets[j] = None  # the set is copied out below: let it go
+        for attempt in range(3):
+            masks = _split(carry_values, carry_top, values, shifts[j - 1], shifts[j], plans[j].low, interval)
+            if masks is not None or attempt == 2:
                 break
-            # Both sets should hold every eigenvalue strictly inside (current.shift - radius,
-            # carry_top); either may reach past the interval (previous.shift, current.shift).
-            low, top = max(current.shift - radius, previous.shift), min(carry_top, current.shift)
-            inside = np.sort(np.concatenate(([low, top], carry_values[(carry_values > low) & (carry_values < top)])))
-            # Split candidates: the widest gap of the overlap (no cluster cut), else one set alone.
-            # Lanczos can return only part of an exactly multiple eigenvalue and farther ones
-            # instead, so "complete inside its radius" is a hope, not a fact: the count decides.
-            splits = [float(previous.shift)]
-            if low < top:  # the overlap is not empty
-                gaps = np.diff(inside)
-                splits.insert(0, float(inside[np.argmax(gaps)] + gaps.max() / 2))
-            if carry_top > current.shift:
-                splits.append(float(current.shift))
-            for split in splits:
-                from_carry = carry_values < split
-                mine = (values > split) & (values < current.shift)
-                taken = np.count_nonzero(from_carry) + np.count_nonzero(mine)
-                if taken == interval:
-                    break
-            if taken == interval:
-                for vals, vecs in ((carry_values[from_carry], carry_vectors[:, from_carry]), (values[mine], vectors[:, mine])):
-                    take = min(vals.size, k - filled)
-                    out_values[filled : filled + take] = vals[:take]
-                    out_vectors[:, filled : filled + take] = vecs[:, :take]
-                    filled += take
-                break
-            if nev >= n - 1:
-                break
-            nev += max(interval - max(taken, 0), 0) + 2 * margin
-        if previous is not None and taken != interval:
+            values, vectors = redo(j)
+        if masks is None:
             raise RuntimeError(
-                f"spectrum slicing found {max(taken, 0)} eigenvalues between the shifts {previous.shift:.6g} and "
-                f"{current.shift:.6g} where the inertia counts say {interval}; use solver='arpack'."
+                f"spectrum slicing did not find the {interval} eigenvalues that the inertia counts put between "
+                f"the shifts {shifts[j - 1]:.6g} and {shifts[j]:.6g}; use solver='arpack'."
             )
-        if last:
+        fill(carry_values[masks[0]], carry_vectors[:, masks[0]])
+        fill(values[masks[1]], vectors[:, masks[1]])
+        above = values > shifts[j]
+        carry_values, carry_vectors, carry_top = values[above], vectors[:, above], plans[j].high
+    if filled == k:  # the last shift is already above lam_k
+        return out_values, out_vectors, counts[-1]
+    for attempt in range(3):
+        # The last count goes in the widest gap between lam_k and the top of the last window.
+        need = k - filled
+        if carry_values.size >= need:
+            edges = np.append(carry_values[need - 1 :], carry_top)
+            gaps = np.diff(edges)
+            top = float(edges[np.argmax(gaps)] + gaps.max() / 2)
+            n_below = SliceFactor.of(W, A, top).n_below
+            if n_below == counts[-1] + np.count_nonzero(carry_values < top):
+                fill(carry_values, carry_vectors)
+                return out_values, out_vectors, n_below
+        if attempt == 2:
             break
-        above = values > current.shift
-        carry_values, carry_vectors = values[above], vectors[:, above]
-        carry_top = current.shift + radius
-        previous, current = current, nxt
-    return out_values, out_vectors, current.n_below
+        values, vectors = redo(len(shifts) - 1)
+        above = values > shifts[-1]
+        carry_values, carry_vectors, carry_top = values[above], vectors[:, above], plans[-1].high
+    raise RuntimeError(
+        f"spectrum slicing could not certify the eigenvalues above {shifts[-1]:.6g} with an inertia count; use solver='arpack'."
+    )

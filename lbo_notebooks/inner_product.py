@@ -275,16 +275,21 @@ def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np
     if v.size == 0:
         return v
     a = np.ones(v.shape[0]) if mass is None else np.asarray(mass.sum(axis=1)).ravel()
-    moment = a @ v**3
-    scale = a @ np.abs(v) ** 3
-    # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
-    # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
-    mag = np.abs(v)
-    first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
-    peak = v[first_peak, np.arange(v.shape[1])]
-    sign = np.where(np.abs(moment) > 1e-6 * scale, np.sign(moment), np.sign(peak))
-    sign[sign == 0] = 1.0
-    return v * sign
+    # A few columns at a time: the temporaries stay small for (n_vertices, 300) bases.
+    for start in range(0, v.shape[1], 32):
+        block = v[:, start : start + 32]
+        mag = np.abs(block)
+        cube = block * block * block  # not block**3: the generic power is several times slower
+        moment = a @ cube
+        scale = a @ (cube * np.sign(block))
+        # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
+        # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
+        first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
+        peak = block[first_peak, np.arange(block.shape[1])]
+        sign = np.where(np.abs(moment) > 1e-6 * scale, np.sign(moment), np.sign(peak))
+        sign[sign == 0] = 1.0
+        block *= sign
+    return v
 
 
 # --- solver conventions ------------------------------------------------------------------------

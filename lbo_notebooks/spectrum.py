@@ -161,11 +161,12 @@ def eigenbasis(
     n_neighbors : int
         Point clouds only: neighbours in each point's local triangulation.
     solver : {"auto", "slicing", "arpack"}
-        Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs several small shift-invert Lanczos
-        solves whose inertia counts prove no eigenvalue is missed
+        Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs a few block shift-invert Lanczos solves,
+        in parallel threads, whose inertia counts prove that no eigenvalue is missed
         (:func:`~lbo_notebooks.eigensolver.slice_eigsh`); ``"arpack"`` is the single
-        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices when ``k``
-        exceeds one slice (``eigensolver.SLICE_SIZE``), where one large Krylov space is slow.
+        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices, and falls
+        back to ARPACK (with a ``RuntimeWarning``) in the unlikely case that slicing cannot
+        certify its result.
 
     Returns
     -------
@@ -221,10 +222,10 @@ def eigenbasis(
     if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        from .eigensolver import SLICE_SIZE, slice_eigsh
+        from .eigensolver import slice_eigsh
 
         sliced = None
-        if solver == "slicing" or (solver == "auto" and k > SLICE_SIZE):
+        if solver in ("auto", "slicing"):
             try:
                 sliced = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift)
             except RuntimeError as error:

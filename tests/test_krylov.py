@@ -1,0 +1,99 @@
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.sparse.linalg as spla
+
+from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.eigensolver import SliceFactor, slice_eigsh
+from lbo_notebooks.krylov import nearest_eigenpairs
+
+
+def operators(mesh):
+    return stiffness_matrix(mesh), mass_matrix(mesh)
+
+
+def dense(W, A):
+    return scipy.linalg.eigh(W.toarray(), A.toarray())
+
+
+def solver(W, A, shift):
+    return SliceFactor.of(W, A, shift).lu.solve
+
+
+def check_orthonormal(A, vectors):
+    gram = vectors.T @ (A @ vectors)
+    assert np.abs(gram - np.eye(vectors.shape[1])).max() <= 1e3 * np.finfo(float).eps * np.sqrt(vectors.shape[1])
+
+
+@pytest.mark.parametrize("block_size", [1, 4, 8])
+def test_the_nearest_eigenpairs_agree_with_the_dense_solver(block_size):
+    W, A = operators(shapes.bumpy_sphere(3))
+    exact, exact_vectors = dense(W, A)
+    shift = 0.5 * (exact[40] + exact[41]) + 0.3 * (exact[41] - exact[40])  # off-centre, between two eigenvalues
+    values, vectors = nearest_eigenpairs(solver(W, A, shift), W, A, shift, 30, start=np.ones(W.shape[0]), block_size=block_size)
+    nearest = np.sort(np.argsort(np.abs(exact - shift))[:30])
+    np.testing.assert_allclose(values, exact[nearest], rtol=1e-10)
+    check_orthonormal(A, vectors)
+    # The same invariant subspace: all principal angles to the dense eigenvectors vanish.
+    overlap = vectors.T @ (A @ exact_vectors[:, nearest])
+    assert np.linalg.svd(overlap, compute_uv=False).min() > 1 - 1e-8
+
+
+def test_a_multiplicity_larger_than_the_block_is_found_whole():
+    # l = 3 on the sphere is 7-fold, l = 4 is 9-fold; blocks of 4 vectors must still find all of them.
+    W, A = operators(shapes.icosphere(4))
+    shift = 15.0  # between l(l+1) = 12 and 20
+    values, _ = nearest_eigenpairs(solver(W, A, shift), W, A, shift, 16, start=np.ones(W.shape[0]), block_size=4)
+    assert np.count_nonzero(np.abs(values / 12 - 1) < 0.02) == 7
+    assert np.count_nonzero(np.abs(values / 20 - 1) < 0.02) == 9
+
+
+def test_a_window_returns_exactly_the_eigenvalues_inside_it():
+    W, A = operators(shapes.torus(1.0, 0.4, 60, 24))  # exact double eigenvalues (rotations)
+    exact, _ = dense(W, A)
+    low, high = 0.5 * (exact[30] + exact[31]), 0.5 * (exact[70] + exact[71])
+    shift = 0.5 * (low + high) + 1e-3 * (high - low)
+    values, vectors = nearest_eigenpairs(
+        solver(W, A, shift), W, A, shift, 30, start=np.ones(W.shape[0]), window=(low, high)
+    )
+    np.testing.assert_allclose(values, exact[31:71], rtol=1e-10)  # 40 found although 30 were expected
+    check_orthonormal(A, vectors)
+
+
+def test_thick_restarts_reach_the_same_answer():
+    W, A = operators(shapes.bumpy_sphere(3))
+    exact, _ = dense(W, A)
+    shift = 0.5 * (exact[60] + exact[61])
+    start = np.ones(W.shape[0])
+    roomy, _ = nearest_eigenpairs(solver(W, A, shift), W, A, shift, 20, start=start)
+    tight, _ = nearest_eigenpairs(solver(W, A, shift), W, A, shift, 20, start=start, max_basis=28)
+    np.testing.assert_allclose(tight, roomy, rtol=1e-10)
+
+
+def test_small_problems_are_solved_densely_and_deterministically():
+    W, A = operators(shapes.icosphere(1))  # 42 vertices: a Krylov space would be most of the space
+    exact, _ = dense(W, A)
+    values, vectors = nearest_eigenpairs(solver(W, A, 7.0), W, A, 7.0, 12, start=np.ones(42))
+    nearest = np.sort(np.argsort(np.abs(exact - 7.0))[:12])
+    np.testing.assert_allclose(values, exact[nearest], rtol=1e-10)
+    W, A = operators(shapes.bumpy_sphere(3))
+    a = nearest_eigenpairs(solver(W, A, 30.0), W, A, 30.0, 20, start=np.ones(W.shape[0]))
+    b = nearest_eigenpairs(solver(W, A, 30.0), W, A, 30.0, 20, start=np.ones(W.shape[0]))
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+
+
+def test_bad_nev():
+    W, A = operators(shapes.icosphere(2))
+    for nev in (0, W.shape[0]):
+        with pytest.raises(ValueError, match="nev must be"):
+            nearest_eigenpairs(solver(W, A, 1.0), W, A, 1.0, nev, start=np.ones(W.shape[0]))
+
+
+def test_slicing_gives_the_same_bits_with_one_or_two_workers():
+    W, A = operators(shapes.bumpy_sphere(4))
+    start = np.ones(W.shape[0])
+    one = slice_eigsh(W, A, 150, v0=start, shift=0.01, slice_size=40, workers=1)
+    two = slice_eigsh(W, A, 150, v0=start, shift=0.01, slice_size=40, workers=2)
+    assert np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1]) and one[2] == two[2]
+    plain = np.sort(spla.eigsh(W, k=150, M=A, sigma=-0.01, which="LM")[0])
+    np.testing.assert_allclose(one[0][1:], plain[1:], rtol=1e-8)
