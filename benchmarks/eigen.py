@@ -3,7 +3,7 @@
 Run: ``.venv/bin/python benchmarks/eigen.py [--quick]``. For each mesh size and ``k`` it prints the
 wall time and the growth of peak memory (RSS, each call in a fresh process, all in the same run) of
 
-- ``ours``: ``eigenbasis(mesh, k)`` (operators + solver + sign fixing; ``solver="auto"``: spectrum slicing);
+- ``ours``: ``eigenbasis(mesh, k)`` (operators + solver + sign fixing; ``solver="auto"`` slices from k = 100 on);
 - ``plain``: operators + ``eigsh(W, k, M=A, sigma=-s, which="LM")``, the call LaPy, pyFM, geomfum and
   robust-laplacian users make (also ``eigenbasis(..., solver="arpack")``);
 - ``lapy``: ``lapy.Solver(TriaMesh(v, f), lump=True).eigs(k)``;

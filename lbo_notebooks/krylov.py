@@ -43,12 +43,12 @@ def _project_out(Q: NDArray[np.float64], Y: NDArray[np.float64], mass: sp.spmatr
 
 
 def _grown(M: NDArray[np.float64], m: int, size: int, square: bool = False) -> NDArray[np.float64]:
-    """A larger copy of the basis (n, size) or of ``H`` (size, size), keeping its first ``m`` columns."""
-    grown = np.zeros((size, size) if square else (M.shape[0], size), order="F")
+    """A larger copy of the basis buffer (size, n) or of ``H`` (size, size), keeping its first ``m`` rows."""
+    grown = np.zeros((size, size) if square else (size, M.shape[1]))
     if square:
         grown[:m, :m] = M[:m, :m]
     else:
-        grown[:, :m] = M[:, :m]
+        grown[:m] = M[:m]
     return grown
 
 
@@ -170,7 +170,11 @@ def nearest_eigenpairs(
             chosen = np.sort(np.argsort(np.abs(values - shift), kind="stable")[:nev])
         return values[chosen], vectors[:, chosen]
     rng = np.random.default_rng(seed)
-    Q = np.zeros((n, m_max + b), order="F")
+    # The basis lives in the rows of a C-ordered buffer (Q is its transposed view, F-ordered, so
+    # each block of columns is contiguous): at the end the buffer is shrunk in place to the
+    # eigenvectors instead of copying them out of it.
+    buffer = np.zeros((m_max + b, n))
+    Q = buffer.T
     H = np.zeros((m_max + b, m_max + b))
     first = rng.standard_normal((n, b))
     first[:, 0] = start
@@ -203,13 +207,16 @@ def nearest_eigenpairs(
                 if wanted.size + 2 * b > m_max:  # more in the window than expected: make room
                     m_max = int(BASIS_PER_PAIR * wanted.size) + 2 * b
                     m_max -= m_max % b
-                    Q = _grown(Q, m, m_max + b)
+                    buffer = _grown(buffer, m, m_max + b)
+                    Q = buffer.T
                     H = _grown(H, m, m_max + b, square=True)
             residual = np.linalg.norm(R @ S[m - b : m, wanted], axis=0)
             converged = residual <= tol * np.abs(theta[wanted])
             if np.all(converged) and (window is None or m >= nev + 2 * b):
-                vectors = Q[:, :m] @ S[:, wanted]
+                _rotate_in_place(Q, m, S[:, wanted])
                 del Q
+                buffer.resize((wanted.size, n), refcheck=False)  # no view of it is left
+                vectors = buffer.T
                 # Rayleigh quotients x^T W x (x is A-normalised), not shift + 1 / theta: the latter
                 # loses digits by cancellation far from the shift (a zero eigenvalue came out as
                 # -3e-12 instead of 4e-14). Column blocks keep the temporary small.

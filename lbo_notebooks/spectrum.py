@@ -164,9 +164,10 @@ def eigenbasis(
         Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs a few block shift-invert Lanczos solves,
         in parallel threads, whose inertia counts prove that no eigenvalue is missed
         (:func:`~lbo_notebooks.eigensolver.slice_eigsh`); ``"arpack"`` is the single
-        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices, and falls
-        back to ARPACK (with a ``RuntimeWarning``) in the unlikely case that slicing cannot
-        certify its result.
+        ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices from
+        ``k = eigensolver.SLICE_SIZE`` (100) on, where it is faster (below, one ARPACK run is as
+        fast or faster: ``benchmarks/eigen.py``), and falls back to ARPACK with a
+        ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result.
 
     Returns
     -------
@@ -222,10 +223,10 @@ def eigenbasis(
     if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        from .eigensolver import slice_eigsh
+        from .eigensolver import SLICE_SIZE, slice_eigsh
 
         sliced = None
-        if solver in ("auto", "slicing"):
+        if solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE):
             try:
                 sliced = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift)
             except RuntimeError as error:
