@@ -27,7 +27,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
 
-from .krylov import nearest_eigenpairs
+from .krylov import BLOCK_SIZE, nearest_eigenpairs
 
 __all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
 
@@ -94,12 +94,17 @@ def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
 
 
 def _window_set(
-    W: sp.csr_matrix, A: sp.csr_matrix, factor: SliceFactor, window: tuple[float, float], expected: int, v0: NDArray[np.float64]
+    W: sp.csr_matrix,
+    A: sp.csr_matrix,
+    factor: SliceFactor,
+    window: tuple[float, float],
+    expected: int,
+    v0: NDArray[np.float64],
+    block_size: int = BLOCK_SIZE,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The eigenpairs with ``window[0] < lam < window[1]`` (block shift-invert Lanczos at ``factor.shift``), ascending."""
-    return nearest_eigenpairs(
-        factor.lu.solve, W, A, factor.shift, int(min(max(expected, 1), W.shape[0] - 1)), start=v0, window=window, tol=TOL
-    )
+    nev = int(min(max(expected, 1), W.shape[0] - 1))
+    return nearest_eigenpairs(factor.lu.solve, W, A, factor.shift, nev, start=v0, window=window, tol=TOL, block_size=block_size)
 
 
 def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: int, slope: float, k: int) -> SliceFactor:
@@ -217,15 +222,11 @@ def slice_eigsh(
         workers = default_workers()
     elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}.")
-    first = SliceFactor.of(W, A, -float(shift))
-    if first.n_below:
-        raise ValueError(f"stiffness + {shift:g} mass is not positive definite: stiffness must be positive semidefinite.")
-    first = SliceFactor(shift=first.shift, n_below=0, lu=None)  # no set at -shift: free its memory
     n_sets = plan_sets(k, slice_size, int(workers))
     # One BLAS thread per worker: no oversubscription, and the same round-off for any `workers`.
     with threadpool_limits(1), ThreadPoolExecutor(max_workers=int(workers)) as pool:
-        shifts, counts, plans, sets = _submit_sets(pool, int(workers), W, A, first, k, v0, n_sets)
-        return _stitch(W, A, k, v0, shifts, counts, plans, sets)
+        shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, float(shift), k, v0, n_sets)
+        return _stitch(W, A, k, v0, shifts, counts, plans, sets, top_count)
 
 
 def _return_freed_memory() -> None:
@@ -306,23 +307,27 @@ def _submit_sets(
     workers: int,
     W: sp.csr_matrix,
     A: sp.csr_matrix,
-    first: SliceFactor,
+    shift: float,
     k: int,
     v0: NDArray[np.float64],
     n_sets: int,
-) -> tuple[list[float], list[int], list[_Set], list[Future]]:
+) -> tuple[list[float], list[int], list[_Set], list[Future], int | None]:
     """Place the shifts (in this thread) and start each one's Lanczos set in ``pool`` at once.
 
     Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
     ``k / n_sets`` of them, centred on its shift. A factorisation is large (about the size of 60
     eigenvectors), so the next shift is factorised only when fewer than ``workers`` sets are
     unfinished: at most ``workers`` factorisations are alive, and a set drops its own when it ends.
-    Returns the shifts, their counts, the sets' plans and one future per set (index 0: an empty
-    set at ``-shift``).
+    While the sets run, this thread also makes the two counts that are not shifts of a set: at
+    ``-shift`` (there must be no eigenvalue below it, else ``ValueError``) and at the top of the
+    last window (usually the certificate above ``lam_k``; ``None`` if that point is an eigenvalue).
+    Returns the shifts, their counts, the sets' plans, one future per set (index 0: an empty set at
+    ``-shift``) and the top count.
     """
     # Weyl's law N(lam) ~ area lam / (4 pi) sets the first spacing; later ones extrapolate the
     # measured counts (N grows about linearly in lam on a surface).
     slope = float(A.sum()) / (4.0 * np.pi)
+    first = SliceFactor(shift=-shift, n_below=0, lu=None)  # checked below, once set 1 runs
     shifts, counts = [first.shift], [first.n_below]
     empty: Future = Future()
     empty.set_result((np.empty(0), np.empty((W.shape[0], 0))))
@@ -357,9 +362,19 @@ def _submit_sets(
         plans.append(_plan_set(shifts, counts, plans[j - 1] if j > 1 else None, k, n_sets, slope))
         previous = SliceFactor(shift=alive[j].shift, n_below=alive[j].n_below, lu=None)
         futures.append(pool.submit(run, j))
+        if j == 1 and SliceFactor.of(W, A, -shift).n_below:
+            raise ValueError(f"stiffness + {shift:g} mass is not positive definite: stiffness must be positive semidefinite.")
+    running = [f for f in futures if not f.done()]
+    if len(running) >= workers:  # one more factorisation only when a set's is gone
+        wait(running, return_when=FIRST_COMPLETED)
+    release_finished()
+    try:
+        top_count: int | None = SliceFactor.of(W, A, plans[-1].high).n_below
+    except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
+        top_count = None
     wait(futures)
     alive.clear()
-    return shifts, counts, plans, futures
+    return shifts, counts, plans, futures, top_count
 
 
 def _split(
@@ -398,12 +413,14 @@ def _stitch(
     counts: list[int],
     plans: list[_Set],
     sets: list[Future],
+    top_count: int | None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """Join consecutive sets interval by interval, each holding exactly its inertia count; certify the top.
 
-    Between the last shift and ``lam_k`` there is no shift: a last count at a point in a gap just
-    above ``lam_k`` (among the last set's eigenvalues) proves that none below it is missing. A set
-    that comes out short is redone with a window twice as wide.
+    Between the last shift and ``lam_k`` there is no shift: ``top_count``, the count at the top of
+    the last window, proves that none below it is missing when the last set holds that many; else
+    a count at a point in a gap just above ``lam_k`` (among the last set's eigenvalues) decides. A
+    set that comes out short is redone with a window twice as wide.
     """
     n = W.shape[0]
     # Intervals come in increasing order and each is ascending, so results fill in order; only
@@ -419,8 +436,10 @@ def _stitch(
         out_vectors[:, filled : filled + take] = vecs[:, :take]
         filled += take
 
-    def redo(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        # Twice the window (its factorisation was dropped: factorise again, same result).
+    def redo(j: int, attempt: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        # Twice the window (its factorisation was dropped: factorise again, same result) and
+        # twice the block: a block of b vectors finds at most b copies of an exactly repeated
+        # eigenvalue (symmetric shapes: 5 on an icosphere), the rest only by round-off.
         old = plans[j]
         plans[j] = _Set(
             shift=old.shift,
@@ -429,7 +448,8 @@ def _stitch(
             expected=2 * old.expected,
         )
         window = (plans[j].low, plans[j].high)
-        return _window_set(W, A, SliceFactor.of(W, A, shifts[j]), window, plans[j].expected, v0)
+        block_size = BLOCK_SIZE * 2**attempt
+        return _window_set(W, A, SliceFactor.of(W, A, shifts[j]), window, plans[j].expected, v0, block_size)
 
     carry_values, carry_vectors, carry_top = np.empty(0), np.empty((n, 0)), shifts[0]
     for j in range(1, len(shifts)):
@@ -440,7 +460,7 @@ def _stitch(
             masks = _split(carry_values, carry_top, values, shifts[j - 1], shifts[j], plans[j].low, interval)
             if masks is not None or attempt == 2:
                 break
-            values, vectors = redo(j)
+            values, vectors = redo(j, attempt + 1)
         if masks is None:
             raise RuntimeError(
                 f"spectrum slicing did not find the {interval} eigenvalues that the inertia counts put between "
@@ -452,6 +472,9 @@ def _stitch(
         carry_values, carry_vectors, carry_top = values[above], vectors[:, above], plans[j].high
     if filled == k:  # the last shift is already above lam_k
         return out_values, out_vectors, counts[-1]
+    if top_count is not None and carry_values.size >= k - filled and top_count == counts[-1] + carry_values.size:
+        fill(carry_values, carry_vectors)
+        return out_values, out_vectors, top_count
     for attempt in range(3):
         # The last count goes in the widest gap between lam_k and the top of the last window.
         need = k - filled
@@ -465,7 +488,7 @@ def _stitch(
                 return out_values, out_vectors, n_below
         if attempt == 2:
             break
-        values, vectors = redo(len(shifts) - 1)
+        values, vectors = redo(len(shifts) - 1, attempt + 1)
         above = values > shifts[-1]
         carry_values, carry_vectors, carry_top = values[above], vectors[:, above], plans[-1].high
     raise RuntimeError(

@@ -132,7 +132,9 @@ def nearest_eigenpairs(
     tol : float
         Convergence: ``||T x - theta x||_A <= tol |theta|`` for each wanted Ritz pair.
     block_size : int
-        Vectors per Krylov block.
+        Vectors per Krylov block. A block of ``b`` vectors finds at most ``b`` copies of an
+        exactly repeated eigenvalue (in exact arithmetic; round-off may or may not bring the
+        rest), so callers that can count eigenvalues retry with a larger block.
     max_basis : int, optional
         Largest basis before a thick restart; default ``max(BASIS_PER_PAIR nev, nev + 4 block_size)``.
     seed : int

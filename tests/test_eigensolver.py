@@ -155,3 +155,22 @@ def test_a_cluster_larger_than_the_remaining_count_is_stepped_over():
     plain = eigenbasis(sphere, 101, solver="arpack")
     assert np.abs(sliced.values - plain.values).max() <= 1e-8 * plain.values[-1]
     assert count_below(sliced.stiffness, sliced.mass, sliced.values[-1] * (1 + 1e-6)) >= 101
+
+
+def test_the_top_is_certified_from_a_gap_when_the_window_top_count_is_unavailable(monkeypatch):
+    # Usually the count at the top of the last window certifies lam_k; when that point is an
+    # eigenvalue (no count), a count in a gap above lam_k must do it instead.
+    import lbo_notebooks.eigensolver as eigensolver
+
+    submit = eigensolver._submit_sets
+
+    def without_top_count(*args, **kwargs):
+        return (*submit(*args, **kwargs)[:4], None)
+
+    W, A = operators(shapes.bumpy_sphere(3))
+    exact = dense_values(W, A)
+    monkeypatch.setattr(eigensolver, "_submit_sets", without_top_count)
+    values, vectors, n_below = slice_eigsh(W, A, 70, v0=start(W.shape[0]), shift=0.01, slice_size=30)
+    np.testing.assert_allclose(values[1:], exact[1:70], rtol=1e-8)
+    assert n_below >= 70 and count_below(W, A, 0.5 * (exact[n_below - 1] + exact[n_below])) == n_below
+    check_pairs(W, A, values, vectors)
