@@ -311,7 +311,7 @@ def _submit_sets(
     k: int,
     v0: NDArray[np.float64],
     n_sets: int,
-) -> tuple[list[float], list[int], list[_Set], list[Future], int | None]:
+) -> tuple[list[float], list[int], list[_Set | None], list[Future | None], int | None]:
     """Place the shifts (in this thread) and start each one's Lanczos set in ``pool`` at once.
 
     Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
@@ -321,18 +321,16 @@ def _submit_sets(
     While the sets run, this thread also makes the two counts that are not shifts of a set: at
     ``-shift`` (there must be no eigenvalue below it, else ``ValueError``) and at the top of the
     last window (usually the certificate above ``lam_k``; ``None`` if that point is an eigenvalue).
-    Returns the shifts, their counts, the sets' plans, one future per set (index 0: an empty set at
-    ``-shift``) and the top count.
+    Returns the shifts, their counts, the sets' plans and futures (index 0, the shift ``-shift``,
+    has no set: ``None``) and the top count.
     """
     # Weyl's law N(lam) ~ area lam / (4 pi) sets the first spacing; later ones extrapolate the
     # measured counts (N grows about linearly in lam on a surface).
     slope = float(A.sum()) / (4.0 * np.pi)
     first = SliceFactor(shift=-shift, n_below=0, lu=None)  # checked below, once set 1 runs
     shifts, counts = [first.shift], [first.n_below]
-    empty: Future = Future()
-    empty.set_result((np.empty(0), np.empty((W.shape[0], 0))))
-    futures: list[Future] = [empty]
-    plans: list[_Set] = [_Set(shift=first.shift, low=-np.inf, high=first.shift, expected=0)]
+    futures: list[Future | None] = [None]
+    plans: list[_Set | None] = [None]
     # Factorisations are made and freed in this thread: glibc keeps much of a large block that
     # another thread frees, so a factorisation freed by a worker would stay resident.
     alive: dict[int, SliceFactor] = {}
@@ -340,7 +338,11 @@ def _submit_sets(
     def run(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0)
 
-    def release_finished() -> None:
+    def make_room() -> None:
+        # Wait until fewer than `workers` sets run, then free the factorisations of finished ones.
+        running = [f for f in futures[1:] if not f.done()]
+        if len(running) >= workers:
+            wait(running, return_when=FIRST_COMPLETED)
         finished = [j for j in alive if futures[j].done()]
         for j in finished:
             del alive[j]
@@ -349,30 +351,24 @@ def _submit_sets(
 
     previous = first
     for j in range(1, n_sets + 1):
-        running = [f for f in futures if not f.done()]
-        if len(running) >= workers:
-            wait(running, return_when=FIRST_COMPLETED)
-        release_finished()
+        make_room()
         want = max(1, round((j - 0.5) * k / n_sets) - counts[-1])
         alive[j] = _next_shift(W, A, previous, want, slope, k)
         shifts.append(alive[j].shift)
         counts.append(alive[j].n_below)
         # Local density of eigenvalues (per unit of lam) from the last two counts.
         slope = max(counts[j] - counts[j - 1], 1) / (shifts[j] - shifts[j - 1])
-        plans.append(_plan_set(shifts, counts, plans[j - 1] if j > 1 else None, k, n_sets, slope))
+        plans.append(_plan_set(shifts, counts, plans[j - 1], k, n_sets, slope))
         previous = SliceFactor(shift=alive[j].shift, n_below=alive[j].n_below, lu=None)
         futures.append(pool.submit(run, j))
         if j == 1 and SliceFactor.of(W, A, -shift).n_below:
             raise ValueError(f"stiffness + {shift:g} mass is not positive definite: stiffness must be positive semidefinite.")
-    running = [f for f in futures if not f.done()]
-    if len(running) >= workers:  # one more factorisation only when a set's is gone
-        wait(running, return_when=FIRST_COMPLETED)
-    release_finished()
+    make_room()  # one more factorisation only when a set's is gone
     try:
         top_count: int | None = SliceFactor.of(W, A, plans[-1].high).n_below
     except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
         top_count = None
-    wait(futures)
+    wait(futures[1:])
     alive.clear()
     return shifts, counts, plans, futures, top_count
 
@@ -411,8 +407,8 @@ def _stitch(
     v0: NDArray[np.float64],
     shifts: list[float],
     counts: list[int],
-    plans: list[_Set],
-    sets: list[Future],
+    plans: list[_Set | None],
+    sets: list[Future | None],
     top_count: int | None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """Join consecutive sets interval by interval, each holding exactly its inertia count; certify the top.

@@ -42,16 +42,6 @@ def _project_out(Q: NDArray[np.float64], Y: NDArray[np.float64], mass: sp.spmatr
     return coefficients
 
 
-def _grown(M: NDArray[np.float64], m: int, size: int, square: bool = False) -> NDArray[np.float64]:
-    """A larger copy of the basis buffer (size, n) or of ``H`` (size, size), keeping its first ``m`` rows."""
-    grown = np.zeros((size, size) if square else (size, M.shape[1]))
-    if square:
-        grown[:m, :m] = M[:m, :m]
-    else:
-        grown[:m] = M[:m]
-    return grown
-
-
 def _rotate_in_place(Q: NDArray[np.float64], m: int, S: NDArray[np.float64], rows: int = 4096) -> None:
     """``Q[:, :p] = Q[:, :m] @ S`` without an (n, p) temporary: row blocks are independent."""
     p = S.shape[1]
@@ -209,9 +199,9 @@ def nearest_eigenpairs(
                 if wanted.size + 2 * b > m_max:  # more in the window than expected: make room
                     m_max = int(BASIS_PER_PAIR * wanted.size) + 2 * b
                     m_max -= m_max % b
-                    buffer = _grown(buffer, m, m_max + b)
+                    buffer = np.pad(buffer[:m], ((0, m_max + b - m), (0, 0)))
                     Q = buffer.T
-                    H = _grown(H, m, m_max + b, square=True)
+                    H = np.pad(H[:m, :m], (0, m_max + b - m))
             residual = np.linalg.norm(R @ S[m - b : m, wanted], axis=0)
             converged = residual <= tol * np.abs(theta[wanted])
             if np.all(converged) and (window is None or m >= nev + 2 * b):
