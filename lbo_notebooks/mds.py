@@ -260,7 +260,8 @@ def landmark_mds(
 ) -> NDArray[np.float64]:
     """Landmark MDS (de Silva & Tenenbaum 2004).
 
-    1. q landmarks (farthest-point samples) and their distance fields ``Delta`` (q x n);
+    1. q landmarks (farthest-point samples, chosen in edge-graph distance) and their geodesic
+       distance fields ``Delta`` (q x n);
     2. classical MDS of the q x q block of squared distances: ``L = U_m Gamma_m^(1/2)``;
     3. every vertex a is placed by distance-based triangulation
        ``x_a = -1/2 L^# (delta_a - delta_mean)``, with ``L^# = Gamma_m^(-1/2) U_m.T`` and
@@ -300,7 +301,7 @@ def landmark_mds(
         mesh = mesh_or_distances
         check_connected(mesh, "landmark MDS")
         q = _check_samples(n_samples, mesh.n_vertices)
-        idx, delta = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress)
+        idx, delta = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress, select="graph")
     else:
         delta = np.asarray(mesh_or_distances, dtype=np.float64)
         if delta.ndim != 2:
@@ -362,6 +363,26 @@ def scale_mu(
     return float(mu) * top / float(eigenvalues[-1]) ** power
 
 
+def _scaling_in_span(gram: NDArray[np.float64], middle: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Top ``dim`` eigenpairs of ``B = C middle C.T`` (n x n) from k x k matrices only.
+
+    ``gram = C.T C``. Any factorisation ``C = Q R`` with Q orthonormal will do: from
+    ``gram = V S V.T``, ``R = S^(1/2) V.T`` and ``Q = C V S^(-1/2)``, so ``B = Q (R middle R.T) Q.T``
+    and only the small matrix is eigendecomposed. Directions that C does not span (S at round-off
+    level) are dropped. Returns ``y`` (k x dim) with ``X = C y`` and the eigenvalues G, descending.
+    Costs one k x k Gram product instead of a Householder QR and never forms Q.
+    """
+    S, V = np.linalg.eigh(0.5 * (gram + gram.T))
+    keep = S > S.max() * len(S) * np.finfo(float).eps
+    S, V = S[keep], V[:, keep]
+    R = np.sqrt(S)[:, None] * V.T
+    small = R @ middle @ R.T
+    G, U = np.linalg.eigh(0.5 * (small + small.T))
+    G, U = G[::-1], U[:, ::-1]
+    y = V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None]))
+    return y, G
+
+
 @renamed({"n_eigs": "k"}, keyword_only=("n_samples", "k", "mu", "method"), n_positional=2)
 def spectral_mds(
     mesh: Mesh,
@@ -386,8 +407,8 @@ def spectral_mds(
        ``D2 ~ Phi alpha Phi.T`` is the smoothest interpolant of the sampled squared distances:
        least biharmonic energy (``p = 2``, the paper's choice, default) or least Dirichlet energy
        (``p = 1``);
-    4. reduced scaling: thin QR ``J Phi = Q R``; eigendecompose the k x k matrix
-       ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
+    4. reduced scaling: with ``J Phi = Q R`` (Q orthonormal; R from the k x k Gram matrix, see
+       ``_scaling_in_span``), eigendecompose ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
     Cost O(n k^2 + q n) plus q geodesic solves; memory O(n (k + q)). No n x n matrix is formed.
 
     Parameters
@@ -469,7 +490,7 @@ def spectral_mds(
 
     # 2. samples and their squared distances
     if sampling is None:
-        samples, fields = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress)
+        samples, fields = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress, select="graph")
     else:
         samples, fields = (np.asarray(a) for a in sampling)
         if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
@@ -489,12 +510,11 @@ def spectral_mds(
     alpha = M @ ds @ M.T
     alpha = 0.5 * (alpha + alpha.T)
 
-    # 4. reduced classical scaling in the k-dimensional space
-    Q, R = np.linalg.qr(phi - phi.mean(axis=0))
-    small = -0.5 * (R @ alpha @ R.T)
-    G, U = np.linalg.eigh(0.5 * (small + small.T))
-    G, U = G[::-1], U[:, ::-1]
-    X = Q @ (U[:, :dim] * np.sqrt(np.maximum(G[:dim], 0.0)))
+    # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
+    m = phi.mean(axis=0)
+    gram = phi.T @ phi - n * np.outer(m, m)
+    y, G = _scaling_in_span(gram, -0.5 * alpha, dim)
+    X = phi @ y
     X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
@@ -515,6 +535,40 @@ def spectral_mds(
 FCS_DEFAULTS: dict[str, float] = {"n_samples": 100, "mu": 1e-3}
 
 
+def _interpolation_operator(mesh: Mesh, samples: NDArray[np.int64], mu: float) -> tuple[NDArray[np.float64], float]:
+    """``M = (S.T S + mu_abs E)^-1 S.T`` (n x q) of :func:`fast_classical_scaling`, and ``mu_abs``.
+
+    ``E = W A^-1 W`` is the biharmonic energy. (The Dirichlet energy W alone is cheaper, but
+    harmonic interpolation of point values spikes in 2D: Gram errors 5-13x larger in a quick test
+    at q = 50-100.) ``E`` has a two-ring stencil, and its factorisation fills three times as much
+    as W's, so M is found as a smoothing spline instead (docs/maths.md, "Fast classical scaling"):
+    with ``Z`` solving ``W A^-1 W Z = S.T`` on weights that sum to zero (two solves with the
+    cached factorisation of W, shared with the heat method), the minimiser is ``x = Z w + c``
+    where ``(S Z + mu_abs I) w + c = e`` and ``sum(w) = 0``: a (q+1) x (q+1) system.
+    """
+    from .heat_method import solve_poisson
+    from .operators import mass_matrix
+
+    n, q = mesh.n_vertices, samples.size
+    a = mass_matrix(mesh, "voronoi").diagonal()
+    area = float(a.sum())
+    # Balance the terms for a function of unit size: |S f|^2 ~ q, and the biharmonic energy of the
+    # finest function q samples resolve (lam ~ 4 pi q / area, Weyl) is ~ lam^2 area.
+    mu_abs = mu * q / (area * (4.0 * np.pi * q / area) ** 2)
+    spikes = np.zeros((n, q))
+    spikes[samples, np.arange(q)] = 1.0
+    v = solve_poisson(mesh, spikes)  # W v = S.T w for weights w that sum to zero
+    v -= (a @ v) / area  # A-mean zero, so that A v sums to zero and W Z = A v can be solved
+    Z = solve_poisson(mesh, a[:, None] * v)
+    bordered = np.zeros((q + 1, q + 1))
+    bordered[:q, :q] = 0.5 * (Z[samples] + Z[samples].T) + mu_abs * np.eye(q)
+    bordered[q, :q] = bordered[:q, q] = 1.0
+    unit = np.zeros((q + 1, q))
+    unit[:q] = np.eye(q)
+    coefficients = scipy.linalg.solve(bordered, unit, assume_a="sym")
+    return Z @ coefficients[:q] + coefficients[q], mu_abs
+
+
 def fast_classical_scaling(
     mesh: Mesh,
     *,
@@ -530,12 +584,13 @@ def fast_classical_scaling(
 
     No eigenbasis of the Laplace–Beltrami operator is needed:
 
-    1. q farthest-point samples and their squared distance fields ``F`` (q x n), the rows of the
-       squared-distance matrix ``D2`` at the samples;
+    1. q farthest-point samples (chosen in edge-graph distance, see
+       :func:`~lbo_notebooks.geodesics.farthest_point_sampling`) and their squared geodesic
+       distance fields ``F`` (q x n), the rows of the squared-distance matrix ``D2`` at the samples;
     2. every column of ``D2`` is a smooth function on the surface known at the samples, so it is
        interpolated by the smoothest function through those values: ``D2 ~ M F`` with
        ``M = (S.T S + mu E)^-1 S.T`` (n x q), ``S`` the q x n sampling matrix and ``E = W A^-1 W``
-       the biharmonic energy. One sparse factorisation, q right-hand sides;
+       the biharmonic energy, found as a smoothing spline with 2 q solves of the Laplacian;
     3. with ``D2 ~ (M F + F.T M.T) / 2`` (symmetrised), ``B = -1/2 J D2 J`` lives in the span of
        ``[J M, J F.T]``: with ``[J M, J F.T] = Q R``, Q orthonormal, the 2q x 2q eigenproblem of
        ``-1/4 R [[0, I], [I, 0]] R.T`` give the top ``dim`` eigenpairs of the approximate B.
@@ -581,10 +636,6 @@ def fast_classical_scaling(
     >>> bool(procrustes_error(X, plane.vertices[:, :2]) < 0.025)
     True
     """
-    import scipy.sparse as sp
-
-    from .operators import mass_matrix, stiffness_matrix
-
     t0 = time.perf_counter()
     if not isinstance(mesh, Mesh):
         raise ValueError(f"fast_classical_scaling takes a Mesh, got {type(mesh).__name__}.")
@@ -598,7 +649,9 @@ def fast_classical_scaling(
 
     # 1. samples and their squared distance fields
     if sampling is None:
-        samples, fields = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress)
+        samples, fields = farthest_point_sampling(
+            mesh, q, method=method, return_distances=True, progress=progress, select="graph"
+        )
     else:
         samples, fields = (np.asarray(a) for a in sampling)
         if samples.ndim != 1 or fields.ndim != 2 or fields.shape != (samples.size, n) or samples.size < q:
@@ -610,38 +663,17 @@ def fast_classical_scaling(
     F = np.square(fields)  # a new array: the caller's sampling is not modified
     t1 = time.perf_counter()
 
-    # 2. interpolation operator M = (S.T S + mu E)^-1 S.T, E = W A^-1 W. (The Dirichlet energy W
-    # is sparser, but harmonic interpolation of point values spikes in 2D: Gram errors 5-13x
-    # larger in a quick test at q = 50-100.)
-    W = stiffness_matrix(mesh)
-    a = mass_matrix(mesh, "voronoi").diagonal()
-    area = float(a.sum())
-    # Balance the terms for a function of unit size: |S f|^2 ~ q, and the biharmonic energy of the
-    # finest function q samples resolve (lam ~ 4 pi q / area, Weyl) is ~ lam^2 area.
-    mu_abs = float(mu) * q / (area * (4.0 * np.pi * q / area) ** 2)
-    system = (W @ sp.diags(1.0 / a) @ W) * mu_abs
-    system = sp.csc_matrix(system + sp.csr_matrix((np.ones(q), (samples, samples)), shape=(n, n)))
-    lu = spla.splu(system, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    rhs = np.zeros((n, q))
-    rhs[samples, np.arange(q)] = 1.0
-    M = lu.solve(rhs)
-    del lu, rhs
+    # 2. interpolation operator
+    M, mu_abs = _interpolation_operator(mesh, samples, float(mu))
     t2 = time.perf_counter()
 
-    # 3. classical scaling in span[J M, J F.T] = span(basis). Any basis = Q R with Q orthonormal
-    # will do: from basis.T basis = V S V.T, R = S^(1/2) V.T and Q = basis V S^(-1/2), so only
-    # one n x 2q product is needed and Q is never formed (cheaper than a Householder QR).
+    # 3. classical scaling in span[J M, J F.T]: D2 ~ (M F + F.T M.T) / 2 gives
+    # B = C (-1/4 [[0, I], [I, 0]]) C.T with C = [J M, J F.T].
     basis = np.hstack([M - M.mean(axis=0), F.T - F.T.mean(axis=0)])
     del M
-    S, V = np.linalg.eigh(basis.T @ basis)
-    keep = S > S.max() * 2 * q * np.finfo(float).eps  # drop directions the columns do not span
-    S, V = S[keep], V[:, keep]
-    R = np.sqrt(S)[:, None] * V.T
     swap = np.block([[np.zeros((q, q)), np.eye(q)], [np.eye(q), np.zeros((q, q))]])
-    small = -0.25 * (R @ swap @ R.T)
-    G, U = np.linalg.eigh(0.5 * (small + small.T))
-    G, U = G[::-1], U[:, ::-1]
-    X = basis @ (V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None])))
+    y, G = _scaling_in_span(basis.T @ basis, -0.25 * swap, dim)
+    X = basis @ y
     X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:

@@ -69,3 +69,21 @@ def test_bad_arguments(bumpy):
         fast_classical_scaling(mesh, n_samples=10, sampling=(np.arange(5), np.zeros((5, mesh.n_vertices))))
     with pytest.raises(ValueError, match="Mesh"):
         fast_classical_scaling(np.zeros((10, 10)))
+
+
+def test_spline_interpolation_equals_the_direct_biharmonic_solve():
+    # M = (S.T S + mu E)^-1 S.T with E = W A^-1 W, solved directly, against the smoothing-spline
+    # form that only needs the factorisation of W.
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
+    from lbo_notebooks.mds import _interpolation_operator
+    from lbo_notebooks.operators import mass_matrix, stiffness_matrix
+
+    for mesh in (shapes.bumpy_sphere(2), shapes.rectangle(2.0, 1.0, 16, 8)):
+        samples = farthest_point_sampling(mesh, 25, select="graph")
+        M, mu_abs = _interpolation_operator(mesh, samples, 1e-3)
+        W, a = stiffness_matrix(mesh), mass_matrix(mesh, "voronoi").diagonal()
+        S = sp.csr_matrix((np.ones(25), (np.arange(25), samples)), shape=(25, mesh.n_vertices))
+        direct = spla.spsolve((S.T @ S + mu_abs * W @ sp.diags(1 / a) @ W).tocsc(), S.T.toarray())
+        assert np.abs(M - direct).max() < 1e-8 * np.abs(direct).max()
