@@ -211,12 +211,13 @@ class GeodesicSolver:
         check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
         out = np.empty((src.size, self.n_vertices), dtype=np.float64)
         if self._heat is not None:
-            # A whole block of sources shares each pass through the factorisations.
-            block = self._heat.block_size
-            starts = range(0, src.size, block)
+            # Blocks of sources share each pass through the factorisations; the progress bar moves
+            # once per group of blocks.
+            group = 8 * self._heat.block_size
+            starts = range(0, src.size, group)
             show = src.size >= PROGRESS_THRESHOLD if progress is None else progress
-            for start in _progress(starts, len(starts), show, f"geodesics (heat, blocks of {block})"):
-                self._heat.distances(src[start : start + block], out=out[start : start + block])
+            for start in _progress(starts, len(starts), show, f"geodesics (heat, {group} sources at a time)"):
+                self._heat.distances(src[start : start + group], out=out[start : start + group])
             if not np.all(np.isfinite(out)):
                 raise RuntimeError(
                     "the heat-method geodesic solver returned invalid distances; check the mesh for "

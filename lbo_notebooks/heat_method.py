@@ -25,13 +25,16 @@ its gradient.
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
+from threadpoolctl import threadpool_limits
+
+from .eigensolver import default_workers
 from .mesh import Mesh, MeshError, per_mesh
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
@@ -86,6 +89,26 @@ def _block_size(n: int) -> int:
     return int(np.clip(BLOCK_ENTRIES // max(n, 1), 1, MAX_BLOCK))
 
 
+def _in_blocks(work: Callable[[slice], None], total: int, block: int) -> None:
+    """``work(columns)`` for consecutive blocks of ``total`` columns, in two threads if there are two cores.
+
+    Each thread gets one BLAS thread: SuperLU's solves call BLAS on blocks of ``block`` columns,
+    and two threads each running a two-thread BLAS were no faster than one thread alone. With one
+    BLAS thread each, two threads solved blocks of 8 sources 1.8x faster than one
+    (``benchmarks/geodesics.py``), and every block comes out the same, bit for bit, for any
+    number of threads.
+    """
+    blocks = [slice(start, min(start + block, total)) for start in range(0, total, block)]
+    workers = min(default_workers(), len(blocks))
+    with threadpool_limits(1):
+        if workers == 1:
+            for columns in blocks:
+                work(columns)
+        else:
+            with ThreadPoolExecutor(workers) as pool:
+                list(pool.map(work, blocks))
+
+
 def _factor(matrix: sp.spmatrix) -> Any:
     try:
         return spla.splu(
@@ -135,9 +158,11 @@ def solve_poisson(mesh: Mesh, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
     if rhs.ndim == 1:
         out[1:] = lu.solve(np.ascontiguousarray(rhs[1:]))
         return out
-    block = _block_size(mesh.n_vertices)
-    for start in range(0, rhs.shape[1], block):
-        out[1:, start : start + block] = lu.solve(np.ascontiguousarray(rhs[1:, start : start + block]))
+
+    def work(columns: slice) -> None:
+        out[1:, columns] = lu.solve(np.ascontiguousarray(rhs[1:, columns]))
+
+    _in_blocks(work, rhs.shape[1], _block_size(mesh.n_vertices))
     return out
 
 
@@ -174,7 +199,7 @@ class HeatMethod:
         with ThreadPoolExecutor(2) as pool:
             poisson = pool.submit(_poisson_factor, mesh)
             self._heat = _factor(A_delaunay + t * W_delaunay)
-            poisson.result()
+            self._poisson = poisson.result()
 
     @property
     def block_size(self) -> int:
@@ -197,7 +222,8 @@ class HeatMethod:
         np.divide(-1.0, norm, out=norm, where=norm > 0)
         grad.reshape(3, m, b)[...] *= norm
         rhs = np.asarray(self._divergence @ grad)
-        phi = solve_poisson(self._mesh, rhs)
+        phi = np.zeros((self.n, b))
+        phi[1:] = self._poisson.solve(np.ascontiguousarray(rhs[1:]))
         phi -= phi[sources, columns]
         np.maximum(phi, 0.0, out=phi)
         return phi.T
@@ -210,7 +236,8 @@ class HeatMethod:
         sources = np.asarray(sources, dtype=np.int64).reshape(-1)
         if out is None:
             out = np.empty((sources.size, self.n))
-        block = self.block_size
-        for start in range(0, sources.size, block):
-            out[start : start + block] = self._block(sources[start : start + block])
+        def work(rows: slice) -> None:
+            out[rows] = self._block(sources[rows])
+
+        _in_blocks(work, sources.size, self.block_size)
         return out
