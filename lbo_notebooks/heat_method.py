@@ -188,6 +188,10 @@ class HeatMethod:
     def __init__(self, mesh: Mesh, t_coef: float = 1.0) -> None:
         from .robust import robust_operators
 
+        if not isinstance(mesh, Mesh):
+            raise ValueError(f"HeatMethod needs a Mesh, got {type(mesh).__name__}.")
+        if isinstance(t_coef, bool) or not (np.isscalar(t_coef) and np.isfinite(t_coef) and t_coef > 0):
+            raise ValueError(f"t_coef must be a positive number (the diffusion time in units of h^2; try 1.0), got {t_coef!r}.")
         self.n = mesh.n_vertices
         self._mesh = mesh
         self._G, self._areas = _gradient(mesh)
@@ -233,9 +237,15 @@ class HeatMethod:
 
         Rows are written into ``out`` when it is given (shape (len(sources), n)).
         """
-        sources = np.asarray(sources, dtype=np.int64).reshape(-1)
+        sources = np.asarray(sources).reshape(-1)
+        if sources.size and (not np.issubdtype(sources.dtype, np.integer) or sources.min() < 0 or sources.max() >= self.n):
+            raise ValueError(f"sources must be vertex indices in 0..{self.n - 1}, got {sources[:5].tolist()}...")
+        sources = sources.astype(np.int64)
         if out is None:
             out = np.empty((sources.size, self.n))
+        elif out.shape != (sources.size, self.n):
+            raise ValueError(f"out must have shape {(sources.size, self.n)}, got {out.shape}.")
+
         def work(rows: slice) -> None:
             out[rows] = self._block(sources[rows])
 

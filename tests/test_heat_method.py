@@ -99,6 +99,31 @@ def test_a_block_equals_one_source_at_a_time(bumpy):
     assert np.abs(together - alone).max() < 1e-10 * together.max()
 
 
+def test_one_thread_or_two_give_the_same_bits(bumpy, monkeypatch):
+    import lbo_notebooks.heat_method as heat_method
+
+    heat = HeatMethod(bumpy)
+    src = np.arange(0, bumpy.n_vertices, 13)
+    monkeypatch.setattr(heat_method, "default_workers", lambda: 2)
+    two = heat.distances(src)
+    monkeypatch.setattr(heat_method, "default_workers", lambda: 1)
+    assert np.array_equal(heat.distances(src), two)
+
+
+def test_bad_arguments(bumpy):
+    with pytest.raises(ValueError, match="t_coef"):
+        HeatMethod(bumpy, t_coef=0.0)
+    with pytest.raises(ValueError, match="Mesh"):
+        HeatMethod(bumpy.vertices)
+    heat = HeatMethod(bumpy)
+    with pytest.raises(ValueError, match="vertex indices"):
+        heat.distances(np.array([0, bumpy.n_vertices]))
+    with pytest.raises(ValueError, match="vertex indices"):
+        heat.distances(np.array([0.5]))
+    with pytest.raises(ValueError, match="shape"):
+        heat.distances(np.array([0, 1]), out=np.empty((3, bumpy.n_vertices)))
+
+
 def test_solver_uses_blocks_with_and_without_progress(bumpy):
     solver = GeodesicSolver(bumpy, "heat")
     src = np.arange(0, bumpy.n_vertices, 31)
