@@ -8,6 +8,7 @@ Run from the repository root::
     .venv/bin/python benchmarks/mds.py --quick            # small sizes only, for a smoke test
     .venv/bin/python benchmarks/mds.py --json benchmarks/results/mds.json   # also record results
     .venv/bin/python benchmarks/mds.py --energies         # Dirichlet vs biharmonic over mu (tuning shapes)
+    .venv/bin/python benchmarks/mds.py --fcs-tuning       # fast classical scaling over q and mu (tuning shapes)
 
 Part 1 (accuracy): on several shapes of 3,000-5,000 vertices, SMDS with its *default* parameters
 against classical MDS computed from the same (heat-method) geodesic distances; the Gram error must
@@ -43,6 +44,7 @@ import numpy as np
 
 from lbo_notebooks import Mesh, shapes
 from lbo_notebooks.mds import (
+    FCS_DEFAULTS,
     SMDS_DEFAULTS,
     classical_mds,
     fast_classical_scaling,
@@ -212,6 +214,24 @@ def part_energies(quick: bool) -> list[dict]:
     return rows
 
 
+def part_fcs_tuning(quick: bool) -> list[dict]:
+    """Gram error of fast classical scaling over the number of samples and mu, on the tuning shapes."""
+    from lbo_notebooks.geodesics import farthest_point_sampling
+
+    qs, mus = (50, 100, 150, 200), (1e-4, 1e-3, 1e-2, 1e-1)
+    print(f"\nFast classical scaling: Gram error vs classical MDS over q and mu, tuning shapes (defaults {FCS_DEFAULTS})")
+    print(f"{'shape':22s} {'n':>6s} {'q':>4s} " + " ".join(f"mu={mu:<7g}" for mu in mus))
+    rows = []
+    for name, mesh in tuning_shapes(quick).items():
+        X = classical_mds(mesh, progress=False)
+        sampling = farthest_point_sampling(mesh, max(qs), return_distances=True, progress=False, select="graph")
+        for q in qs:
+            errs = [gram_error(fast_classical_scaling(mesh, n_samples=q, mu=mu, sampling=sampling), X) for mu in mus]
+            rows.append({"shape": name, "n": mesh.n_vertices, "q": q, "mu": list(mus), "gram_error": errs})
+            print(f"{name:22s} {mesh.n_vertices:6d} {q:4d} " + " ".join(f"{e:10.4f}" for e in errs))
+    return rows
+
+
 def part_scaling(quick: bool, classical_max: int, sizes: list[int] | None = None) -> list[dict]:
     if sizes is None:
         sizes = [1000, 2000, 4000] if quick else [2000, 4000, 8000, 16000, 32000, 51200]
@@ -295,6 +315,8 @@ def main() -> None:
                     help="run part 1 only; with --json, keep the scaling rows (and their date and defaults) of the file")
     ap.add_argument("--energies", action="store_true",
                     help="only the table of Gram errors of both interpolation energies over mu (tuning shapes)")
+    ap.add_argument("--fcs-tuning", action="store_true",
+                    help="only the table of fast classical scaling's Gram errors over q and mu (tuning shapes)")
     ap.add_argument("--sizes", type=int, nargs="+", help="vertex counts of the scaling part")
     ap.add_argument("--merge", action="store_true",
                     help="merge the scaling rows into the existing --json file (same n replaced)")
@@ -314,6 +336,9 @@ def main() -> None:
                     "defaults": SMDS_DEFAULTS, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     if args.energies:
         part_energies(args.quick)
+        return
+    if args.fcs_tuning:
+        part_fcs_tuning(args.quick)
         return
     if not args.skip_accuracy:
         result["accuracy"] = part_accuracy(args.quick)
@@ -339,6 +364,7 @@ def main() -> None:
     result["four_methods"] = part_four(args.quick, args.classical_max, args.sizes)
     result["scaling_recorded"] = result["date"]
     result["scaling_defaults"] = SMDS_DEFAULTS
+    result["fcs_defaults"] = FCS_DEFAULTS
     result["scaling_load_average"] = max(result["load_average"], os.getloadavg()[0])
     if args.merge and args.json and args.json.exists():
         old = json.loads(args.json.read_text())

@@ -10,7 +10,7 @@ from scipy.spatial.distance import cdist
 
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
-from lbo_notebooks.cost import growth_exponent, measure_cost
+from lbo_notebooks.cost import growth_exponent, least_cost, measure_cost
 from lbo_notebooks.shape_distribution import shape_distribution, shape_distribution_distances
 from lbo_notebooks.mds import (
     classical_mds,
@@ -298,6 +298,26 @@ def test_growth_exponent_and_cost():
     D = cdist(*(2 * [np.random.default_rng(0).normal(size=(300, 3))]))
     cost = measure_cost(classical_mds, D)
     assert cost["peak_bytes"] >= 2 * 8 * 300**2 and cost["result"].shape == (300, 3) and cost["cpu_seconds"] >= 0
+
+
+def test_least_cost_keeps_the_cheapest_run():
+    import time
+
+    pauses = iter([0.0, 0.05, 0.0])
+    calls = []
+
+    def busy() -> int:
+        # CPU time, not sleep: the second call is the expensive one
+        end = time.process_time() + next(pauses)
+        while time.process_time() < end:
+            pass
+        calls.append(1)
+        return len(calls)
+
+    cost = least_cost(2, busy)
+    assert len(calls) == 2 and cost["result"] == 1 and cost["cpu_seconds"] < 0.05
+    with pytest.raises(ValueError, match="runs"):
+        least_cost(0, busy)
 
 
 def test_signature_defaults_are_the_documented_ones():
