@@ -316,7 +316,8 @@ def landmark_mds(
             raise ValueError("distances contain NaN or inf (a disconnected mesh?).")
     q = delta.shape[0]
     dim = _check_dim(dim, q, "the number of landmarks")
-    sq = delta**2  # (q, n) squared distances
+    # (q, n) squared distances: in place when the distances are our own, never in the caller's array
+    sq = np.square(delta, out=delta) if isinstance(mesh_or_distances, Mesh) else delta**2
     block = sq[:, idx]
     block = 0.5 * (block + block.T)
     mean_col = block.mean(axis=1)
@@ -327,7 +328,7 @@ def landmark_mds(
             f"the landmarks span fewer than dim={dim} positive directions; use more landmarks or a smaller dim."
         )
     pinv = vecs / np.sqrt(vals)  # (q, dim): columns of L^#.T
-    X = -0.5 * (sq - mean_col[:, None]).T @ pinv
+    X = -0.5 * (sq.T @ pinv - mean_col @ pinv)  # = -1/2 (sq - mean_col 1.T).T pinv, without a (q, n) copy
     return fix_signs(X - X.mean(axis=0))
 
 

@@ -135,6 +135,13 @@ def test_landmark_mds_converges_to_classical(blob):
     assert all(a > b for a, b in zip(errs, errs[1:])) and errs[-1] < 0.03
 
 
+def test_landmark_mds_leaves_the_callers_distances_alone(blob):
+    m, D, X, _, (samples, fields) = blob
+    before = fields.copy()
+    landmark_mds(fields[:20], landmarks=samples[:20])
+    assert np.array_equal(fields, before)
+
+
 def test_landmark_mds_from_a_mesh(blob):
     m, D, X, _, _ = blob
     Z = landmark_mds(m, n_samples=40)
