@@ -79,23 +79,23 @@ def check_method(method: Any) -> str:
     return str(method)
 
 
-def _check_sources(sources: ArrayLike, n: int) -> NDArray[np.int64]:
+def _check_sources(sources: ArrayLike, n: int, what: str = "source") -> NDArray[np.int64]:
     arr = np.asarray(sources)
     if arr.ndim == 0:
         arr = arr.reshape(1)
     if arr.ndim != 1:
-        raise ValueError(f"sources must be a vertex index or a 1-D sequence of vertex indices, got shape {arr.shape}.")
+        raise ValueError(f"{what}s must be a vertex index or a 1-D sequence of vertex indices, got shape {arr.shape}.")
     if arr.size == 0:
-        raise ValueError("sources is empty; pass at least one vertex index.")
+        raise ValueError(f"{what}s is empty; pass at least one vertex index.")
     if arr.dtype == bool or not (np.issubdtype(arr.dtype, np.integer) or (
         np.issubdtype(arr.dtype, np.floating) and np.all(arr == np.round(arr))
     )):
-        raise ValueError(f"sources must be integer vertex indices, got dtype {arr.dtype}.")
+        raise ValueError(f"{what}s must be integer vertex indices, got dtype {arr.dtype}.")
     arr = arr.astype(np.int64)
     bad = (arr < 0) | (arr >= n)
     if bad.any():
         raise ValueError(
-            f"source vertex {int(arr[bad][0])} is out of range: the mesh has {n} vertices, so "
+            f"{what} vertex {int(arr[bad][0])} is out of range: the mesh has {n} vertices, so "
             f"indices must lie in 0..{n - 1}."
         )
     return arr
@@ -191,15 +191,19 @@ class GeodesicSolver:
         self,
         sources: ArrayLike,
         *,
+        targets: ArrayLike | None = None,
         progress: bool | None = None,
         memory_budget: float | None = None,
     ) -> NDArray[np.float64]:
-        """Distances from each source to every vertex, shape (len(sources), n).
+        """Distances from each source to every vertex (or to ``targets``), shape (len(sources), n).
 
         Parameters
         ----------
         sources : int or sequence of int
             Source vertex indices.
+        targets : sequence of int, optional
+            Keep only the distances to these vertices: shape (len(sources), len(targets)). Each
+            field is still solved on the whole mesh, but only these columns are stored.
         progress : bool, optional
             Show a tqdm progress bar. Default: only for at least 500 sources.
         memory_budget : float, optional
@@ -207,9 +211,11 @@ class GeodesicSolver:
             many bytes. Default: half of the memory currently available.
         """
         src = _check_sources(sources, self.n_vertices)
-        need = distance_matrix_bytes(src.size, self.n_vertices)
-        check_memory(need, memory_budget, f"a {src.size} x {self.n_vertices} distance matrix")
-        out = np.empty((src.size, self.n_vertices), dtype=np.float64)
+        cols = None if targets is None else _check_sources(targets, self.n_vertices, "target")
+        width = self.n_vertices if cols is None else cols.size
+        need = distance_matrix_bytes(src.size, width)
+        check_memory(need, memory_budget, f"a {src.size} x {width} distance matrix")
+        out = np.empty((src.size, width), dtype=np.float64)
         if self._heat is not None:
             # Blocks of sources share each pass through the factorisations; the progress bar moves
             # once per group of blocks.
@@ -217,7 +223,7 @@ class GeodesicSolver:
             starts = range(0, src.size, group)
             show = src.size >= PROGRESS_THRESHOLD if progress is None else progress
             for start in _progress(starts, len(starts), show, f"geodesics (heat, {group} sources at a time)"):
-                self._heat.distances(src[start : start + group], out=out[start : start + group])
+                self._heat.distances(src[start : start + group], out=out[start : start + group], targets=cols)
             if not np.all(np.isfinite(out)):
                 raise RuntimeError(
                     "the heat-method geodesic solver returned invalid distances; check the mesh for "
@@ -225,7 +231,8 @@ class GeodesicSolver:
                 )
             return out
         for i, s in enumerate(_progress(src, src.size, progress, f"geodesics ({self.method})")):
-            out[i] = self.distance(int(s))
+            d = self.distance(int(s))
+            out[i] = d if cols is None else d[cols]
         return out
 
 
@@ -273,6 +280,7 @@ def geodesic_distances(
     sources: ArrayLike,
     method: GeodesicMethod = "heat",
     *,
+    targets: ArrayLike | None = None,
     progress: bool | None = None,
     memory_budget: float | None = None,
 ) -> NDArray[np.float64]:
@@ -289,6 +297,8 @@ def geodesic_distances(
         Source vertex indices (0-based).
     method : {"heat", "exact", "fmm"}
         Heat method (fast, approximate), exact polyhedral geodesics (slow, exact) or fast marching.
+    targets : sequence of int, optional
+        Return only the distances to these vertices, shape (len(sources), len(targets)).
     progress : bool, optional
         tqdm progress bar; by default shown only for at least 500 sources.
     memory_budget : float, optional
@@ -307,7 +317,9 @@ def geodesic_distances(
     >>> bool(abs(d.max() - np.pi) < 0.02)   # the antipode is half a great circle away
     True
     """
-    return geodesic_solver(mesh, method).distances(sources, progress=progress, memory_budget=memory_budget)
+    return geodesic_solver(mesh, method).distances(
+        sources, targets=targets, progress=progress, memory_budget=memory_budget
+    )
 
 
 def _edge_graph(mesh: Mesh) -> Any:

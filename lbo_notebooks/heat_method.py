@@ -232,22 +232,34 @@ class HeatMethod:
         np.maximum(phi, 0.0, out=phi)
         return phi.T
 
-    def distances(self, sources: NDArray[np.int64], out: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
-        """Distance fields of ``sources`` (valid vertex indices), shape (len(sources), n).
+    def distances(
+        self,
+        sources: NDArray[np.int64],
+        out: NDArray[np.float64] | None = None,
+        targets: NDArray[np.int64] | None = None,
+    ) -> NDArray[np.float64]:
+        """Distance fields of ``sources`` (vertex indices), shape (len(sources), n).
 
-        Rows are written into ``out`` when it is given (shape (len(sources), n)).
+        With ``targets``, only those columns are kept: shape (len(sources), len(targets)). Rows
+        are written into ``out`` when it is given.
         """
-        sources = np.asarray(sources).reshape(-1)
-        if sources.size and (not np.issubdtype(sources.dtype, np.integer) or sources.min() < 0 or sources.max() >= self.n):
-            raise ValueError(f"sources must be vertex indices in 0..{self.n - 1}, got {sources[:5].tolist()}...")
-        sources = sources.astype(np.int64)
+        sources = self._indices(sources, "sources")
+        columns = None if targets is None else self._indices(targets, "targets")
+        shape = (sources.size, self.n if columns is None else columns.size)
         if out is None:
-            out = np.empty((sources.size, self.n))
-        elif out.shape != (sources.size, self.n):
-            raise ValueError(f"out must have shape {(sources.size, self.n)}, got {out.shape}.")
+            out = np.empty(shape)
+        elif out.shape != shape:
+            raise ValueError(f"out must have shape {shape}, got {out.shape}.")
 
         def work(rows: slice) -> None:
-            out[rows] = self._block(sources[rows])
+            fields = self._block(sources[rows])
+            out[rows] = fields if columns is None else fields[:, columns]
 
         _in_blocks(work, sources.size, self.block_size)
         return out
+
+    def _indices(self, indices: Any, name: str) -> NDArray[np.int64]:
+        arr = np.asarray(indices).reshape(-1)
+        if arr.size and (not np.issubdtype(arr.dtype, np.integer) or arr.min() < 0 or arr.max() >= self.n):
+            raise ValueError(f"{name} must be vertex indices in 0..{self.n - 1}, got {arr[:5].tolist()}...")
+        return arr.astype(np.int64)

@@ -410,7 +410,7 @@ def spectral_mds(
        (``p = 1``);
     4. reduced scaling: with ``J Phi = Q R`` (Q orthonormal; R from the k x k Gram matrix, see
        ``_scaling_in_span``), eigendecompose ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
-    Cost O(n k^2 + q n) plus q geodesic solves; memory O(n (k + q)). No n x n matrix is formed.
+    Cost O(n k^2 + q n) plus q geodesic solves; memory O(n k + q^2). No n x n matrix is formed.
 
     Parameters
     ----------
@@ -489,9 +489,11 @@ def spectral_mds(
     lam = np.maximum(spectrum.values[:k], 0.0)
     t1 = time.perf_counter()
 
-    # 2. samples and their squared distances
+    # 2. samples and their squared distances (only among the samples: each field is solved on the
+    # whole mesh, but a q x q block is all that is kept)
     if sampling is None:
-        samples, fields = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress, select="graph")
+        samples = farthest_point_sampling(mesh, q, method=method, select="graph")
+        ds = geodesic_solver(mesh, method).distances(samples, targets=samples, progress=progress) ** 2
     else:
         samples, fields = (np.asarray(a) for a in sampling)
         if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
@@ -499,8 +501,8 @@ def spectral_mds(
                 f"sampling must be (samples, distances) from farthest_point_sampling(mesh, k >= {q}, "
                 f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
             )
-        samples, fields = samples[:q].astype(np.int64), fields[:q]
-    ds = fields[:, samples] ** 2
+        samples = samples[:q].astype(np.int64)
+        ds = fields[:q][:, samples] ** 2
     ds = 0.5 * (ds + ds.T)
     t2 = time.perf_counter()
 

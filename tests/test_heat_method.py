@@ -175,3 +175,21 @@ def test_graph_selection_picks_the_graph_farthest_vertex(bumpy):
 def test_bad_selection(bumpy):
     with pytest.raises(ValueError, match="select must be"):
         farthest_point_sampling(bumpy, 3, select="random")
+
+
+@pytest.mark.parametrize("method", ["heat", "exact"])
+def test_targets_keep_only_those_columns(method):
+    mesh = shapes.bumpy_sphere(2)
+    src, targets = np.array([0, 40, 90]), np.array([5, 0, 150, 5])
+    full = geodesic_distances(mesh, src, method)
+    assert np.array_equal(geodesic_distances(mesh, src, method, targets=targets), full[:, targets])
+    with pytest.raises(ValueError, match="target vertex 162 is out of range"):
+        geodesic_distances(mesh, src, method, targets=[mesh.n_vertices])
+
+
+def test_spectral_mds_defaults_equal_an_explicit_graph_sampling():
+    from lbo_notebooks.mds import spectral_mds
+
+    mesh = shapes.bumpy_sphere(2)
+    sampling = farthest_point_sampling(mesh, 60, select="graph", return_distances=True)
+    assert np.array_equal(spectral_mds(mesh, n_samples=60, k=30), spectral_mds(mesh, n_samples=60, k=30, sampling=sampling))
