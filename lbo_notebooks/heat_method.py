@@ -9,9 +9,10 @@ three linear steps:
    (``G`` the face-gradient operator, ``a`` the face areas, so that ``W = G.T a G``), and shift
    it so that ``phi(s) = 0``.
 
-Both matrices are factorised once per mesh. Every step is linear in the sources, so a block of
-b sources is b right-hand sides of the same two factorisations, and the triangular solves work on
-b columns at once: at 50k vertices a source costs 11-12 ms in blocks of 8, against 22 ms alone
+Both matrices are factorised once per mesh. Each source is a separate right-hand side of the same
+two solves, and step 2 (not linear: it normalises) acts on each source's field alone, so a block
+of b sources is b right-hand sides of the same two factorisations, and the triangular solves work
+on b columns at once: at 50k vertices a source costs 11-12 ms in blocks of 8, against 22 ms alone
 (``benchmarks/geodesics.py``). The two factorisations run in two threads (SuperLU releases the
 GIL while it factorises, not while it solves).
 
