@@ -27,6 +27,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
 
+from .inner_product import symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 
 __all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
@@ -65,11 +66,10 @@ class SliceFactor:
     @classmethod
     def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float) -> "SliceFactor":
         """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue."""
-        matrix = sp.csc_matrix(stiffness - shift * mass)
         try:
-            # Diagonal pivots only (threshold 0) and one symmetric ordering of rows and columns:
-            # then U = D L^T and the signs of diag(U) are the inertia of the matrix.
-            lu = spla.splu(matrix, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+            # Diagonal pivots only and one symmetric ordering of rows and columns: then U = D L^T
+            # and the signs of diag(U) are the inertia of the matrix.
+            lu = symmetric_lu(stiffness - shift * mass)
         except RuntimeError as err:  # an exactly zero pivot: shift is (numerically) an eigenvalue
             raise ValueError(f"W - {shift:.17g} A is singular; move the shift off the eigenvalue.") from err
         if not np.array_equal(lu.perm_r, lu.perm_c):

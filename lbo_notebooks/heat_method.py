@@ -30,12 +30,12 @@ from typing import Any, Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from threadpoolctl import threadpool_limits
 
 from .eigensolver import default_workers
+from .inner_product import symmetric_lu
 from .mesh import Mesh, MeshError, per_mesh
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
@@ -112,9 +112,7 @@ def _in_blocks(work: Callable[[slice], None], total: int, block: int) -> None:
 
 def _factor(matrix: sp.spmatrix) -> Any:
     try:
-        return spla.splu(
-            sp.csc_matrix(matrix), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
-        )
+        return symmetric_lu(matrix)
     except RuntimeError as err:  # SuperLU: "Factor is exactly singular"
         raise MeshError(
             f"could not factorise this mesh's Laplacian ({err}): some vertices touch only degenerate "
@@ -123,16 +121,19 @@ def _factor(matrix: sp.spmatrix) -> Any:
 
 
 @per_mesh
-def _gradient(mesh: Mesh) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
-    return face_gradient_operator(mesh)
+def _gradient(mesh: Mesh) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """``(G, G.T diag(a))``: the face gradient and the (integrated) divergence of face fields."""
+    G, areas = face_gradient_operator(mesh)
+    return G, (G.T @ sp.diags(np.tile(areas, 3))).tocsr()
 
 
 @per_mesh
 def _poisson_factor(mesh: Mesh) -> Any:
-    # W = G.T a G is singular (constants); pinning vertex 0 makes it definite on a connected mesh.
-    G, areas = _gradient(mesh)
-    W = (G.T @ sp.diags(np.tile(areas, 3)) @ G).tocsc()
-    return _factor(W[1:, 1:])
+    # W = G.T a G rather than operators.stiffness_matrix: equal on a good mesh, but it stays
+    # finite on zero-area faces. It is singular (constants); pinning vertex 0 makes it definite
+    # on a connected mesh.
+    G, divergence = _gradient(mesh)
+    return _factor((divergence @ G).tocsc()[1:, 1:])
 
 
 def solve_poisson(mesh: Mesh, rhs: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -195,10 +196,8 @@ class HeatMethod:
             raise ValueError(f"t_coef must be a positive number (the diffusion time in units of h^2; try 1.0), got {t_coef!r}.")
         self.n = mesh.n_vertices
         self._mesh = mesh
-        self._G, self._areas = _gradient(mesh)
-        self._divergence = (self._G.T @ sp.diags(np.tile(self._areas, 3))).tocsr()
-        lengths = np.linalg.norm(mesh.vertices[mesh.edges[:, 0]] - mesh.vertices[mesh.edges[:, 1]], axis=1)
-        t = float(t_coef) * float(np.mean(lengths)) ** 2
+        self._G, self._divergence = _gradient(mesh)
+        t = float(t_coef) * mesh.mean_edge_length**2
         W_delaunay, A_delaunay = robust_operators(mesh)
         # Both factorisations at once (SuperLU releases the GIL while it factorises).
         with ThreadPoolExecutor(2) as pool:
@@ -212,7 +211,7 @@ class HeatMethod:
         return _block_size(self.n)
 
     def _block(self, sources: NDArray[np.int64]) -> NDArray[np.float64]:
-        b, m = sources.size, self._areas.size
+        b, m = sources.size, self._G.shape[0] // 3
         columns = np.arange(b)
         rhs = np.zeros((self.n, b))
         rhs[sources, columns] = 1.0

@@ -64,6 +64,7 @@ from .inner_product import (
     reconstruct,
     reconstruction_error,
     start_vector,
+    symmetric_lu,
     use_dense,
 )
 from .spectrum import eigenbasis
@@ -87,13 +88,6 @@ _MAX_ROUNDS = 8
 
 
 # --- small linear-algebra helpers --------------------------------------------------------------
-def _factor(M: sp.spmatrix) -> spla.SuperLU:
-    """Sparse LU of a symmetric positive definite matrix (no pivoting needed, symmetric ordering)."""
-    return spla.splu(
-        sp.csc_matrix(M), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
-    )
-
-
 def _rayleigh_ritz(
     basis: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -390,7 +384,7 @@ class RegularizedPCA:
     def _base(self) -> tuple[spla.SuperLU, NDArray[np.float64]]:
         """Factor of ``W + t0 A`` and ``(W + t0 A)^-1 A X``: independent of mu, computed once."""
         if self._base_factor is None:
-            self._base_factor = _factor(self.stiffness + self._t0 * self.mass)
+            self._base_factor = symmetric_lu(self.stiffness + self._t0 * self.mass)
             self._base_solved = self._base_factor.solve(np.array(self._U))
         assert self._base_solved is not None
         return self._base_factor, self._base_solved
@@ -429,7 +423,7 @@ class RegularizedPCA:
         for shift in theta:
             if shift <= tau * (1 + 1e-8):
                 continue
-            factor = _factor(mu * W + shift * A)
+            factor = symmetric_lu(mu * W + shift * A)
             solved = factor.solve(np.array(U))
             factors.append(_ShiftedFactor(float(shift), factor, solved, np.eye(c) - U.T @ solved))
         if factors:
