@@ -25,13 +25,13 @@ from typing import Callable, Union
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 from ._deprecation import renamed
 from .inner_product import a_orthonormalize, check_operators
+from .sparse_factor import symmetric_lu
 from .spectrum import eigenbasis
 
 __all__ = [
@@ -123,7 +123,7 @@ def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float =
         raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)
     t = (width * np.sqrt(mesh.area)) ** 2
-    lu = spla.splu((A + t * W).tocsc(), permc_spec="MMD_AT_PLUS_A")
+    lu = symmetric_lu(A + t * W)
     g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(k)))
     return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if k else g
 
@@ -160,7 +160,7 @@ def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> 
     source = int(np.argmax(mesh.vertices[:, 0]))
     heat = np.zeros(mesh.n_vertices)
     heat[source] = 1.0
-    step = spla.splu((A + heat_time * mesh.area * W).tocsc())
+    step = symmetric_lu(A + heat_time * mesh.area * W)
     for _ in range(4):
         heat = step.solve(np.asarray(A @ heat))
     distance = geodesic_distances(mesh, [source])[0]

@@ -23,11 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
 
-from .inner_product import symmetric_lu
+from .sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 
 __all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
@@ -54,30 +53,31 @@ class SliceFactor:
         The point ``b`` of the spectrum.
     n_below : int
         Number of eigenvalues of ``W phi = lam A phi`` strictly below ``shift`` (Sylvester inertia).
-    lu : scipy.sparse.linalg.SuperLU or None
+    lu : SymmetricFactor or None
         The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``. ``None`` once dropped (a
         factorisation takes about as much memory as 60 eigenvectors; the count is what remains).
     """
 
     shift: float
     n_below: int
-    lu: spla.SuperLU | None
+    lu: SymmetricFactor | None
 
     @classmethod
-    def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float) -> "SliceFactor":
-        """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue."""
+    def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float, order: NDArray[np.intp] | None = None) -> "SliceFactor":
+        """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue.
+
+        ``order``: a :func:`~lbo_notebooks.sparse_factor.fill_reducing_order` of the pattern of
+        ``stiffness`` and ``mass``, shared by every shift (computed when omitted).
+        """
         try:
-            # Diagonal pivots only and one symmetric ordering of rows and columns: then U = D L^T
-            # and the signs of diag(U) are the inertia of the matrix.
-            lu = symmetric_lu(stiffness - shift * mass)
+            lu = symmetric_lu(stiffness - shift * mass, order)
         except RuntimeError as err:  # an exactly zero pivot: shift is (numerically) an eigenvalue
             raise ValueError(f"W - {shift:.17g} A is singular; move the shift off the eigenvalue.") from err
-        if not np.array_equal(lu.perm_r, lu.perm_c):
-            raise ValueError("the factorisation pivoted off the diagonal, so its pivots do not give the inertia.")
-        pivots = lu.U.diagonal()
-        if not np.all(np.isfinite(pivots)):
-            raise ValueError(f"W - {shift:.17g} A has a non-finite pivot; check the operators for NaN or inf.")
-        return cls(shift=float(shift), n_below=int(np.count_nonzero(pivots < 0)), lu=lu)
+        try:
+            n_below = lu.n_negative
+        except ValueError as err:
+            raise ValueError(f"W - {shift:.17g} A: {err}") from err
+        return cls(shift=float(shift), n_below=n_below, lu=lu)
 
 
 def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
@@ -107,7 +107,9 @@ def _window_set(
     return nearest_eigenpairs(factor.lu.solve, W, A, factor.shift, nev, start=v0, window=window, tol=TOL, block_size=block_size)
 
 
-def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: int, slope: float, k: int) -> SliceFactor:
+def _next_shift(
+    W: sp.csr_matrix, A: sp.csr_matrix, order: NDArray[np.intp], current: SliceFactor, want: int, slope: float, k: int
+) -> SliceFactor:
     """Factorise a shift about ``want`` eigenvalues above ``current`` (``slope``: eigenvalues per unit).
 
     Too few or too many new eigenvalues move the shift (by the counts' slope, then by bisection
@@ -120,7 +122,7 @@ def _next_shift(W: sp.csr_matrix, A: sp.csr_matrix, current: SliceFactor, want: 
     spacing = 1.0 / slope  # typical distance between eigenvalues
     for _ in range(60):
         try:
-            nxt = SliceFactor.of(W, A, shift)
+            nxt = SliceFactor.of(W, A, shift, order)
         except ValueError as error:  # the shift hit an eigenvalue (e.g. 0 on a mesh of many pieces): step off it
             if "singular" not in str(error):
                 raise
@@ -223,10 +225,11 @@ def slice_eigsh(
     elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}.")
     n_sets = plan_sets(k, slice_size, int(workers))
+    order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
     # One BLAS thread per worker: no oversubscription, and the same round-off for any `workers`.
     with threadpool_limits(1), ThreadPoolExecutor(max_workers=int(workers)) as pool:
-        shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, float(shift), k, v0, n_sets)
-        return _stitch(W, A, k, v0, shifts, counts, plans, sets, top_count)
+        shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, order, float(shift), k, v0, n_sets)
+        return _stitch(W, A, order, k, v0, shifts, counts, plans, sets, top_count)
 
 
 def _return_freed_memory() -> None:
@@ -307,6 +310,7 @@ def _submit_sets(
     workers: int,
     W: sp.csr_matrix,
     A: sp.csr_matrix,
+    order: NDArray[np.intp],
     shift: float,
     k: int,
     v0: NDArray[np.float64],
@@ -318,16 +322,18 @@ def _submit_sets(
     ``k / n_sets`` of them, centred on its shift. A factorisation is large (about the size of 60
     eigenvectors), so the next shift is factorised only when fewer than ``workers`` sets are
     unfinished: at most ``workers`` factorisations are alive, and a set drops its own when it ends.
-    While the sets run, this thread also makes the two counts that are not shifts of a set: at
-    ``-shift`` (there must be no eigenvalue below it, else ``ValueError``) and at the top of the
-    last window (usually the certificate above ``lam_k``; ``None`` if that point is an eigenvalue).
+    While the sets run, this thread also makes the one count that is not a set's shift: at the top
+    of the last window (usually the certificate above ``lam_k``; ``None`` if that point is an
+    eigenvalue). At ``-shift`` no count is needed: when the first interval holds exactly its
+    count, no eigenvalue can lie below ``-shift``.
     Returns the shifts, their counts, the sets' plans and futures (index 0, the shift ``-shift``,
     has no set: ``None``) and the top count.
     """
     # Weyl's law N(lam) ~ area lam / (4 pi) sets the first spacing; later ones extrapolate the
     # measured counts (N grows about linearly in lam on a surface).
     slope = float(A.sum()) / (4.0 * np.pi)
-    first = SliceFactor(shift=-shift, n_below=0, lu=None)  # checked below, once set 1 runs
+    # No eigenvalue lies below -shift: proved by the first interval's count (see _stitch).
+    first = SliceFactor(shift=-shift, n_below=0, lu=None)
     shifts, counts = [first.shift], [first.n_below]
     futures: list[Future | None] = [None]
     plans: list[_Set | None] = [None]
@@ -353,7 +359,7 @@ def _submit_sets(
     for j in range(1, n_sets + 1):
         make_room()
         want = max(1, round((j - 0.5) * k / n_sets) - counts[-1])
-        alive[j] = _next_shift(W, A, previous, want, slope, k)
+        alive[j] = _next_shift(W, A, order, previous, want, slope, k)
         shifts.append(alive[j].shift)
         counts.append(alive[j].n_below)
         # Local density of eigenvalues (per unit of lam) from the last two counts.
@@ -361,11 +367,9 @@ def _submit_sets(
         plans.append(_plan_set(shifts, counts, plans[j - 1], k, n_sets, slope))
         previous = SliceFactor(shift=alive[j].shift, n_below=alive[j].n_below, lu=None)
         futures.append(pool.submit(run, j))
-        if j == 1 and SliceFactor.of(W, A, -shift).n_below:
-            raise ValueError(f"stiffness + {shift:g} mass is not positive definite: stiffness must be positive semidefinite.")
     make_room()  # one more factorisation only when a set's is gone
     try:
-        top_count: int | None = SliceFactor.of(W, A, plans[-1].high).n_below
+        top_count: int | None = SliceFactor.of(W, A, plans[-1].high, order).n_below
     except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
         top_count = None
     wait(futures[1:])
@@ -403,6 +407,7 @@ def _split(
 def _stitch(
     W: sp.csr_matrix,
     A: sp.csr_matrix,
+    order: NDArray[np.intp],
     k: int,
     v0: NDArray[np.float64],
     shifts: list[float],
@@ -445,7 +450,7 @@ def _stitch(
         )
         window = (plans[j].low, plans[j].high)
         block_size = BLOCK_SIZE * 2**attempt
-        return _window_set(W, A, SliceFactor.of(W, A, shifts[j]), window, plans[j].expected, v0, block_size)
+        return _window_set(W, A, SliceFactor.of(W, A, shifts[j], order), window, plans[j].expected, v0, block_size)
 
     carry_values, carry_vectors, carry_top = np.empty(0), np.empty((n, 0)), shifts[0]
     for j in range(1, len(shifts)):
@@ -456,6 +461,12 @@ def _stitch(
             masks = _split(carry_values, carry_top, values, shifts[j - 1], shifts[j], plans[j].low, interval)
             if masks is not None or attempt == 2:
                 break
+            # The first interval, when complete, proves that no eigenvalue lies below -shift (the
+            # count at shift 1 has no room for one); only when it is not is that count worth making.
+            if j == 1 and SliceFactor.of(W, A, shifts[0], order).n_below:
+                raise ValueError(
+                    f"stiffness + {-shifts[0]:g} mass is not positive definite: stiffness must be positive semidefinite."
+                )
             values, vectors = redo(j, attempt + 1)
         if masks is None:
             raise RuntimeError(
@@ -478,7 +489,7 @@ def _stitch(
             edges = np.append(carry_values[need - 1 :], carry_top)
             gaps = np.diff(edges)
             top = float(edges[np.argmax(gaps)] + gaps.max() / 2)
-            n_below = SliceFactor.of(W, A, top).n_below
+            n_below = SliceFactor.of(W, A, top, order).n_below
             if n_below == counts[-1] + np.count_nonzero(carry_values < top):
                 fill(carry_values, carry_vectors)
                 return out_values, out_vectors, n_below

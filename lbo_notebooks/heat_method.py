@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
 
 from .eigensolver import default_workers
-from .inner_product import symmetric_lu
+from .sparse_factor import symmetric_lu
 from .mesh import Mesh, MeshError, per_mesh
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]

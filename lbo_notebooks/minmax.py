@@ -36,6 +36,7 @@ from .inner_product import (
     start_vector,
     use_dense,
 )
+from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
 __all__ = [
@@ -137,7 +138,7 @@ class ConstrainedRayleigh:
     def __init__(self, stiffness: ArrayLike | sp.spmatrix, mass: ArrayLike | sp.spmatrix) -> None:
         self.stiffness, self.mass = _operators(stiffness, mass)
         self.shift = default_shift(self.mass)
-        self._lu = spla.splu((self.stiffness + self.shift * self.mass).tocsc(), permc_spec="MMD_AT_PLUS_A")
+        self._lu = symmetric_lu(self.stiffness + self.shift * self.mass)
 
     def minimum(
         self, orthogonal_to: ArrayLike | None = None, *, return_vector: bool = False

@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._deprecation import renamed
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
 from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
+from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
 __all__ = [
@@ -202,7 +203,7 @@ class _RegularisedStiffnessSolver:
         keep = np.ones(n, dtype=bool)
         keep[pinned] = False
         self.keep = keep
-        self.lu = spla.splu(W[keep][:, keep].tocsc(), permc_spec="MMD_AT_PLUS_A")
+        self.lu = symmetric_lu(W[keep][:, keep])
         self.W = W
 
     def _sum(self, x: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -64,9 +64,9 @@ from .inner_product import (
     reconstruct,
     reconstruction_error,
     start_vector,
-    symmetric_lu,
     use_dense,
 )
+from .sparse_factor import SymmetricFactor, symmetric_lu
 from .spectrum import eigenbasis
 
 __all__ = [
@@ -104,7 +104,7 @@ class _ShiftedFactor:
     """A sparse LU of ``mu W + shift A`` with the Woodbury pieces for ``- U U.T``."""
 
     shift: float
-    factor: spla.SuperLU
+    factor: SymmetricFactor
     solved: NDArray[np.float64]  # factor^-1 U
     capacitance: NDArray[np.float64]  # I - U.T factor^-1 U
 
@@ -260,7 +260,7 @@ class RegularizedPCA:
         self.data_values.setflags(write=False)
         # The split-point shift: small against the smoothness eigenvalues at every scale.
         self._t0 = default_shift(A)
-        self._base_factor: spla.SuperLU | None = None
+        self._base_factor: SymmetricFactor | None = None
         self._base_solved: NDArray[np.float64] | None = None
 
     def __repr__(self) -> str:
@@ -381,7 +381,7 @@ class RegularizedPCA:
         )
 
     # ---- the sparse exact path ----
-    def _base(self) -> tuple[spla.SuperLU, NDArray[np.float64]]:
+    def _base(self) -> tuple[SymmetricFactor, NDArray[np.float64]]:
         """Factor of ``W + t0 A`` and ``(W + t0 A)^-1 A X``: independent of mu, computed once."""
         if self._base_factor is None:
             self._base_factor = symmetric_lu(self.stiffness + self._t0 * self.mass)

@@ -136,6 +136,9 @@ def test_bad_arguments():
         slice_eigsh(W, A, 5, v0=np.ones(3), shift=0.01)
     with pytest.raises(ValueError, match="positive semidefinite"):
         slice_eigsh(-W, A, 5, v0=start(n), shift=0.01)
+    # One eigenvalue (the constant's, 0) below -shift: only the first interval's count can tell.
+    with pytest.raises(ValueError, match="positive semidefinite"):
+        slice_eigsh(W - 0.02 * A, A, 5, v0=start(n), shift=0.01)
     with pytest.raises(ValueError, match="solver must be"):
         eigenbasis(shapes.icosphere(2), 5, solver="lapack")
 

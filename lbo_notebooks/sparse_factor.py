@@ -1,0 +1,131 @@
+"""The one sparse factorisation of a symmetric matrix: nested-dissection order, diagonal pivots.
+
+Every solver in the package factorises a symmetric matrix built from ``W`` and ``A``: the
+shift-invert eigensolver (``W - b A``, indefinite), the heat method (``A + t W``, the pinned
+``W``), regularized PCA, the smoothing bases. :func:`symmetric_lu` is that factorisation, once.
+
+The ordering decides the cost. On a surface mesh the graph is planar-like, and nested dissection
+(METIS, via ``pymetis``) cuts it along small separators: at 51k vertices it left 27% less fill
+than SuperLU's own minimum-degree ordering, factorised 3x faster and solved 1.6x faster per
+right-hand side (``benchmarks/eigen.py``). Every matrix with the same sparsity pattern can share
+one ordering (:func:`fill_reducing_order`), as the eigensolver's shifts do.
+
+Pivots are taken on the diagonal, in the symmetric order: ``P M P^T = L U`` with ``U = D L^T``,
+so for an indefinite ``M`` the signs of ``D`` are its inertia (Sylvester's law), which is how
+the eigensolver counts eigenvalues (:attr:`SymmetricFactor.n_negative`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["SymmetricFactor", "fill_reducing_order", "symmetric_lu"]
+
+
+def fill_reducing_order(matrix: sp.spmatrix) -> NDArray[np.intp]:
+    """Nested-dissection ordering (METIS) of the sparsity graph of a square sparse matrix.
+
+    The graph has an edge ``i - j`` where ``matrix[i, j]`` or ``matrix[j, i]`` is stored; values
+    do not matter, so one ordering serves every matrix with that pattern.
+
+    Returns
+    -------
+    ndarray (n,)
+        A permutation: ``matrix[order][:, order]`` is the matrix to factorise.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, stiffness_matrix
+    >>> order = fill_reducing_order(stiffness_matrix(shapes.icosphere(2)))
+    >>> sorted(order.tolist()) == list(range(162))
+    True
+    """
+    import pymetis
+
+    pattern = sp.csr_matrix(matrix, copy=True)
+    if pattern.ndim != 2 or pattern.shape[0] != pattern.shape[1]:
+        raise ValueError(f"a fill-reducing order needs a square matrix, got shape {pattern.shape}.")
+    n = pattern.shape[0]
+    if n <= 2:
+        return np.arange(n)
+    pattern.data = np.ones_like(pattern.data)
+    pattern = (pattern + pattern.T).tocsr()
+    pattern.setdiag(0)
+    pattern.eliminate_zeros()
+    pattern.sort_indices()
+    order, _ = pymetis.nested_dissection(pymetis.CSRAdjacency(pattern.indptr, pattern.indices))
+    return np.asarray(order, dtype=np.intp)
+
+
+class SymmetricFactor:
+    """``M = P^T L D L^T P`` for a symmetric sparse ``M``, as an unpivoted SuperLU of ``P M P^T``.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix (n, n)
+        Symmetric; not modified.
+    order : ndarray (n,), optional
+        The symmetric permutation ``P`` (a :func:`fill_reducing_order` of this matrix or of any
+        with the same pattern); computed when omitted.
+
+    Raises
+    ------
+    RuntimeError
+        SuperLU's, on an exactly zero pivot (the matrix is singular, or is one step from it).
+    """
+
+    def __init__(self, matrix: sp.spmatrix, order: ArrayLike | None = None) -> None:
+        M = sp.csr_matrix(matrix)
+        n = M.shape[0]
+        self.order = fill_reducing_order(M) if order is None else np.asarray(order, dtype=np.intp)
+        if self.order.shape != (n,) or not np.array_equal(np.sort(self.order), np.arange(n)):
+            raise ValueError(f"order must be a permutation of the {n} indices 0..{n - 1} (see fill_reducing_order).")
+        # Threshold 0 pivots on the diagonal in the given (natural) order: then U = D L^T.
+        self._lu = spla.splu(
+            M[self.order][:, self.order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True}
+        )
+        self.shape = (n, n)
+
+    @property
+    def nnz(self) -> int:
+        """Stored entries of ``L`` and ``U`` (the fill)."""
+        return int(self._lu.L.nnz + self._lu.U.nnz)
+
+    @property
+    def n_negative(self) -> int:
+        """Number of negative eigenvalues of the matrix (negative pivots: Sylvester's law of inertia).
+
+        Raises ``ValueError`` if SuperLU pivoted off the diagonal (then the pivots are not the
+        inertia) or a pivot is not finite.
+        """
+        if not (np.array_equal(self._lu.perm_r, self._lu.perm_c) and np.array_equal(self._lu.perm_c, np.arange(self.shape[0]))):
+            raise ValueError("the factorisation pivoted off the diagonal, so its pivots do not give the inertia.")
+        pivots = self._lu.U.diagonal()
+        if not np.all(np.isfinite(pivots)):
+            raise ValueError("the matrix has a non-finite pivot; check it for NaN or inf.")
+        return int(np.count_nonzero(pivots < 0))
+
+    def solve(self, rhs: ArrayLike) -> NDArray[np.float64]:
+        """``M^{-1} rhs`` for a vector (n,) or a block (n, c) of right-hand sides; a new array."""
+        b = np.asarray(rhs, dtype=np.float64)
+        if b.shape[:1] != (self.shape[0],) or b.ndim > 2:
+            raise ValueError(f"rhs must have shape ({self.shape[0]},) or ({self.shape[0]}, c), got {b.shape}.")
+        x = np.empty(b.shape, order="F")
+        x[self.order] = self._lu.solve(np.asfortranarray(b[self.order]))
+        return x
+
+
+def symmetric_lu(matrix: sp.spmatrix, order: ArrayLike | None = None) -> SymmetricFactor:
+    """Factorise a symmetric sparse matrix (:class:`SymmetricFactor`): nested-dissection order, diagonal pivots.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lu = symmetric_lu(sp.diags([2.0, -1.0, 4.0]))
+    >>> lu.solve(np.array([2.0, 1.0, 8.0])).tolist(), lu.n_negative
+    ([1.0, -1.0, 2.0], 1)
+    """
+    return SymmetricFactor(matrix, order)

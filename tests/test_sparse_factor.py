@@ -1,0 +1,85 @@
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
+
+
+@pytest.fixture(scope="module")
+def operators():
+    mesh = shapes.bumpy_sphere(3)
+    return stiffness_matrix(mesh), mass_matrix(mesh)
+
+
+def test_order_is_a_deterministic_permutation(operators):
+    W, _ = operators
+    order = fill_reducing_order(W)
+    assert np.array_equal(np.sort(order), np.arange(W.shape[0]))
+    assert np.array_equal(order, fill_reducing_order(W.copy()))
+    assert fill_reducing_order(sp.eye(2)).tolist() == [0, 1]
+    assert fill_reducing_order(sp.csr_matrix((0, 0))).size == 0
+
+
+def test_order_depends_on_the_pattern_only(operators):
+    W, A = operators
+    assert np.array_equal(fill_reducing_order(W - 3.0 * A), fill_reducing_order(abs(W) + abs(A)))
+
+
+@pytest.mark.parametrize("shift", [-0.5, 7.0, 31.0])
+def test_solves_match_an_independent_sparse_solve(operators, shift):
+    W, A = operators
+    M = W - shift * A
+    factor = symmetric_lu(M)
+    rng = np.random.default_rng(0)
+    b = rng.standard_normal(M.shape[0])
+    B = rng.standard_normal((M.shape[0], 3))
+    reference = spla.spsolve(M.tocsc(), B)
+    x, X = factor.solve(b), factor.solve(B)
+    assert np.linalg.norm(X - reference) <= 1e-9 * np.linalg.norm(reference)
+    assert np.linalg.norm(M @ x - b) <= 1e-10 * (abs(M).sum(axis=1).max() * np.linalg.norm(x))
+    assert np.array_equal(factor.solve(B[:, 0]), factor.solve(B)[:, 0])
+
+
+def test_negative_pivots_are_the_inertia(operators):
+    W, A = operators
+    exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+    for value in np.quantile(exact, [0.1, 0.4, 0.8]) * 1.0001:
+        assert symmetric_lu(W - value * A).n_negative == np.count_nonzero(exact < value)
+
+
+def test_a_shared_order_gives_the_same_solution(operators):
+    W, A = operators
+    order = fill_reducing_order(abs(W) + abs(A))
+    b = np.cos(np.arange(W.shape[0]))
+    own, shared = symmetric_lu(W + 2.0 * A).solve(b), symmetric_lu(W + 2.0 * A, order).solve(b)
+    assert np.linalg.norm(own - shared) <= 1e-12 * np.linalg.norm(own)
+
+
+def test_nested_dissection_leaves_less_fill_than_minimum_degree():
+    mesh = shapes.torus(1.0, 0.4, 160, 64)  # 10k vertices
+    M = (stiffness_matrix(mesh) + mass_matrix(mesh)).tocsc()
+    mmd = spla.splu(M, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    assert symmetric_lu(M).nnz < 0.9 * (mmd.L.nnz + mmd.U.nnz)
+
+
+def test_bad_input_is_refused_and_not_modified(operators):
+    W, A = operators
+    M = (W + A).tocsr()
+    before = M.copy()
+    factor = SymmetricFactor(M)
+    with pytest.raises(ValueError, match="rhs must have shape"):
+        factor.solve(np.ones(3))
+    with pytest.raises(ValueError, match="order must be a permutation"):
+        SymmetricFactor(M, order=np.arange(3))
+    with pytest.raises(ValueError, match="order must be a permutation"):
+        SymmetricFactor(M, order=np.zeros(M.shape[0], dtype=int))
+    with pytest.raises(ValueError, match="square"):
+        fill_reducing_order(sp.csr_matrix((3, 4)))
+    with pytest.raises(RuntimeError):  # exactly singular: SuperLU's own error, callers name the cause
+        symmetric_lu(sp.csr_matrix(np.array([[1.0, 1.0], [1.0, 1.0]])))
+    b = np.ones(M.shape[0])
+    factor.solve(b)
+    assert (M != before).nnz == 0 and np.array_equal(b, np.ones(M.shape[0]))
