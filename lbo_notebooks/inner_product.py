@@ -280,15 +280,17 @@ def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np
     # A few columns at a time: the temporaries stay small for (n_vertices, 300) bases.
     for start in range(0, v.shape[1], 32):
         block = v[:, start : start + 32]
-        mag = np.abs(block)
         cube = block * block * block  # not block**3: the generic power is several times slower
         moment = a @ cube
-        scale = a @ (cube * np.sign(block))
-        # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
-        # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
-        first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
-        peak = block[first_peak, np.arange(block.shape[1])]
-        sign = np.where(np.abs(moment) > 1e-6 * scale, np.sign(moment), np.sign(peak))
+        np.abs(cube, out=cube)
+        sign = np.sign(moment)
+        vanishing = np.flatnonzero(np.abs(moment) <= 1e-6 * (a @ cube))
+        if vanishing.size:
+            # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
+            # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
+            mag = np.abs(block[:, vanishing])
+            first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
+            sign[vanishing] = np.sign(block[first_peak, vanishing])
         sign[sign == 0] = 1.0
         block *= sign
     return v
