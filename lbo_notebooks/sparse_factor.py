@@ -5,10 +5,12 @@ shift-invert eigensolver (``W - b A``, indefinite), the heat method (``A + t W``
 ``W``), regularized PCA, the smoothing bases. :func:`symmetric_lu` is that factorisation, once.
 
 The ordering decides the cost. On a surface mesh the graph is planar-like, and nested dissection
-(METIS, via ``pymetis``) cuts it along small separators: at 51k vertices it left 27% less fill
-than SuperLU's own minimum-degree ordering, factorised 3x faster and solved 1.6x faster per
-right-hand side (``benchmarks/eigen.py``). Every matrix with the same sparsity pattern can share
-one ordering (:func:`fill_reducing_order`), as the eigensolver's shifts do.
+(METIS, via ``pymetis``) cuts it along small separators. Against SuperLU ordering the same matrix
+itself by minimum degree (``benchmarks/ordering.py``, one run): at 51k vertices 27% less fill, the
+factorisation 3.1x faster (1.3x counting the ordering's own time) and each solve 1.3x faster; at
+150k vertices 29% less fill, factorisation 7.2x (3.5x) and solves 1.7x faster. The ordering
+depends only on the sparsity pattern, so matrices that share one can share it
+(:func:`fill_reducing_order`), as the eigensolver's shifts do.
 
 Pivots are taken on the diagonal, in the symmetric order: ``P M P^T = L U`` with ``U = D L^T``,
 so for an indefinite ``M`` the signs of ``D`` are its inertia (Sylvester's law), which is how
