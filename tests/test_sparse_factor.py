@@ -5,7 +5,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
+from lbo_notebooks.sparse_factor import NESTED_DISSECTION_MIN, SymmetricFactor, fill_reducing_order, symmetric_lu
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +62,19 @@ def test_nested_dissection_leaves_less_fill_than_minimum_degree():
     mesh = shapes.torus(1.0, 0.4, 160, 64)  # 10k vertices
     M = (stiffness_matrix(mesh) + mass_matrix(mesh)).tocsc()
     mmd = spla.splu(M, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    assert symmetric_lu(M).nnz < 0.9 * (mmd.L.nnz + mmd.U.nnz)
+    assert symmetric_lu(M, fill_reducing_order(M)).nnz < 0.9 * (mmd.L.nnz + mmd.U.nnz)
+    assert symmetric_lu(M).nnz == mmd.L.nnz + mmd.U.nnz  # below NESTED_DISSECTION_MIN: SuperLU's own order
+
+
+def test_large_matrices_are_ordered_by_nested_dissection():
+    mesh = shapes.torus(1.0, 0.4, 240, 96)
+    assert mesh.n_vertices >= NESTED_DISSECTION_MIN
+    M = stiffness_matrix(mesh) + mass_matrix(mesh)
+    factor = symmetric_lu(M)
+    assert np.array_equal(factor.order, fill_reducing_order(M))
+    b = np.sin(np.arange(mesh.n_vertices))
+    x = factor.solve(b)
+    assert np.linalg.norm(M @ x - b) <= 1e-10 * np.linalg.norm(x) * abs(M).sum(axis=1).max()
 
 
 def test_bad_input_is_refused_and_not_modified(operators):
