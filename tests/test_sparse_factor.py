@@ -40,7 +40,9 @@ def test_solves_match_an_independent_sparse_solve(operators, shift):
     x, X = factor.solve(b), factor.solve(B)
     assert np.linalg.norm(X - reference) <= 1e-9 * np.linalg.norm(reference)
     assert np.linalg.norm(M @ x - b) <= 1e-10 * (abs(M).sum(axis=1).max() * np.linalg.norm(x))
-    assert np.array_equal(factor.solve(B[:, 0]), factor.solve(B)[:, 0])
+    # A vector and a block column agree to round-off (BLAS-2 and BLAS-3 paths round differently).
+    column = factor.solve(B)[:, 0]
+    assert np.linalg.norm(factor.solve(B[:, 0]) - column) <= 1e-12 * np.linalg.norm(column)
 
 
 def test_negative_pivots_are_the_inertia(operators):
