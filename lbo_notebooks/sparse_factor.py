@@ -54,18 +54,18 @@ def fill_reducing_order(matrix: sp.spmatrix) -> NDArray[np.intp]:
     """
     import pymetis
 
-    pattern = sp.csr_matrix(matrix, copy=True)
-    if pattern.ndim != 2 or pattern.shape[0] != pattern.shape[1]:
-        raise ValueError(f"a fill-reducing order needs a square matrix, got shape {pattern.shape}.")
-    n = pattern.shape[0]
+    entries = sp.coo_matrix(matrix)
+    if entries.ndim != 2 or entries.shape[0] != entries.shape[1]:
+        raise ValueError(f"a fill-reducing order needs a square matrix, got shape {entries.shape}.")
+    n = entries.shape[0]
     if n <= 2:
         return np.arange(n)
-    pattern.data = np.ones_like(pattern.data)
-    pattern = (pattern + pattern.T).tocsr()
-    pattern.setdiag(0)
-    pattern.eliminate_zeros()
-    pattern.sort_indices()
-    order, _ = pymetis.nested_dissection(pymetis.CSRAdjacency(pattern.indptr, pattern.indices))
+    off_diagonal = entries.row != entries.col
+    rows, cols = entries.row[off_diagonal], entries.col[off_diagonal]
+    graph = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
+    graph = (graph + graph.T).tocsr()  # METIS wants each edge in both directions
+    graph.sort_indices()
+    order, _ = pymetis.nested_dissection(pymetis.CSRAdjacency(graph.indptr, graph.indices))
     return np.asarray(order, dtype=np.intp)
 
 
@@ -135,7 +135,7 @@ class SymmetricFactor:
 
 
 def symmetric_lu(matrix: sp.spmatrix, order: ArrayLike | None = None) -> SymmetricFactor:
-    """Factorise a symmetric sparse matrix (:class:`SymmetricFactor`): nested-dissection order, diagonal pivots.
+    """Factorise a symmetric sparse matrix (:class:`SymmetricFactor`): a fill-reducing symmetric order, diagonal pivots.
 
     Examples
     --------

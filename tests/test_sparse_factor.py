@@ -1,3 +1,5 @@
+import warnings
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -21,6 +23,10 @@ def test_order_is_a_deterministic_permutation(operators):
     assert np.array_equal(order, fill_reducing_order(W.copy()))
     assert fill_reducing_order(sp.eye(2)).tolist() == [0, 1]
     assert fill_reducing_order(sp.csr_matrix((0, 0))).size == 0
+    path = sp.diags([np.ones(9), np.ones(9)], [-1, 1]).tocsr()  # no stored diagonal: nothing to warn about
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert sorted(fill_reducing_order(path).tolist()) == list(range(10))
 
 
 def test_order_depends_on_the_pattern_only(operators):
