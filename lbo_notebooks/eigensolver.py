@@ -67,7 +67,8 @@ class SliceFactor:
         """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue.
 
         ``order``: a :func:`~lbo_notebooks.sparse_factor.fill_reducing_order` of the pattern of
-        ``stiffness`` and ``mass``, shared by every shift (computed when omitted).
+        ``stiffness`` and ``mass``, shared by every shift (when omitted,
+        :func:`~lbo_notebooks.sparse_factor.symmetric_lu` chooses one by size).
         """
         try:
             lu = symmetric_lu(stiffness - shift * mass, order)

@@ -1,4 +1,4 @@
-"""The one sparse factorisation of a symmetric matrix: nested-dissection order, diagonal pivots.
+"""The one sparse factorisation of a symmetric matrix: a fill-reducing symmetric order, diagonal pivots.
 
 Every solver in the package factorises a symmetric matrix built from ``W`` and ``A``: the
 shift-invert eigensolver (``W - b A``, indefinite), the heat method (``A + t W``, the pinned
