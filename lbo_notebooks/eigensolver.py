@@ -321,8 +321,10 @@ def _submit_sets(
 
     Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
     ``k / n_sets`` of them, centred on its shift. A factorisation is large (about the size of 60
-    eigenvectors), so the next shift is factorised only when fewer than ``workers`` sets are
-    unfinished: at most ``workers`` factorisations are alive, and a set drops its own when it ends.
+    eigenvectors), so the next shift is factorised only when at most ``workers`` sets are
+    unfinished: one set waits, factorised, for the first worker to come free (a worker never idles
+    while a factorisation is made), at most ``workers + 1`` factorisations are alive, and a set
+    drops its own when it ends.
     While the sets run, this thread also makes the one count that is not a set's shift: at the top
     of the last window (usually the certificate above ``lam_k``; ``None`` if that point is an
     eigenvalue). At ``-shift`` no count is needed: when the first interval holds exactly its
@@ -346,10 +348,11 @@ def _submit_sets(
         return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0)
 
     def make_room() -> None:
-        # Wait until fewer than `workers` sets run, then free the factorisations of finished ones.
-        running = [f for f in futures[1:] if not f.done()]
-        if len(running) >= workers:
-            wait(running, return_when=FIRST_COMPLETED)
+        # Wait until at most `workers` sets are unfinished (running or queued), then free the
+        # factorisations of finished ones.
+        unfinished = [f for f in futures[1:] if not f.done()]
+        if len(unfinished) > workers:
+            wait(unfinished, return_when=FIRST_COMPLETED)
         finished = [j for j in alive if futures[j].done()]
         for j in finished:
             del alive[j]

@@ -31,6 +31,9 @@ __all__ = [
     "check_functions",
     "a_norms",
     "a_orthonormalize",
+    "mass_operator",
+    "cholesky_qr",
+    "fix_signs_in_place",
     "fix_signs",
     "default_shift",
     "start_vector",
@@ -117,6 +120,42 @@ def check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[n
 
 
 # --- norms and orthonormal bases ---------------------------------------------------------------
+class DiagonalMass:
+    """A diagonal (lumped) mass matrix applied as a row scaling: ``mass @ X`` keeps X's memory order.
+
+    SciPy's sparse-times-dense product walks the rows in C order (copying a Fortran-ordered
+    block first) and is several times slower than the scaling on tall blocks: at 51k vertices
+    ``A @ Phi`` with 300 columns took 0.36 s.
+    """
+
+    def __init__(self, diagonal: NDArray[np.float64]) -> None:
+        self.diagonal = np.asarray(diagonal, dtype=np.float64)
+        self.shape = (self.diagonal.size, self.diagonal.size)
+
+    def __matmul__(self, X: ArrayLike) -> NDArray[np.float64]:
+        X = np.asarray(X)
+        return self.diagonal[:, None] * X if X.ndim == 2 else self.diagonal * X
+
+
+def mass_operator(mass: sp.spmatrix) -> sp.spmatrix | DiagonalMass:
+    """``mass`` ready for many products ``mass @ X``: a :class:`DiagonalMass` when it is diagonal, else itself.
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> A = mass_operator(sp.diags([1.0, 2.0, 3.0]))
+    >>> type(A).__name__, (A @ np.ones((3, 2))).tolist()
+    ('DiagonalMass', [[1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])
+    """
+    if isinstance(mass, DiagonalMass):
+        return mass
+    coo = sp.coo_matrix(mass)
+    stored = coo.data != 0
+    if np.array_equal(coo.row[stored], coo.col[stored]):
+        return DiagonalMass(np.asarray(mass.diagonal(), dtype=np.float64))
+    return mass
+
+
 def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """A-norm ``sqrt(x @ A @ x)`` of each column of ``X`` (shape (c,)).
 
@@ -217,14 +256,11 @@ def a_orthonormalize(
         raise ValueError("vectors contain NaN or inf.")
     if not (np.isfinite(rtol) and 0 < rtol < 1):
         raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
+    mass = mass_operator(mass)
     if refine and cols.shape[1]:
-        gram = cols.T @ (mass @ cols)
-        if np.abs(gram - np.eye(cols.shape[1])).max() < _NEARLY_ORTHONORMAL:
-            # Already A-orthonormal up to ~sqrt(eps) (e.g. eigenvectors from ARPACK): one Cholesky
-            # QR pass, Q = V L^-T with L L^T = V^T A V, is exact to round-off and all BLAS-3.
-            chol = np.linalg.cholesky(gram)
-            # V @ L^-T as one matrix product (at 51k x 400: 0.26 s, against 1.2 s for solve(L, V.T)).
-            return cols @ np.linalg.inv(chol).T
+        refined = cholesky_qr(cols, mass, out=np.empty(cols.shape))
+        if refined is not None:
+            return refined
     Q = np.empty((nv, cols.shape[1]))
     r = 0
     for lo in range(0, cols.shape[1], _BLOCK):
@@ -254,6 +290,46 @@ def a_orthonormalize(
     return Q[:, :r]
 
 
+_ROWS = 4096  # row blocks of tall products: small temporaries, still BLAS-3
+
+
+def cholesky_qr(
+    vectors: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass, *, out: NDArray[np.float64]
+) -> NDArray[np.float64] | None:
+    """``out = V L^-T`` with ``L L^T = V^T A V`` when ``V`` is A-orthonormal to ``1e-8``; else ``None``.
+
+    The refinement of :func:`a_orthonormalize` (``refine=True``): one Cholesky QR pass, exact to
+    round-off for nearly orthonormal input, all BLAS-3, column ``j`` mixing only columns
+    ``0..j``. Row block by row block, so ``out`` may be ``vectors`` itself (an eigensolver's own
+    output, refined without a second n x k array) and a lumped mass needs no n x k temporary.
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> V = np.eye(4)[:, :2] * 0.5 * (1 + 1e-10)
+    >>> Q = cholesky_qr(V, sp.identity(4) * 4.0, out=V)
+    >>> bool(np.allclose(Q.T @ (4.0 * Q), np.eye(2), rtol=0, atol=1e-15)), Q is V
+    (True, True)
+    """
+    n, k = vectors.shape
+    mass = mass_operator(mass)
+    if isinstance(mass, DiagonalMass):
+        gram = np.zeros((k, k))
+        for start in range(0, n, _ROWS):
+            block = vectors[start : start + _ROWS]
+            gram += block.T @ (mass.diagonal[start : start + _ROWS, None] * block)
+    else:
+        gram = vectors.T @ (mass @ vectors)
+    gram = 0.5 * (gram + gram.T)
+    if not np.abs(gram - np.eye(k)).max() < _NEARLY_ORTHONORMAL:
+        return None
+    # V @ L^-T as matrix products (at 51k x 400: 0.26 s, against 1.2 s for solve(L, V.T)).
+    inverse_t = np.linalg.inv(np.linalg.cholesky(gram)).T
+    for start in range(0, n, _ROWS):
+        out[start : start + _ROWS] = vectors[start : start + _ROWS] @ inverse_t
+    return out
+
+
 # --- the sign rule -----------------------------------------------------------------------------
 def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
     """Flip columns so that their signs are deterministic (a fresh array; 1-D input allowed).
@@ -274,6 +350,23 @@ def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np
     v = np.array(vectors, dtype=np.float64, copy=True)
     if v.ndim == 1:
         return fix_signs(v[:, None], mass)[:, 0]
+    return fix_signs_in_place(v, mass)
+
+
+def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
+    """:func:`fix_signs` on a 2-D float64 array of one's own, flipping its columns in place; returns it.
+
+    For eigensolvers finishing their own output (no second n x k array).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = np.array([[-1.0], [-2.0], [0.5]])
+    >>> fix_signs_in_place(v) is v, v[:, 0].tolist()
+    (True, [1.0, 2.0, -0.5])
+    """
+    if v.ndim != 2 or v.dtype != np.float64:
+        raise ValueError(f"fix_signs_in_place needs a 2-D float64 array, got {v.ndim}-D {v.dtype}.")
     if v.size == 0:
         return v
     a = np.ones(v.shape[0]) if mass is None else np.asarray(mass.sum(axis=1)).ravel()

@@ -23,6 +23,8 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from .inner_product import DiagonalMass, mass_operator
+
 __all__ = ["nearest_eigenpairs"]
 
 # Krylov blocks of this many vectors (rounded so that a slice needs a few of them).
@@ -35,7 +37,7 @@ BASIS_PER_PAIR = 2.5
 MAX_RESTARTS = 50
 
 
-def _project_out(Q: NDArray[np.float64], Y: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
+def _project_out(Q: NDArray[np.float64], Y: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass) -> NDArray[np.float64]:
     """Remove from ``Y`` (in place) its A-projection on the A-orthonormal ``Q``; return the coefficients."""
     coefficients = Q.T @ (mass @ Y)
     Y -= Q @ coefficients
@@ -51,7 +53,7 @@ def _rotate_in_place(Q: NDArray[np.float64], m: int, S: NDArray[np.float64], row
 
 
 def _orthonormal_block(
-    Y: NDArray[np.float64], mass: sp.spmatrix, rng: np.random.Generator, Q: NDArray[np.float64]
+    Y: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass, rng: np.random.Generator, Q: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """``Y = Q C + X R`` with ``X`` A-orthonormal and A-orthogonal to ``Q``; dependent directions replaced.
 
@@ -82,7 +84,7 @@ def _orthonormal_block(
     # Cholesky QR (twice in effect, after the eigen-step): X^T A X = I to round-off.
     L = np.linalg.cholesky(X.T @ (mass @ X))
     L_inv = np.linalg.inv(L)  # b x b, triangular
-    X = np.asfortranarray(X @ L_inv.T)
+    X = (L_inv @ X.T).T  # Fortran-ordered like X, without a copy
     return X, L.T @ R, C
 
 
@@ -162,6 +164,7 @@ def nearest_eigenpairs(
             chosen = np.sort(np.argsort(np.abs(values - shift), kind="stable")[:nev])
         return values[chosen], vectors[:, chosen]
     rng = np.random.default_rng(seed)
+    mass = mass_operator(mass)  # a lumped mass: row scalings, not sparse products
     # The basis lives in the rows of a C-ordered buffer (Q is its transposed view, F-ordered, so
     # each block of columns is contiguous): at the end the buffer is shrunk in place to the
     # eigenvectors instead of copying them out of it.

@@ -94,8 +94,14 @@ class SymmetricFactor:
         if order is None and n >= NESTED_DISSECTION_MIN:
             order = fill_reducing_order(M)
         self.order = None if order is None else np.asarray(order, dtype=np.intp)
-        if self.order is not None and (self.order.shape != (n,) or not np.array_equal(np.sort(self.order), np.arange(n))):
-            raise ValueError(f"order must be a permutation of the {n} indices 0..{n - 1} (see fill_reducing_order).")
+        if self.order is not None:
+            # n indices in range that hit every position once: a permutation, and its inverse.
+            self._inverse = np.full(n, -1, dtype=np.intp)
+            valid = self.order.shape == (n,) and bool(np.all((self.order >= 0) & (self.order < n)))
+            if valid:
+                self._inverse[self.order] = np.arange(n)
+            if not valid or np.any(self._inverse < 0):
+                raise ValueError(f"order must be a permutation of the {n} indices 0..{n - 1} (see fill_reducing_order).")
         # Threshold 0 pivots on the diagonal, and SymmetricMode orders rows as columns: U = D L^T.
         options = {"diag_pivot_thresh": 0.0, "options": {"SymmetricMode": True}}
         if self.order is None:
@@ -129,9 +135,12 @@ class SymmetricFactor:
             raise ValueError(f"rhs must have shape ({self.shape[0]},) or ({self.shape[0]}, c), got {b.shape}.")
         if self.order is None:
             return self._lu.solve(b)
-        x = np.empty(b.shape, order="F")
-        x[self.order] = self._lu.solve(np.asfortranarray(b[self.order]))
-        return x
+        if b.ndim == 1:
+            return self._lu.solve(b[self.order])[self._inverse]
+        # Permute the rows through the transposes: one gather each way, and the Fortran order
+        # SuperLU reads and writes is kept (no extra copy of the block).
+        y = self._lu.solve(b.T[:, self.order].T)
+        return y.T[:, self._inverse].T
 
 
 def symmetric_lu(matrix: sp.spmatrix, order: ArrayLike | None = None) -> SymmetricFactor:

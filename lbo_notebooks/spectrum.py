@@ -18,7 +18,17 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .inner_product import a_orthonormalize, check_functions, check_operators, default_shift, fix_signs, start_vector, use_dense
+from .inner_product import (
+    a_orthonormalize,
+    check_functions,
+    check_operators,
+    cholesky_qr,
+    default_shift,
+    fix_signs,
+    fix_signs_in_place,
+    start_vector,
+    use_dense,
+)
 from ._deprecation import renamed
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
@@ -239,8 +249,11 @@ def eigenbasis(
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n))
             order = np.argsort(values)
             values, vectors = values[order], vectors[:, order]
-        # ARPACK returns M-orthonormal vectors up to round-off; re-orthonormalising in order
-        # (no mixing) keeps Phi.T A Phi = I to machine precision.
-        vectors = a_orthonormalize(vectors, A, refine=True)
-    vectors = fix_signs(vectors, A)
+        # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
+        # in order (no mixing) keeps Phi.T A Phi = I to machine precision. The arrays are the
+        # solver's own: refined and sign-fixed in place (no second and third n x k copy).
+        vectors = np.ascontiguousarray(vectors)
+        if cholesky_qr(vectors, A, out=vectors) is None:
+            vectors = a_orthonormalize(vectors, A, refine=True)
+    vectors = fix_signs_in_place(np.ascontiguousarray(vectors, dtype=np.float64), A)
     return Spectrum(values=np.ascontiguousarray(values), vectors=np.ascontiguousarray(vectors), stiffness=W, mass=A)

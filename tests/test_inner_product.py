@@ -9,10 +9,14 @@ import scipy.sparse as sp
 from lbo_notebooks import eigenbasis, mass_matrix, shapes
 from lbo_notebooks.inner_product import (
     DENSE_LIMIT,
+    DiagonalMass,
     a_orthonormalize,
     check_operators,
+    cholesky_qr,
     default_shift,
     fix_signs,
+    fix_signs_in_place,
+    mass_operator,
     start_vector,
     use_dense,
 )
@@ -92,3 +96,51 @@ def test_check_operators_names_the_problem():
         check_operators(W, sp.diags([1.0, 0.0]))
     dense_ok, _ = check_operators(W.toarray(), np.eye(2), allow_dense=True)
     assert abs(dense_ok - W).max() == 0
+
+
+# --- lumped mass as a row scaling; in-place finishing of an eigensolver's own output -------------
+def test_mass_operator_is_a_row_scaling_only_for_a_diagonal_mass(bumpy):
+    mesh, consistent = bumpy
+    lumped = mass_matrix(mesh, "voronoi")
+    rng = np.random.default_rng(0)
+    X = rng.normal(size=(mesh.n_vertices, 5))
+    op = mass_operator(lumped)
+    assert isinstance(op, DiagonalMass) and mass_operator(op) is op
+    for Y in (X, np.asfortranarray(X), X[:, 0]):
+        product = op @ Y
+        assert np.allclose(product, lumped @ Y, rtol=1e-15, atol=0)
+        if Y.ndim == 2 and not Y.flags.c_contiguous:
+            assert product.flags.f_contiguous                            # a Krylov block keeps its order
+    assert mass_operator(consistent) is consistent                       # off-diagonal entries: left as it is
+    stored_zeros = sp.csr_matrix(lumped + 0.0 * consistent)              # explicit zeros off the diagonal
+    assert isinstance(mass_operator(stored_zeros), DiagonalMass)
+
+
+@pytest.mark.parametrize("kind", ["voronoi", "consistent"])
+def test_cholesky_qr_refines_in_place_and_mixes_only_earlier_columns(bumpy, kind):
+    mesh = bumpy[0]
+    A = mass_matrix(mesh, kind)
+    exact = a_orthonormalize(np.random.default_rng(1).normal(size=(mesh.n_vertices, 12)), A)
+    rng = np.random.default_rng(2)
+    V = exact + 1e-10 * rng.normal(size=exact.shape)
+    before = V.copy()
+    fresh = cholesky_qr(V, A, out=np.empty(V.shape))
+    assert np.array_equal(V, before)                                     # out= elsewhere: V untouched
+    assert _a_orthonormality_error(fresh, A) < 1e-14
+    # Q = V L^-T with L lower triangular: column j is a combination of columns 0..j of V only
+    coefficients = np.linalg.lstsq(V, fresh, rcond=None)[0]
+    assert np.abs(np.tril(coefficients, -1)).max() < 1e-8
+    in_place = cholesky_qr(V, A, out=V)
+    assert in_place is V and np.allclose(V, fresh, rtol=0, atol=1e-14)
+    far = np.random.default_rng(3).normal(size=exact.shape)              # not nearly orthonormal
+    assert cholesky_qr(far, A, out=far) is None and np.isfinite(far).all()
+
+
+def test_fix_signs_in_place_is_fix_signs_without_the_copy(bumpy):
+    V = np.random.default_rng(4).normal(size=(bumpy[0].n_vertices, 7))
+    expected = fix_signs(V, bumpy[1])
+    out = fix_signs_in_place(V, bumpy[1])
+    assert out is V and np.array_equal(V, expected)
+    for bad in (np.ones(5), np.ones((5, 2), dtype=int)):
+        with pytest.raises(ValueError, match="2-D float64"):
+            fix_signs_in_place(bad)
