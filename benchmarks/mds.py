@@ -8,6 +8,7 @@ Run from the repository root::
     .venv/bin/python benchmarks/mds.py --quick            # small sizes only, for a smoke test
     .venv/bin/python benchmarks/mds.py --json benchmarks/results/mds.json   # also record results
     .venv/bin/python benchmarks/mds.py --energies         # Dirichlet vs biharmonic over mu (tuning shapes)
+    .venv/bin/python benchmarks/mds.py --smds-tuning      # SMDS over k, q, rows vs pairs (tuning shapes)
     .venv/bin/python benchmarks/mds.py --fcs-tuning       # fast classical scaling over q and mu (tuning shapes)
 
 Part 1 (accuracy): on several shapes of 3,000-5,000 vertices, SMDS with its *default* parameters
@@ -205,12 +206,37 @@ def part_energies(quick: bool) -> list[dict]:
         X = classical_mds(mesh, progress=False)
         k, q = min(SMDS_DEFAULTS["k"], mesh.n_vertices), min(SMDS_DEFAULTS["n_samples"], mesh.n_vertices)
         spectrum = eigenbasis(mesh, k)
-        sampling = farthest_point_sampling(mesh, q, return_distances=True, progress=False)
+        sampling = farthest_point_sampling(mesh, q, return_distances=True, progress=False, select="graph")  # as spectral_mds
         for energy in ("dirichlet", "biharmonic"):
             errs = [gram_error(spectral_mds(mesh, k=k, n_samples=q, mu=mu, energy=energy, spectrum=spectrum,
                                             sampling=sampling), X) for mu in mus]
             rows.append({"shape": name, "n": mesh.n_vertices, "energy": energy, "mu": list(mus), "gram_error": errs})
             print(f"{name:22s} {mesh.n_vertices:6d} {energy:>11s} " + " ".join(f"{e:9.4f}" for e in errs))
+    return rows
+
+
+def part_smds_tuning(quick: bool) -> list[dict]:
+    """Gram error of SMDS over (k, q), interpolating whole sampled rows or the pairs among the samples."""
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.geodesics import farthest_point_sampling
+
+    grid = [(400, 800), (400, 400), (400, 200), (300, 600), (300, 300), (300, 200), (300, 150), (250, 250), (200, 200)]
+    print(f"\nSpectral MDS: Gram error vs classical MDS over (k, q), tuning shapes (defaults {SMDS_DEFAULTS})")
+    print(f"{'shape':22s} {'n':>6s} {'sampled':>8s} " + " ".join(f"{f'{k}/{q}':>8s}" for k, q in grid))
+    rows = []
+    for name, mesh in tuning_shapes(quick).items():
+        X = classical_mds(mesh, progress=False)
+        cap = [(min(k, mesh.n_vertices), min(q, mesh.n_vertices)) for k, q in grid]
+        spectrum = eigenbasis(mesh, max(k for k, _ in cap))
+        sampling = farthest_point_sampling(mesh, max(q for _, q in cap), return_distances=True, progress=False, select="graph")
+        for sampled in ("rows", "pairs"):
+            errs = [gram_error(spectral_mds(mesh, k=k, n_samples=q, sampled=sampled, spectrum=spectrum, sampling=sampling), X)
+                    for k, q in cap]
+            rows.append({"shape": name, "n": mesh.n_vertices, "sampled": sampled, "k_q": cap, "gram_error": errs})
+            print(f"{name:22s} {mesh.n_vertices:6d} {sampled:>8s} " + " ".join(f"{e:8.4f}" for e in errs))
+    for sampled in ("rows", "pairs"):
+        worst = np.max([r["gram_error"] for r in rows if r["sampled"] == sampled], axis=0)
+        print(f"{'largest':22s} {'':6s} {sampled:>8s} " + " ".join(f"{e:8.4f}" for e in worst))
     return rows
 
 
@@ -315,6 +341,8 @@ def main() -> None:
                     help="run part 1 only; with --json, keep the scaling rows (and their date and defaults) of the file")
     ap.add_argument("--energies", action="store_true",
                     help="only the table of Gram errors of both interpolation energies over mu (tuning shapes)")
+    ap.add_argument("--smds-tuning", action="store_true",
+                    help="only the table of SMDS Gram errors over k and q, rows against pairs (tuning shapes)")
     ap.add_argument("--fcs-tuning", action="store_true",
                     help="only the table of fast classical scaling's Gram errors over q and mu (tuning shapes)")
     ap.add_argument("--sizes", type=int, nargs="+", help="vertex counts of the scaling part")
@@ -339,6 +367,9 @@ def main() -> None:
         return
     if args.fcs_tuning:
         part_fcs_tuning(args.quick)
+        return
+    if args.smds_tuning:
+        part_smds_tuning(args.quick)
         return
     if not args.skip_accuracy:
         result["accuracy"] = part_accuracy(args.quick)

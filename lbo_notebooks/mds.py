@@ -9,9 +9,10 @@ the same shape then get (nearly) the same canonical form, up to a rigid motion.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
 * :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
-  span of the first ``k`` Laplace–Beltrami eigenfunctions from q sampled rows (the smoothest
-  interpolant: least biharmonic energy as in the paper, or least Dirichlet energy), and the
-  scaling is done in that k x k space. O(n k^2) time, O(n k) memory; never forms an n x n matrix.
+  span of the first ``k`` Laplace–Beltrami eigenfunctions from the distance fields of q samples
+  (the smoothest interpolant: least biharmonic energy as in the paper, or least Dirichlet energy),
+  and the scaling is done in that k x k space. O(n k^2) time, O(n k + q n) memory; never forms an
+  n x n matrix.
 
 Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
 of the Gram matrices), and after an optimal rotation by :func:`procrustes_error`.
@@ -37,7 +38,7 @@ from .geodesics import (
     farthest_point_sampling,
     geodesic_solver,
 )
-from .inner_product import fix_signs, start_vector, use_dense
+from .inner_product import DiagonalMass, fix_signs, mass_operator, start_vector, use_dense
 from .mesh import Mesh
 from .spectrum import Spectrum, eigenbasis
 
@@ -51,15 +52,24 @@ __all__ = [
     "scale_mu",
     "SMDS_DEFAULTS",
     "ENERGIES",
+    "SAMPLED",
 ]
 
 #: Defaults of :func:`spectral_mds` (``n_samples`` and ``k`` are capped at the number of
 #: vertices). Chosen on tuning shapes of 3.7-4.5k vertices (two creature poses, a bumpy sphere, a
-#: thin torus; ``benchmarks/mds.py --energies``) for a Gram error under 1% against classical MDS:
-#: the number of eigenfunctions sets the floor (the classical embedding projected onto 300
-#: eigenfunctions already has a 0.6% Gram error on a dog), samples must be about twice as many as
-#: eigenfunctions on thin shapes, and the biharmonic energy is insensitive to mu over 0.002-0.2.
-SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 400, "n_samples": 800, "mu": 0.05}
+#: thin torus; ``benchmarks/mds.py --smds-tuning`` and ``--energies``) for a Gram error under 1%
+#: against classical MDS: the number of eigenfunctions sets the floor (the classical embedding
+#: projected onto 300 eigenfunctions already has a 0.6% Gram error on a dog). Interpolating whole
+#: sampled rows needs about as many samples as eigenfunctions (300 and 300: at most 0.75%), the
+#: q x q pairs among the samples about twice as many (300 and 600: at most 0.70%), so rows halve
+#: the geodesic solves. With the biharmonic energy, mu = 0.05 is within 15% of the best mu in
+#: 0.002-1 on every tuning shape (the Dirichlet energy is up to 10x worse at mu = 1).
+SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 300, "n_samples": 300, "mu": 0.05, "sampled": "rows"}
+
+#: What :func:`spectral_mds` interpolates from: the samples' whole squared-distance rows
+#: ``D2[S, :]`` (q x n), or only the pairs among the samples ``D2[S, S]`` (q x q, the closed form of
+#: Aflalo & Kimmel as reimplemented elsewhere).
+SAMPLED = ("rows", "pairs")
 
 
 # --- small helpers ----------------------------------------------------------------------------
@@ -337,6 +347,15 @@ def landmark_mds(
 ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 
 
+def _check_sampled(sampled: Any) -> str:
+    if not isinstance(sampled, str) or sampled not in SAMPLED:
+        raise ValueError(
+            f"sampled must be 'rows' (the samples' whole distance fields) or 'pairs' (the distances among "
+            f"the samples only), got {sampled!r}."
+        )
+    return sampled
+
+
 def _check_energy(energy: Any) -> int:
     if not isinstance(energy, str) or energy not in ENERGIES:
         raise ValueError(f"energy must be one of {sorted(ENERGIES)} (the interpolation's smoothness term), got {energy!r}.")
@@ -394,6 +413,7 @@ def spectral_mds(
     mu: float = 0.05,
     method: GeodesicMethod = "heat",
     energy: str = "biharmonic",
+    sampled: str = "rows",
     spectrum: Spectrum | None = None,
     sampling: tuple[ArrayLike, ArrayLike] | None = None,
     progress: bool | None = None,
@@ -401,16 +421,21 @@ def spectral_mds(
 ) -> NDArray[np.float64] | tuple[NDArray[np.float64], dict[str, Any]]:
     """Spectral MDS (Aflalo & Kimmel 2013): canonical form from q sampled distance rows.
 
-    1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples;
-    2. ``D_s``: squared geodesic distances among the samples (q x q, symmetrised); ``Phi_s`` the
-       rows of Phi at the samples;
-    3. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` and ``alpha = M D_s M.T``, so that
-       ``D2 ~ Phi alpha Phi.T`` is the smoothest interpolant of the sampled squared distances:
-       least biharmonic energy (``p = 2``, the paper's choice, default) or least Dirichlet energy
-       (``p = 1``);
+    1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples S and
+       their geodesic distance fields; ``Phi_s`` the rows of Phi at the samples;
+    2. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` interpolates values at the samples by the
+       smoothest function of the span: least biharmonic energy (``p = 2``, the paper's choice,
+       default) or least Dirichlet energy (``p = 1``);
+    3. ``D2 ~ Phi alpha Phi.T`` with, for ``sampled="rows"`` (default), ``alpha = M D2[S, :] A Phi``:
+       each sampled row is projected onto the eigenfunctions exactly (its A-inner products), and
+       only the other direction is interpolated; for ``sampled="pairs"``, ``alpha = M D2[S, S] M.T``:
+       both directions are interpolated from the q x q block. ``alpha`` is then symmetrised. Each
+       geodesic solve yields a whole row anyway, and rows need about half the samples for the same
+       accuracy;
     4. reduced scaling: with ``J Phi = Q R`` (Q orthonormal; R from the k x k Gram matrix, see
        ``_scaling_in_span``), eigendecompose ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
-    Cost O(n k^2 + q n) plus q geodesic solves; memory O(n k + q^2). No n x n matrix is formed.
+    Cost O(n k^2 + q n k) plus q geodesic solves; memory O(n k + q n) (``"pairs"``: O(n k + q^2)).
+    No n x n matrix is formed.
 
     Parameters
     ----------
@@ -419,9 +444,9 @@ def spectral_mds(
     dim : int, default 3
         Embedding dimension, ``dim < k``.
     n_samples : int, optional
-        Number of farthest-point samples q, ``2 <= q <= n``. Default ``min(800, n)``.
+        Number of farthest-point samples q, ``2 <= q <= n``. Default ``min(300, n)``.
     k : int, optional
-        Number of LBO eigenfunctions k. Default ``min(400, n)``. Accuracy depends on it far more
+        Number of LBO eigenfunctions k. Default ``min(300, n)``. Accuracy depends on it far more
         than on mu: the embedding lives in their span.
     mu : float, default 0.05
         Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
@@ -429,8 +454,11 @@ def spectral_mds(
         Geodesic method for the sample distances (passed to the geodesic solver).
     energy : {"biharmonic", "dirichlet"}, default "biharmonic"
         Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
-        ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was as accurate or better and far
-        less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
+        ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was, each at its best ``mu``, as
+        accurate or better, and far less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
+    sampled : {"rows", "pairs"}, default "rows"
+        Interpolate from the samples' whole squared-distance rows, or from the distances among
+        the samples only (see step 3).
     spectrum : Spectrum, optional
         A precomputed eigenbasis of ``mesh`` with at least ``k`` pairs (its first ``k``
         are used). Lets a parameter sweep pay for the eigenbasis once.
@@ -441,7 +469,7 @@ def spectral_mds(
         Progress bar for the sampling.
     return_details : bool, default False
         Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
-        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``alpha`` (the k x k
+        problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``sampled``, ``alpha`` (the k x k
         coefficients of ``D2 ~ Phi alpha Phi.T``) and ``timings`` (seconds for
         ``eigenbasis``, ``sampling`` (including the distances), ``embedding``, ``total``).
 
@@ -472,6 +500,7 @@ def spectral_mds(
     dim = _check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
     q = _check_samples(n_samples, n)
     power = _check_energy(energy)
+    sampled = _check_sampled(sampled)
     if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
 
@@ -489,9 +518,12 @@ def spectral_mds(
     lam = np.maximum(spectrum.values[:k], 0.0)
     t1 = time.perf_counter()
 
-    # 2. samples and their squared distances (only among the samples: each field is solved on the
-    # whole mesh, but a q x q block is all that is kept)
-    if sampling is None:
+    # 2. samples and their squared distances: whole rows (q x n), or only the q x q block among the
+    # samples (each field is still solved on the whole mesh)
+    if sampling is None and sampled == "rows":
+        samples, ds = farthest_point_sampling(mesh, q, method=method, select="graph", return_distances=True, progress=progress)
+        np.square(ds, out=ds)
+    elif sampling is None:
         samples = farthest_point_sampling(mesh, q, method=method, select="graph")
         ds = geodesic_solver(mesh, method).distances(samples, targets=samples, progress=progress) ** 2
     else:
@@ -502,15 +534,25 @@ def spectral_mds(
                 f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
             )
         samples = samples[:q].astype(np.int64)
-        ds = fields[:q][:, samples] ** 2
-    ds = 0.5 * (ds + ds.T)
+        ds = fields[:q] ** 2 if sampled == "rows" else fields[:q][:, samples] ** 2
     t2 = time.perf_counter()
 
     # 3. interpolation coefficients alpha (k x k)
     phi_s = phi[samples]
     mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
     M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
-    alpha = M @ ds @ M.T
+    if sampled == "rows":
+        # Each row's coefficients are its A-inner products with the eigenfunctions; then the other
+        # direction is interpolated. ds is this function's own array: a lumped mass scales it in place.
+        mass = mass_operator(spectrum.mass)
+        if isinstance(mass, DiagonalMass):
+            ds *= mass.diagonal
+            alpha = M @ (ds @ phi)
+        else:
+            alpha = M @ (ds @ (mass @ phi))
+    else:
+        alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+    del ds
     alpha = 0.5 * (alpha + alpha.T)
 
     # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
@@ -527,6 +569,7 @@ def spectral_mds(
         "eigenvalues": G[: dim + 1].copy(),
         "eigengap": float(G[dim - 1] / G[dim]) if G[dim] > 0 else float("inf"),
         "mu_abs": mu_abs,
+        "sampled": sampled,
         "alpha": alpha,
         "timings": {"eigenbasis": t1 - t0, "sampling": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
     }

@@ -159,12 +159,37 @@ def test_landmark_mds_errors(blob):
 
 
 # --- spectral MDS ------------------------------------------------------------------------------
-def test_spectral_mds_with_the_full_basis_and_all_samples_is_classical(blob):
+@pytest.mark.parametrize("sampled", ["rows", "pairs"])
+def test_spectral_mds_with_the_full_basis_and_all_samples_is_classical(blob, sampled):
     # k = q = n and mu -> 0: Phi alpha Phi.T interpolates D2 exactly, so SMDS is classical MDS.
     m, D, X, spec, sampling = blob
     n = m.n_vertices
-    Z = spectral_mds(m, k=n, n_samples=n, mu=1e-10, spectrum=spec, sampling=sampling)
+    Z = spectral_mds(m, k=n, n_samples=n, mu=1e-10, sampled=sampled, spectrum=spec, sampling=sampling)
     assert gram_error(Z, X) < 1e-6
+
+
+def test_rows_need_fewer_samples_than_pairs(blob):
+    # A sampled row is projected onto the eigenfunctions exactly; only the pairs must be interpolated
+    # both ways. With as many samples as eigenfunctions, rows are far closer to classical MDS.
+    m, D, X, spec, sampling = blob
+    err = {s: gram_error(spectral_mds(m, k=40, n_samples=40, sampled=s, spectrum=spec, sampling=sampling), X)
+           for s in ("rows", "pairs")}
+    assert err["rows"] < 0.5 * err["pairs"]
+
+
+def test_spectral_mds_leaves_the_given_sampling_untouched(blob):
+    m, D, X, spec, sampling = blob
+    before = sampling[1].copy()
+    for sampled in ("rows", "pairs"):
+        spectral_mds(m, k=30, n_samples=60, sampled=sampled, spectrum=spec, sampling=sampling)
+    assert np.array_equal(sampling[1], before)
+
+
+def test_defaults_are_the_signature_defaults():
+    import inspect
+
+    params = inspect.signature(spectral_mds).parameters
+    assert all(params[name].default == SMDS_DEFAULTS[name] for name in ("energy", "mu", "sampled"))
 
 
 def test_spectral_mds_converges_with_eigenfunctions(blob):
@@ -202,22 +227,32 @@ def test_spectral_mds_details_and_determinism(blob):
     assert info["alpha"].shape == (30, 30) and np.array_equal(info["alpha"], info["alpha"].T)
 
 
+@pytest.mark.parametrize("sampled", ["rows", "pairs"])
 @pytest.mark.parametrize("energy, power", [("dirichlet", 1), ("biharmonic", 2)])
-def test_energy_is_the_penalty_of_the_interpolation(blob, energy, power):
-    # Independent oracle: alpha = M D_s M.T where M solves the stacked least-squares problem
-    # [Phi_s; sqrt(mu_abs) Lam^(p/2)] M = [I; 0], i.e. each column of D_s is interpolated by the
-    # coefficients c minimising ||Phi_s c - d||^2 + mu_abs sum lam_i^p c_i^2.
+def test_energy_is_the_penalty_of_the_interpolation(blob, energy, power, sampled):
+    # Independent oracle: M solves the stacked least-squares problem [Phi_s; sqrt(mu_abs) Lam^(p/2)] M
+    # = [I; 0], i.e. values at the samples are interpolated by the coefficients c minimising
+    # ||Phi_s c - d||^2 + mu_abs sum lam_i^p c_i^2. Pairs: alpha = M D_s M.T. Rows: each sampled row's
+    # coefficients are its A-inner products with the eigenfunctions, alpha = M (D2[S, :] A Phi).
     m, D, X, spec, sampling = blob
     k, q, mu = 30, 60, 0.3
-    Z, info = spectral_mds(m, n_samples=q, k=k, mu=mu, energy=energy, spectrum=spec, sampling=sampling,
-                           return_details=True)
+    Z, info = spectral_mds(m, n_samples=q, k=k, mu=mu, energy=energy, sampled=sampled, spectrum=spec,
+                           sampling=sampling, return_details=True)
     phi_s, lam = spec.vectors[sampling[0][:q], :k], np.maximum(spec.values[:k], 0.0)
     mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
     assert info["mu_abs"] == pytest.approx(mu_abs, rel=1e-12)
     stacked = np.vstack([phi_s, np.sqrt(mu_abs) * np.diag(lam ** (power / 2))])
     M = np.linalg.lstsq(stacked, np.vstack([np.eye(q), np.zeros((k, q))]), rcond=None)[0]
-    ds = D[np.ix_(sampling[0][:q], sampling[0][:q])] ** 2
-    alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+    S = sampling[0][:q]
+    if sampled == "pairs":
+        ds = D[np.ix_(S, S)] ** 2
+        alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+    else:
+        phi = spec.vectors[:, :k]
+        coefficients = np.array([[np.sum(D[s] ** 2 * spec.mass.diagonal() * phi[:, j]) for j in range(k)] for s in S])
+        alpha = M @ coefficients
+        alpha = 0.5 * (alpha + alpha.T)
+    assert info["sampled"] == sampled
     assert np.linalg.norm(info["alpha"] - alpha) <= 1e-9 * np.linalg.norm(alpha)
 
 
@@ -252,6 +287,9 @@ def test_spectral_mds_errors(blob):
     for bad in ("laplacian", None, ["biharmonic"]):
         with pytest.raises(ValueError, match="energy must be one of"):
             spectral_mds(m, k=20, n_samples=50, energy=bad)
+    for bad in ("columns", None, True):
+        with pytest.raises(ValueError, match="sampled must be 'rows'"):
+            spectral_mds(m, k=20, n_samples=50, sampled=bad)
     with pytest.raises(ValueError, match="spectrum has 10 eigenpairs"):
         spectral_mds(m, k=20, n_samples=50, spectrum=eigenbasis(m, 10))
     with pytest.raises(ValueError, match="k >= 50"):
