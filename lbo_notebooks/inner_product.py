@@ -31,6 +31,7 @@ __all__ = [
     "check_functions",
     "a_norms",
     "a_orthonormalize",
+    "DiagonalMass",
     "mass_operator",
     "cholesky_qr",
     "fix_signs_in_place",
@@ -126,6 +127,12 @@ class DiagonalMass:
     SciPy's sparse-times-dense product walks the rows in C order (copying a Fortran-ordered
     block first) and is several times slower than the scaling on tall blocks: at 51k vertices
     ``A @ Phi`` with 300 columns took 0.36 s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> (DiagonalMass(np.array([2.0, 3.0])) @ np.ones(2)).tolist()
+    [2.0, 3.0]
     """
 
     def __init__(self, diagonal: NDArray[np.float64]) -> None:
