@@ -95,13 +95,9 @@ class SymmetricFactor:
             order = fill_reducing_order(M)
         self.order = None if order is None else np.asarray(order, dtype=np.intp)
         if self.order is not None:
-            # n indices in range that hit every position once: a permutation, and its inverse.
-            self._inverse = np.full(n, -1, dtype=np.intp)
-            valid = self.order.shape == (n,) and bool(np.all((self.order >= 0) & (self.order < n)))
-            if valid:
-                self._inverse[self.order] = np.arange(n)
-            if not valid or np.any(self._inverse < 0):
+            if self.order.shape != (n,) or not np.array_equal(np.sort(self.order), np.arange(n)):
                 raise ValueError(f"order must be a permutation of the {n} indices 0..{n - 1} (see fill_reducing_order).")
+            self._inverse = np.argsort(self.order)  # x[order] = y  <=>  x = y[inverse]
         # Threshold 0 pivots on the diagonal, and SymmetricMode orders rows as columns: U = D L^T.
         options = {"diag_pivot_thresh": 0.0, "options": {"SymmetricMode": True}}
         if self.order is None:

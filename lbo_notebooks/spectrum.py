@@ -252,8 +252,7 @@ def eigenbasis(
         # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
         # in order (no mixing) keeps Phi.T A Phi = I to machine precision. The arrays are the
         # solver's own: refined and sign-fixed in place (no second and third n x k copy).
-        vectors = np.ascontiguousarray(vectors)
         if cholesky_qr(vectors, A, out=vectors) is None:
             vectors = a_orthonormalize(vectors, A, refine=True)
     vectors = fix_signs_in_place(np.ascontiguousarray(vectors, dtype=np.float64), A)
-    return Spectrum(values=np.ascontiguousarray(values), vectors=np.ascontiguousarray(vectors), stiffness=W, mass=A)
+    return Spectrum(values=np.ascontiguousarray(values), vectors=vectors, stiffness=W, mass=A)
