@@ -103,11 +103,12 @@ def _window_set(
     window: tuple[float, float],
     expected: int,
     v0: NDArray[np.float64],
+    tol: float,
     block_size: int = BLOCK_SIZE,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The eigenpairs with ``window[0] < lam < window[1]`` (block shift-invert Lanczos at ``factor.shift``), ascending."""
     nev = int(min(max(expected, 1), W.shape[0] - 1))
-    return nearest_eigenpairs(factor.lu.solve, W, A, factor.shift, nev, start=v0, window=window, tol=TOL, block_size=block_size)
+    return nearest_eigenpairs(factor.lu.solve, W, A, factor.shift, nev, start=v0, window=window, tol=tol, block_size=block_size)
 
 
 def _next_shift(
@@ -158,6 +159,8 @@ def slice_eigsh(
     shift: float,
     slice_size: int = SLICE_SIZE,
     workers: int | None = None,
+    order: NDArray[np.intp] | None = None,
+    tol: float = TOL,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The ``k`` smallest eigenpairs of ``stiffness phi = lam mass phi`` by spectrum slicing.
 
@@ -188,6 +191,14 @@ def slice_eigsh(
     workers : int, optional
         Threads for the windows; default :func:`default_workers` (the usable cores, at most 2). The
         result is the same, bit for bit, for any number.
+    order : ndarray (n,), optional
+        A fill-reducing order shared by every shift, e.g. the mesh's
+        :func:`~lbo_notebooks.sparse_factor.mesh_order`; default: METIS on the pattern of
+        ``stiffness`` and ``mass``.
+    tol : float
+        Lanczos convergence: each returned pair's residual in the shift-inverted problem,
+        relative to its eigenvalue there (see :func:`~lbo_notebooks.krylov.nearest_eigenpairs`).
+        Eigenvalues converge as its square: 1e-8 still gives them to about 1e-14 relative.
 
     Returns
     -------
@@ -220,6 +231,8 @@ def slice_eigsh(
         raise ValueError(f"slice_size must be a positive integer, got {slice_size!r}.")
     if isinstance(shift, bool) or not (np.isscalar(shift) and np.isfinite(shift) and shift > 0):
         raise ValueError(f"shift must be a positive number, got {shift!r}.")
+    if isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating)) or not 0 < tol < 1:
+        raise ValueError(f"tol must be a number between 0 and 1 (e.g. 1e-10), got {tol!r}.")
     v0 = np.asarray(v0, dtype=np.float64)
     if v0.shape != (n,) or not np.all(np.isfinite(v0)):
         raise ValueError(f"v0 must be a finite vector of shape ({n},), got shape {v0.shape}.")
@@ -228,11 +241,12 @@ def slice_eigsh(
     elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a positive integer, got {workers!r}.")
     n_sets = plan_sets(k, slice_size, int(workers))
-    order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
+    if order is None:
+        order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
     # One BLAS thread per worker: no oversubscription, and the same round-off for any `workers`.
     with threadpool_limits(1), ThreadPoolExecutor(max_workers=int(workers)) as pool:
-        shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, order, float(shift), k, v0, n_sets)
-        return _stitch(W, A, order, k, v0, shifts, counts, plans, sets, top_count)
+        shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, order, float(shift), k, v0, tol, n_sets)
+        return _stitch(W, A, order, k, v0, tol, shifts, counts, plans, sets, top_count)
 
 
 def _return_freed_memory() -> None:
@@ -317,6 +331,7 @@ def _submit_sets(
     shift: float,
     k: int,
     v0: NDArray[np.float64],
+    tol: float,
     n_sets: int,
 ) -> tuple[list[float], list[int], list[_Set | None], list[Future | None], int | None]:
     """Place the shifts (in this thread) and start each one's Lanczos set in ``pool`` at once.
@@ -347,7 +362,7 @@ def _submit_sets(
     alive: dict[int, SliceFactor] = {}
 
     def run(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0)
+        return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0, tol)
 
     def make_room() -> None:
         # Wait until at most `workers` sets are unfinished (running or queued), then free the
@@ -416,6 +431,7 @@ def _stitch(
     order: NDArray[np.intp],
     k: int,
     v0: NDArray[np.float64],
+    tol: float,
     shifts: list[float],
     counts: list[int],
     plans: list[_Set | None],
@@ -456,7 +472,7 @@ def _stitch(
         )
         window = (plans[j].low, plans[j].high)
         block_size = BLOCK_SIZE * 2**attempt
-        return _window_set(W, A, SliceFactor.of(W, A, shifts[j], order), window, plans[j].expected, v0, block_size)
+        return _window_set(W, A, SliceFactor.of(W, A, shifts[j], order), window, plans[j].expected, v0, tol, block_size)
 
     carry_values, carry_vectors, carry_top = np.empty(0), np.empty((n, 0)), shifts[0]
     for j in range(1, len(shifts)):

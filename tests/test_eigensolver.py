@@ -141,6 +141,40 @@ def test_bad_arguments():
         slice_eigsh(W - 0.02 * A, A, 5, v0=start(n), shift=0.01)
     with pytest.raises(ValueError, match="solver must be"):
         eigenbasis(shapes.icosphere(2), 5, solver="lapack")
+    for tol in (0.0, -1e-8, 1.0, np.nan, True, "1e-8"):
+        with pytest.raises(ValueError, match="tol must be"):
+            slice_eigsh(W, A, 5, v0=start(n), shift=0.01, tol=tol)
+        with pytest.raises(ValueError, match="tol must be"):
+            eigenbasis(shapes.icosphere(2), 5, tol=tol)
+    with pytest.raises(ValueError, match="order must be a permutation"):
+        slice_eigsh(W, A, 5, v0=start(n), shift=0.01, order=np.zeros(n, dtype=np.intp))
+
+
+def test_a_looser_tolerance_keeps_the_eigenvalues_and_the_span():
+    # tol bounds each pair's residual; eigenvalues converge as its square, and the basis is
+    # A-orthonormalised afterwards either way (spectral_mds asks for 1e-8).
+    mesh = shapes.bumpy_sphere(4)
+    tight = eigenbasis(mesh, 120, solver="slicing")
+    loose = eigenbasis(mesh, 120, solver="slicing", tol=1e-8)
+    np.testing.assert_allclose(loose.values[1:], tight.values[1:], rtol=1e-10)
+    gram = loose.vectors.T @ (loose.mass @ loose.vectors)
+    assert np.abs(gram - np.eye(120)).max() <= 1e-12
+    m = 100
+    while tight.values[m] / tight.values[m - 1] - 1 < 1e-3:  # a well-separated leading subspace
+        m -= 1
+    p = tight.vectors[:, :m].T @ (tight.mass @ loose.vectors[:, :m])
+    assert 1 - np.linalg.svd(p, compute_uv=False).min() < 1e-10
+    arpack = eigenbasis(mesh, 60, solver="arpack", tol=1e-8)
+    np.testing.assert_allclose(arpack.values[1:], tight.values[1:60], rtol=1e-10)
+
+
+def test_a_mesh_and_its_operators_give_the_same_basis():
+    # eigenbasis(mesh) orders the factorisations by the mesh's edge graph (shared with the heat
+    # method); eigenbasis((W, A)) orders W's pattern: the same graph, so the same result.
+    mesh = shapes.bumpy_sphere(3)
+    a = eigenbasis(mesh, 100, solver="slicing")
+    b = eigenbasis(operators(mesh), 100, solver="slicing")
+    assert np.array_equal(a.values, b.values) and np.array_equal(a.vectors, b.vectors)
 
 
 def test_inputs_are_not_modified():

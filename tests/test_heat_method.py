@@ -53,6 +53,28 @@ def test_poisson_solution_and_pinned_vertex(bumpy):
     assert np.allclose(solve_poisson(bumpy, b[:, 1]), phi[:, 1], rtol=0, atol=1e-12 * np.abs(phi).max())
 
 
+def test_large_meshes_share_one_metis_order_between_poisson_and_eigenbasis(monkeypatch):
+    # Above NESTED_DISSECTION_MIN the pinned Poisson matrix takes the mesh's cached METIS order
+    # (vertex 0 dropped), which eigenbasis reuses; the intrinsic Delaunay heat matrix, whose
+    # flipped edges cross that order's separators, gets its own.
+    import lbo_notebooks.sparse_factor as sparse_factor
+    from lbo_notebooks import eigenbasis
+
+    calls = []
+    original = sparse_factor.fill_reducing_order
+    monkeypatch.setattr(sparse_factor, "fill_reducing_order", lambda matrix: calls.append(1) or original(matrix))
+    torus = shapes.torus(1.0, 0.4, 200, 110)
+    assert torus.n_vertices >= sparse_factor.NESTED_DISSECTION_MIN
+    rng = np.random.default_rng(1)
+    b = rng.standard_normal((torus.n_vertices, 2))
+    b -= b.mean(axis=0)
+    phi = solve_poisson(torus, b)
+    assert np.abs(stiffness_matrix(torus) @ phi - b).max() < 1e-10 * np.abs(b).max()
+    HeatMethod(torus).distances([0])
+    eigenbasis(torus, 100, solver="slicing")
+    assert len(calls) == 2  # the mesh's order (Poisson, eigenbasis) and the heat matrix's
+
+
 def test_sphere_distances_match_great_circles():
     sphere = shapes.icosphere(4)
     v = sphere.vertices / np.linalg.norm(sphere.vertices, axis=1, keepdims=True)

@@ -217,6 +217,18 @@ def test_spectral_mds_is_rigid_and_scale_covariant(blob):
     assert procrustes_error(Zm / 3.0, Z) < 1e-6
 
 
+def test_spectral_mds_own_looser_eigenbasis_changes_nothing_that_matters():
+    # spectral_mds computes its eigenbasis with tol = SMDS_EIGEN_TOL (1e-8): the same embedding as
+    # with the default 1e-10 basis, to far below its own (sub-percent) error.
+    from lbo_notebooks.mds import SMDS_EIGEN_TOL
+
+    assert SMDS_EIGEN_TOL == 1e-8
+    m = shapes.bumpy_sphere(4)
+    Z = spectral_mds(m, n_samples=120, k=120)
+    Z_tight = spectral_mds(m, n_samples=120, k=120, spectrum=eigenbasis(m, 120))
+    assert gram_error(Z, Z_tight) < 1e-8
+
+
 def test_spectral_mds_details_and_determinism(blob):
     m, *_ = blob
     Z1, info = spectral_mds(m, n_samples=50, k=30, return_details=True)

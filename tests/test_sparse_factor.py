@@ -7,7 +7,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.sparse_factor import NESTED_DISSECTION_MIN, SymmetricFactor, fill_reducing_order, symmetric_lu
+from lbo_notebooks.sparse_factor import NESTED_DISSECTION_MIN, SymmetricFactor, fill_reducing_order, mesh_order, symmetric_lu
 
 
 @pytest.fixture(scope="module")
@@ -103,3 +103,19 @@ def test_bad_input_is_refused_and_not_modified(operators):
     b = np.ones(M.shape[0])
     factor.solve(b)
     assert (M != before).nnz == 0 and np.array_equal(b, np.ones(M.shape[0]))
+
+
+def test_mesh_order_is_the_order_of_the_operators_pattern_made_once():
+    mesh = shapes.bumpy_sphere(3)
+    order = mesh_order(mesh)
+    assert mesh_order(mesh) is order  # cached on the mesh
+    W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    # The edge graph is the pattern of W (and of every W - b A): the same METIS order.
+    assert np.array_equal(order, fill_reducing_order(abs(W) + abs(A)))
+    # Shared by a shifted matrix and by the matrix with vertex 0 pinned (the heat method's Poisson step).
+    M = W - 9.0 * A
+    x = symmetric_lu(M, order).solve(np.ones(M.shape[0]))
+    assert np.linalg.norm(M @ x - 1.0) <= 1e-10 * abs(M).sum(axis=1).max() * np.linalg.norm(x)
+    P = (W + 1e-3 * A).tocsr()[1:, 1:]
+    y = symmetric_lu(P, order[order != 0] - 1).solve(np.ones(P.shape[0]))
+    assert np.linalg.norm(P @ y - 1.0) <= 1e-10 * abs(P).sum(axis=1).max() * np.linalg.norm(y)
