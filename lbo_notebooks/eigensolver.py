@@ -32,8 +32,8 @@ from .krylov import BLOCK_SIZE, nearest_eigenpairs
 __all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
 
 # Eigenvalues per window: the orthogonalisation cost (n * basis^2 per window) against one
-# factorisation per window (in time about 40 block solves at 50k vertices, in memory about 60
-# eigenvectors).
+# factorisation per window (in time about 40 block solves at 50k vertices, in memory about 125
+# eigenvectors: 48 MiB).
 SLICE_SIZE = 100
 # Lanczos convergence tolerance (ARPACK's, relative to the shifted-inverted eigenvalue).
 TOL = 1e-10
@@ -56,8 +56,8 @@ class SliceFactor:
     n_below : int
         Number of eigenvalues of ``W phi = lam A phi`` strictly below ``shift`` (Sylvester inertia).
     lu : SymmetricFactor or None
-        The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``. ``None`` once dropped (a
-        factorisation takes about as much memory as 60 eigenvectors; the count is what remains).
+        The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``. ``None`` once dropped (at
+        50k vertices a factorisation takes as much memory as 125 eigenvectors; the count remains).
     """
 
     shift: float
@@ -111,43 +111,64 @@ def _window_set(
     return nearest_eigenpairs(factor.lu.solve, W, A, factor.shift, nev, start=v0, window=window, tol=tol, block_size=block_size)
 
 
-def _next_shift(
-    W: sp.csr_matrix, A: sp.csr_matrix, order: NDArray[np.intp], current: SliceFactor, want: int, slope: float, k: int
-) -> SliceFactor:
-    """Factorise a shift about ``want`` eigenvalues above ``current`` (``slope``: eigenvalues per unit).
+def _place_shift(
+    W: sp.csr_matrix,
+    A: sp.csr_matrix,
+    order: NDArray[np.intp],
+    target: float,
+    spread: float,
+    below: SliceFactor,
+    above: SliceFactor | None,
+    slope: float,
+) -> SliceFactor | None:
+    """Factorise a shift with about ``target`` eigenvalues below it, between ``below`` and ``above``.
 
-    Too few or too many new eigenvalues move the shift (by the counts' slope, then by bisection
-    between the last shifts that gave too few and too many). A cluster larger than a slice cannot
-    be split: once the bracket is that narrow, the shift above the whole cluster is taken.
+    A count within ``spread`` of ``target`` is taken. Otherwise the shift moves: by the density
+    ``slope`` (eigenvalues per unit) from the nearer known count, then by interpolating the counts
+    of the bracket of shifts that gave too few and too many, falling back to bisection. A cluster
+    of (near-)equal eigenvalues wider than ``spread`` cannot be split: once the bracket is that
+    narrow, the new shift on either side of it nearer ``target`` is taken. ``None`` when no shift
+    strictly between the two counts exists (the whole bracket is one cluster).
     """
-    low, high = current.shift, None
-    best_high: SliceFactor | None = None
-    shift = current.shift + want / slope
     spacing = 1.0 / slope  # typical distance between eigenvalues
+    low, high = below, above  # the bracket: counts at most / at least target
+    placed: list[SliceFactor] = []
+    if above is None:
+        shift = below.shift + max(target - below.n_below, 1.0) / slope
+    else:
+        shift = above.shift - max(above.n_below - target, 1.0) / slope
     for _ in range(60):
+        if high is not None and not low.shift < shift < high.shift:
+            shift = 0.5 * (low.shift + high.shift)
         try:
-            nxt = SliceFactor.of(W, A, shift, order)
+            factor = SliceFactor.of(W, A, shift, order)
         except ValueError as error:  # the shift hit an eigenvalue (e.g. 0 on a mesh of many pieces): step off it
             if "singular" not in str(error):
                 raise
             shift += 1e-6 * spacing
             continue
-        gained = nxt.n_below - current.n_below
-        if gained > 2 * want + 8:
-            high, best_high = shift, nxt
-        elif gained < max(1, want // 3) and nxt.n_below < k:
-            low = shift
+        count = factor.n_below
+        inside = below.n_below < count and (above is None or count < above.n_below)
+        if inside and abs(count - target) <= spread:
+            return factor
+        if inside:
+            placed.append(factor)
+        if count <= target:
+            low = factor
         else:
-            return nxt
-        if high is None:
-            shift = low + 2.0 * (low - current.shift) if gained == 0 else low + (low - current.shift) * min(2.0, want / gained)
-        elif high - low <= 1e-9 * max(abs(high), spacing):
-            return best_high
+            high = factor
+        if high is None:  # still below the target: step up by the density, at least doubling the step
+            shift = low.shift + max((target - count) / slope, 2.0 * (low.shift - below.shift))
+        elif high.shift - low.shift <= 1e-9 * max(abs(high.shift), spacing):
+            break
+        elif high.n_below > low.n_below:
+            fraction = (target - low.n_below) / (high.n_below - low.n_below)
+            shift = low.shift + min(max(fraction, 0.1), 0.9) * (high.shift - low.shift)
         else:
-            shift = 0.5 * (low + high)
-    if best_high is not None:
-        return best_high
-    raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")
+            shift = 0.5 * (low.shift + high.shift)
+    if not placed:
+        return None
+    return min(placed, key=lambda f: (abs(f.n_below - target), f.shift))
 
 
 def slice_eigsh(
@@ -168,7 +189,8 @@ def slice_eigsh(
     the same number of eigenvalues around it; each is factorised once, which counts the
     eigenvalues below it. At each shift a block Lanczos run returns the eigenpairs in a window
     reaching about halfway to the neighbouring shifts, the windows overlapping a little; the runs
-    go in ``workers`` threads while the next shifts are placed. The interval between two shifts
+    go in ``workers`` threads while the next shifts are placed, from the top of the spectrum down
+    (higher windows take longer, so they start first). The interval between two shifts
     takes the lower set's eigenvalues below a split point and the upper set's above it, the split
     sitting in the widest gap of the overlap so that no cluster of (near-)equal eigenvalues is cut
     (or, failing that, one set alone). The number taken must equal the difference of the two
@@ -296,30 +318,40 @@ class _Set:
     expected: int
 
 
-def _plan_set(shifts: list[float], counts: list[int], previous: _Set | None, k: int, n_sets: int, slope: float) -> _Set:
-    """The window of the set at the newest shift ``j = len(shifts) - 1``.
+def _plan_set(
+    shift: float,
+    count: int,
+    above: tuple[float, int] | None,
+    above_plan: _Set | None,
+    target_below: float | None,
+    floor: float,
+    k: int,
+    n_sets: int,
+    slope: float,
+) -> _Set:
+    """The window of the set at ``shift`` (``count`` eigenvalues below it).
 
-    It reaches from about the middle of the interval below (all of it for the first set) to about
-    the middle of the interval above, whose end is not known yet: the next shift's target and the
-    local count slope stand in for it. The last set reaches past ``lam_k`` instead, so that the
-    final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by
+    It reaches from about the middle of the interval below to about the middle of the interval
+    above. Shifts are placed from the top down, so the shift above (``above``: its shift and count)
+    and its set's window are known, and the shift below is not: its target count
+    ``target_below`` and the local density ``slope`` stand in for it (the lowest set, with no
+    target below, reaches down to ``floor``). The top set reaches past ``lam_k`` instead, so that
+    the final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by
     ``OVERLAP`` of the interval between them, so that the split between them can sit in a gap.
     """
-    j = len(shifts) - 1
-    shift, below_count = shifts[j], counts[j] - counts[j - 1]
-    width_below = shift - shifts[j - 1]
-    if previous is None:
-        low = shifts[0]
-        expected = counts[j]
+    if above is None:
+        n_above = max(k - count, 0) + max(3, k // (10 * n_sets))
+        high = shift + n_above / slope
     else:
-        low = min(shift - (0.5 + OVERLAP) * width_below, previous.high - OVERLAP * width_below)
-        expected = int(np.ceil(below_count * (shift - low) / width_below))
-    if j == n_sets:
-        above = max(k - counts[j], 0) + max(3, k // (10 * n_sets))
+        width = above[0] - shift
+        high = max(shift + (0.5 + OVERLAP) * width, above_plan.low + OVERLAP * width)
+        n_above = np.ceil((above[1] - count) * (high - shift) / width)
+    if target_below is None:
+        low, n_below = floor, count
     else:
-        above = max(round((j + 0.5) * k / n_sets) - counts[j], 1) * (0.5 + OVERLAP)
-    high = shift + above / slope
-    return _Set(shift=shift, low=low, high=high, expected=expected + int(np.ceil(above)) + 2)
+        n_below = max(count - target_below, 1.0) * (0.5 + OVERLAP)
+        low = shift - n_below / slope
+    return _Set(shift=shift, low=low, high=high, expected=int(np.ceil(n_below) + np.ceil(n_above)) + 2)
 
 
 def _submit_sets(
@@ -334,29 +366,32 @@ def _submit_sets(
     tol: float,
     n_sets: int,
 ) -> tuple[list[float], list[int], list[_Set | None], list[Future | None], int | None]:
-    """Place the shifts (in this thread) and start each one's Lanczos set in ``pool`` at once.
+    """Place the shifts (in this thread), from the top down, and start each one's Lanczos set in ``pool`` at once.
 
     Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
-    ``k / n_sets`` of them, centred on its shift. A factorisation is large (about the size of 60
-    eigenvectors), so the next shift is factorised only when at most ``workers`` sets are
-    unfinished: one set waits, factorised, for the first worker to come free (a worker never idles
-    while a factorisation is made), at most ``workers + 1`` factorisations are alive, and a set
-    drops its own when it ends.
+    ``k / n_sets`` of them, centred on its shift. The sets start from the top: a window higher in
+    the spectrum takes longer (there are eigenvalues on both sides of it, and they lie closer
+    together relative to their distance from the shift), and the longest jobs first keep the
+    workers busy to the end. A factorisation is large (about the size of 125 eigenvectors), so the
+    next shift is factorised only when at most ``workers`` sets are unfinished: one set waits,
+    factorised, for the first worker to come free (a worker never idles while a factorisation is
+    made), at most ``workers + 1`` factorisations are alive, and a set drops its own when it ends.
     While the sets run, this thread also makes the one count that is not a set's shift: at the top
-    of the last window (usually the certificate above ``lam_k``; ``None`` if that point is an
+    of the top window (usually the certificate above ``lam_k``; ``None`` if that point is an
     eigenvalue). At ``-shift`` no count is needed: when the first interval holds exactly its
     count, no eigenvalue can lie below ``-shift``.
-    Returns the shifts, their counts, the sets' plans and futures (index 0, the shift ``-shift``,
-    has no set: ``None``) and the top count.
+    Returns, in ascending order, the shifts, their counts, the sets' plans and futures (index 0,
+    the shift ``-shift``, has no set: ``None``) and the top count.
     """
-    # Weyl's law N(lam) ~ area lam / (4 pi) sets the first spacing; later ones extrapolate the
+    # Weyl's law N(lam) ~ area lam / (4 pi) places the top shift; the others interpolate the
     # measured counts (N grows about linearly in lam on a surface).
     slope = float(A.sum()) / (4.0 * np.pi)
     # No eigenvalue lies below -shift: proved by the first interval's count (see _stitch).
     first = SliceFactor(shift=-shift, n_below=0, lu=None)
-    shifts, counts = [first.shift], [first.n_below]
-    futures: list[Future | None] = [None]
-    plans: list[_Set | None] = [None]
+    per_set = k / n_sets
+    placed: dict[int, SliceFactor] = {}  # by set, shift and count only
+    plans: dict[int, _Set] = {}
+    futures: dict[int, Future] = {}
     # Factorisations are made and freed in this thread: glibc keeps much of a large block that
     # another thread frees, so a factorisation freed by a worker would stay resident.
     alive: dict[int, SliceFactor] = {}
@@ -367,7 +402,7 @@ def _submit_sets(
     def make_room() -> None:
         # Wait until at most `workers` sets are unfinished (running or queued), then free the
         # factorisations of finished ones.
-        unfinished = [f for f in futures[1:] if not f.done()]
+        unfinished = [f for f in futures.values() if not f.done()]
         if len(unfinished) > workers:
             wait(unfinished, return_when=FIRST_COMPLETED)
         finished = [j for j in alive if futures[j].done()]
@@ -376,26 +411,45 @@ def _submit_sets(
         if finished:
             _return_freed_memory()
 
-    previous = first
-    for j in range(1, n_sets + 1):
+    above: int | None = None  # the set placed last, the nearest above
+    for j in range(n_sets, 0, -1):
         make_room()
-        want = max(1, round((j - 0.5) * k / n_sets) - counts[-1])
-        alive[j] = _next_shift(W, A, order, previous, want, slope, k)
-        shifts.append(alive[j].shift)
-        counts.append(alive[j].n_below)
-        # Local density of eigenvalues (per unit of lam) from the last two counts.
-        slope = max(counts[j] - counts[j - 1], 1) / (shifts[j] - shifts[j - 1])
-        plans.append(_plan_set(shifts, counts, plans[j - 1], k, n_sets, slope))
-        previous = SliceFactor(shift=alive[j].shift, n_below=alive[j].n_below, lu=None)
-        futures.append(pool.submit(run, j))
+        target = (j - 0.5) * per_set
+        factor = _place_shift(
+            W, A, order, target, max(1.0, per_set / 3), first, None if above is None else placed[above], slope
+        )
+        if factor is None:  # one cluster fills the rest of the bracket: the neighbours cover it
+            continue
+        alive[j] = factor
+        placed[j] = SliceFactor(shift=factor.shift, n_below=factor.n_below, lu=None)
+        # Local density of eigenvalues (per unit of lam) from the counts above and at this shift.
+        reference = first if above is None else placed[above]
+        slope = max(abs(reference.n_below - factor.n_below), 1) / abs(reference.shift - factor.shift)
+        plans[j] = _plan_set(
+            factor.shift,
+            factor.n_below,
+            None if above is None else (placed[above].shift, placed[above].n_below),
+            None if above is None else plans[above],
+            (j - 1.5) * per_set if j > 1 else None,
+            first.shift,
+            k,
+            n_sets,
+            slope,
+        )
+        futures[j] = pool.submit(run, j)
+        above = j
     make_room()  # one more factorisation only when a set's is gone
+    top = plans[max(plans)]
     try:
-        top_count: int | None = SliceFactor.of(W, A, plans[-1].high, order).n_below
+        top_count: int | None = SliceFactor.of(W, A, top.high, order).n_below
     except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
         top_count = None
-    wait(futures[1:])
+    wait(list(futures.values()))
     alive.clear()
-    return shifts, counts, plans, futures, top_count
+    sets = sorted(plans)
+    shifts = [first.shift] + [placed[j].shift for j in sets]
+    counts = [first.n_below] + [placed[j].n_below for j in sets]
+    return shifts, counts, [None] + [plans[j] for j in sets], [None] + [futures[j] for j in sets], top_count
 
 
 def _split(

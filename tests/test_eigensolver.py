@@ -177,6 +177,35 @@ def test_a_mesh_and_its_operators_give_the_same_basis():
     assert np.array_equal(a.values, b.values) and np.array_equal(a.vectors, b.vectors)
 
 
+def test_sets_start_from_the_top_of_the_spectrum(monkeypatch):
+    # Higher windows take longer: they are placed and started first, so that a worker is not left
+    # with the longest set at the end. The result does not depend on the order.
+    import lbo_notebooks.eigensolver as eigensolver
+
+    started = []
+    original = eigensolver._window_set
+    monkeypatch.setattr(eigensolver, "_window_set", lambda W, A, factor, *rest, **kw: started.append(factor.shift) or original(W, A, factor, *rest, **kw))
+    W, A = operators(shapes.bumpy_sphere(3))
+    values, _, _ = slice_eigsh(W, A, 80, v0=start(W.shape[0]), shift=0.01, slice_size=20, workers=1)
+    assert len(started) == 4 and started == sorted(started, reverse=True)
+    np.testing.assert_allclose(values[1:], dense_values(W, A)[1:80], rtol=1e-8)
+
+
+def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
+    from lbo_notebooks.eigensolver import _place_shift
+
+    W, A = operators(shapes.icosphere(3))  # l = 2: five eigenvalues near 6, counts 4 -> 9 across them
+    first = SliceFactor(shift=-0.01, n_below=0, lu=None)
+    above = SliceFactor.of(W, A, 9.0, None)
+    assert above.n_below == 9
+    placed = _place_shift(W, A, None, 6.0, 0.5, first, above, 1.0)
+    assert placed is not None and placed.n_below == 4  # below the cluster, the nearer side that fits
+    # Between two counts on either side of the same cluster no shift fits: None, not a loop.
+    low, high = SliceFactor.of(W, A, 5.0, None), SliceFactor.of(W, A, 7.0, None)
+    assert (low.n_below, high.n_below) == (4, 9)
+    assert _place_shift(W, A, None, 6.0, 0.5, low, high, 1.0) is None
+
+
 def test_inputs_are_not_modified():
     W, A = operators(shapes.bumpy_sphere(3))
     W0, A0 = W.copy(), A.copy()
