@@ -420,6 +420,7 @@ def _submit_sets(
         )
         if factor is None:  # one cluster fills the rest of the bracket: the neighbours cover it
             continue
+        _return_freed_memory()  # SuperLU's work space, freed when the factorisation ended
         alive[j] = factor
         placed[j] = SliceFactor(shift=factor.shift, n_below=factor.n_below, lu=None)
         # Local density of eigenvalues (per unit of lam) from the counts above and at this shift.
@@ -444,8 +445,10 @@ def _submit_sets(
         top_count: int | None = SliceFactor.of(W, A, top.high, order).n_below
     except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
         top_count = None
-    wait(list(futures.values()))
-    alive.clear()
+    _return_freed_memory()
+    while alive:  # free each factorisation as soon as its set ends, not when the last one does
+        wait([futures[j] for j in alive], return_when=FIRST_COMPLETED)
+        make_room()
     sets = sorted(plans)
     shifts = [first.shift] + [placed[j].shift for j in sets]
     counts = [first.n_below] + [placed[j].n_below for j in sets]

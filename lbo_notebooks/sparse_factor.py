@@ -130,11 +130,27 @@ class SymmetricFactor:
             self._lu = spla.splu(M.tocsc(), permc_spec="MMD_AT_PLUS_A", **options)
         else:
             self._lu = spla.splu(M[self.order][:, self.order].tocsc(), permc_spec="NATURAL", **options)
+        self._summary: tuple[int, NDArray[np.float64]] | None = None
+
+    def _read_factors(self) -> tuple[int, NDArray[np.float64]]:
+        """The fill and the pivots, read from SuperLU's ``L`` and ``U``, whose copies then go.
+
+        SciPy builds ``L`` and ``U`` as CSC matrices on first access and keeps them on the
+        factorisation: a second copy of the factor that no solve uses (at 51k vertices 54 MB, at
+        10k 9 MB). Only their size and diagonal are kept; the kept matrices are emptied, since
+        SciPy hands out the same objects again.
+        """
+        if self._summary is None:
+            L, U = self._lu.L, self._lu.U
+            self._summary = (int(L.nnz + U.nnz), U.diagonal())
+            for copy in (L, U):
+                copy.data, copy.indices = copy.data[:0].copy(), copy.indices[:0].copy()
+        return self._summary
 
     @property
     def nnz(self) -> int:
         """Stored entries of ``L`` and ``U`` (the fill)."""
-        return int(self._lu.L.nnz + self._lu.U.nnz)
+        return self._read_factors()[0]
 
     @property
     def n_negative(self) -> int:
@@ -145,7 +161,7 @@ class SymmetricFactor:
         """
         if not np.array_equal(self._lu.perm_r, self._lu.perm_c):
             raise ValueError("the factorisation pivoted off the diagonal, so its pivots do not give the inertia.")
-        pivots = self._lu.U.diagonal()
+        pivots = self._read_factors()[1]
         if not np.all(np.isfinite(pivots)):
             raise ValueError("the matrix has a non-finite pivot; check it for NaN or inf.")
         return int(np.count_nonzero(pivots < 0))

@@ -119,3 +119,27 @@ def test_mesh_order_is_the_order_of_the_operators_pattern_made_once():
     P = (W + 1e-3 * A).tocsr()[1:, 1:]
     y = symmetric_lu(P, order[order != 0] - 1).solve(np.ones(P.shape[0]))
     assert np.linalg.norm(P @ y - 1.0) <= 1e-10 * abs(P).sum(axis=1).max() * np.linalg.norm(y)
+
+
+def test_reading_the_inertia_leaves_no_copy_of_the_factor_behind(operators):
+    # SciPy keeps the CSC copies of L and U it builds on first access: a second copy of the
+    # factor. The pivots and the fill are read once and those copies emptied; solves still work.
+    import tracemalloc
+
+    W, A = operators
+    M = W - 7.0 * A
+    exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+    tracemalloc.start()
+    try:
+        factor = symmetric_lu(M, fill_reducing_order(M))
+        before = tracemalloc.get_traced_memory()[0]
+        assert factor.n_negative == np.count_nonzero(exact < 7.0)
+        kept = tracemalloc.get_traced_memory()[0] - before
+    finally:
+        tracemalloc.stop()
+    assert kept < 0.1 * 12 * factor.nnz  # the pivots (n floats), not nnz(L + U) values and indices
+    reference = SymmetricFactor(M, fill_reducing_order(M))
+    assert factor.nnz == reference.nnz > M.nnz  # nnz read after the inertia, and before it
+    assert reference.n_negative == factor.n_negative
+    x = factor.solve(np.ones(M.shape[0]))
+    assert np.linalg.norm(M @ x - 1.0) <= 1e-10 * abs(M).sum(axis=1).max() * np.linalg.norm(x)
