@@ -39,9 +39,10 @@ SLICE_SIZE = 100
 TOL = 1e-10
 # Fewest eigenpairs worth a Lanczos set of their own (a set costs a factorisation).
 MIN_SET = 20
-# Neighbouring sets' windows overlap by this fraction of the interval between their shifts (room
-# for the split to sit in a gap). 0.1 cost 6-13% more time at 50k vertices than 0.05 and redid no
-# fewer windows on spheres, tori, rectangles and bumpy spheres of 10-50k vertices.
+# Each window reaches this fraction of the interval between neighbouring shifts past its middle,
+# so neighbouring windows overlap by twice it (room for the split to sit in a gap). 0.1 cost 6-13%
+# more time at 50k vertices than 0.05 and redid no fewer windows on spheres, tori, rectangles and
+# bumpy spheres of 10-50k vertices.
 OVERLAP = 0.05
 
 
