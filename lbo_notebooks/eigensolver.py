@@ -337,7 +337,7 @@ def _plan_set(
     and its set's window are known, and the shift below is not: its target count
     ``target_below`` and the local density ``slope`` stand in for it (the lowest set, with no
     target below, reaches down to ``floor``). The top set reaches past ``lam_k`` instead, so that
-    the final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by
+    the final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by twice
     ``OVERLAP`` of the interval between them, so that the split between them can sit in a gap.
     """
     if above is None:
@@ -440,6 +440,8 @@ def _submit_sets(
         )
         futures[j] = pool.submit(run, j)
         above = j
+    if not plans:  # no shift fitted anywhere between -shift and the top: nothing to slice
+        raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")
     make_room()  # one more factorisation only when a set's is gone
     top = plans[max(plans)]
     try:

@@ -51,6 +51,7 @@ __all__ = [
     "procrustes_error",
     "scale_mu",
     "SMDS_DEFAULTS",
+    "SMDS_EIGEN_TOL",
     "ENERGIES",
     "SAMPLED",
 ]

@@ -206,6 +206,19 @@ def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
     assert _place_shift(W, A, None, 6.0, 0.5, low, high, 1.0) is None
 
 
+def test_no_shift_placed_is_an_error_and_eigenbasis_falls_back_to_arpack(monkeypatch):
+    import lbo_notebooks.eigensolver as eigensolver
+
+    monkeypatch.setattr(eigensolver, "_place_shift", lambda *args: None)
+    mesh = shapes.bumpy_sphere(3)
+    W, A = operators(mesh)
+    with pytest.raises(RuntimeError, match="could not place a shift"):
+        slice_eigsh(W, A, 60, v0=start(W.shape[0]), shift=0.01)
+    with pytest.warns(RuntimeWarning, match="Falling back to one ARPACK run"):
+        fallback = eigenbasis(mesh, 100)
+    np.testing.assert_allclose(fallback.values[1:], eigenbasis(mesh, 100, solver="arpack").values[1:], rtol=1e-12)
+
+
 def test_inputs_are_not_modified():
     W, A = operators(shapes.bumpy_sphere(3))
     W0, A0 = W.copy(), A.copy()
