@@ -133,7 +133,7 @@ def _place_shift(
     """
     spacing = 1.0 / slope  # typical distance between eigenvalues
     low, high = below, above  # the bracket: counts at most / at least target
-    placed: list[SliceFactor] = []
+    candidates: list[SliceFactor] = []  # factorised strictly inside the bracket
     if above is None:
         shift = below.shift + max(target - below.n_below, 1.0) / slope
     else:
@@ -153,7 +153,7 @@ def _place_shift(
         if inside and abs(count - target) <= spread:
             return factor
         if inside:
-            placed.append(factor)
+            candidates.append(factor)
         if count <= target:
             low = factor
         else:
@@ -167,9 +167,9 @@ def _place_shift(
             shift = low.shift + min(max(fraction, 0.1), 0.9) * (high.shift - low.shift)
         else:
             shift = 0.5 * (low.shift + high.shift)
-    if not placed:
+    if not candidates:
         return None
-    return min(placed, key=lambda f: (abs(f.n_below - target), f.shift))
+    return min(candidates, key=lambda f: (abs(f.n_below - target), f.shift))
 
 
 def slice_eigsh(

@@ -243,7 +243,7 @@ def eigenbasis(
     if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        from .eigensolver import SLICE_SIZE, slice_eigsh
+        from .eigensolver import SLICE_SIZE, TOL, slice_eigsh
         from .sparse_factor import mesh_order
 
         sliced = None
@@ -251,9 +251,10 @@ def eigenbasis(
             try:
                 # A Mesh's operators have its edge pattern: the METIS order is made once per mesh
                 # and shared with the heat method's factorisations.
-                order = mesh_order(mesh) if isinstance(mesh, Mesh) else None
-                tol_slicing = {} if tol is None else {"tol": float(tol)}
-                sliced = slice_eigsh(W, A, k, v0=start_vector(n), shift=shift, order=order, **tol_slicing)
+                metis_order = mesh_order(mesh) if isinstance(mesh, Mesh) else None
+                sliced = slice_eigsh(
+                    W, A, k, v0=start_vector(n), shift=shift, order=metis_order, tol=TOL if tol is None else float(tol)
+                )
             except RuntimeError as error:
                 if solver == "slicing":
                     raise
@@ -267,7 +268,7 @@ def eigenbasis(
         # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
         # in order (no mixing) keeps Phi.T A Phi = I to machine precision. The arrays are the
         # solver's own: refined and sign-fixed in place (no second and third n x k copy).
-        if cholesky_qr(vectors, A, out=vectors) is None:
-            vectors = a_orthonormalize(vectors, A, refine=True)
+        if cholesky_qr(vectors, A, out=vectors) is None:  # not nearly orthonormal: Gram-Schmidt
+            vectors = a_orthonormalize(vectors, A)
     vectors = fix_signs_in_place(np.ascontiguousarray(vectors, dtype=np.float64), A)
     return Spectrum(values=np.ascontiguousarray(values), vectors=vectors, stiffness=W, mass=A)
