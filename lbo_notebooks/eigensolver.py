@@ -400,12 +400,13 @@ def _submit_sets(
     def run(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0, tol)
 
-    def make_room() -> None:
-        # Wait until at most `workers` sets are unfinished (running or queued), then free the
+    def make_room(limit: int = workers) -> None:
+        # Wait until at most `limit` sets are unfinished (running or queued), then free the
         # factorisations of finished ones.
         unfinished = [f for f in futures.values() if not f.done()]
-        if len(unfinished) > workers:
+        while len(unfinished) > limit:
             wait(unfinished, return_when=FIRST_COMPLETED)
+            unfinished = [f for f in unfinished if not f.done()]
         finished = [j for j in alive if futures[j].done()]
         for j in finished:
             del alive[j]
@@ -442,7 +443,10 @@ def _submit_sets(
         above = j
     if not plans:  # no shift fitted anywhere between -shift and the top: nothing to slice
         raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")
-    make_room()  # one more factorisation only when a set's is gone
+    # The count is one more factorisation, made only when a worker has come free: run beside
+    # all `workers` sets, it would slow each of them (the longest included) and hold one more
+    # factorisation in memory; on the free core it costs no wall time.
+    make_room(workers - 1)
     top = plans[max(plans)]
     try:
         top_count: int | None = SliceFactor.of(W, A, top.high, order).n_below
