@@ -377,10 +377,11 @@ def _submit_sets(
     next shift is factorised only when at most ``workers`` sets are unfinished: one set waits,
     factorised, for the first worker to come free (a worker never idles while a factorisation is
     made), at most ``workers + 1`` factorisations are alive, and a set drops its own when it ends.
-    While the sets run, this thread also makes the one count that is not a set's shift: at the top
-    of the top window (usually the certificate above ``lam_k``; ``None`` if that point is an
-    eigenvalue). At ``-shift`` no count is needed: when the first interval holds exactly its
-    count, no eigenvalue can lie below ``-shift``.
+    This thread also makes the one count that is not a set's shift: at the top of the top window
+    (usually the certificate above ``lam_k``; ``None`` if that point is an eigenvalue), as soon as
+    the top set has started, so that it runs beside one set whose basis is still small. At
+    ``-shift`` no count is needed: when the first interval holds exactly its count, no eigenvalue
+    can lie below ``-shift``.
     Returns, in ascending order, the shifts, their counts, the sets' plans and futures (index 0,
     the shift ``-shift``, has no set: ``None``) and the top count.
     """
@@ -400,13 +401,12 @@ def _submit_sets(
     def run(j: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return _window_set(W, A, alive[j], (plans[j].low, plans[j].high), plans[j].expected, v0, tol)
 
-    def make_room(limit: int = workers) -> None:
-        # Wait until at most `limit` sets are unfinished (running or queued), then free the
+    def make_room() -> None:
+        # Wait until at most `workers` sets are unfinished (running or queued), then free the
         # factorisations of finished ones.
         unfinished = [f for f in futures.values() if not f.done()]
-        while len(unfinished) > limit:
+        if len(unfinished) > workers:
             wait(unfinished, return_when=FIRST_COMPLETED)
-            unfinished = [f for f in unfinished if not f.done()]
         finished = [j for j in alive if futures[j].done()]
         for j in finished:
             del alive[j]
@@ -414,6 +414,7 @@ def _submit_sets(
             _return_freed_memory()
 
     above: int | None = None  # the set placed last, the nearest above
+    top_count: int | None = None
     for j in range(n_sets, 0, -1):
         make_room()
         target = (j - 0.5) * per_set
@@ -440,19 +441,18 @@ def _submit_sets(
             slope,
         )
         futures[j] = pool.submit(run, j)
+        if above is None:
+            # The top set has started: count at the top of its window now, while one set runs
+            # and its Krylov basis is still small (later, beside every set and full bases, the
+            # extra factorisation would slow them all and raise the peak memory).
+            try:
+                top_count = SliceFactor.of(W, A, plans[j].high, order).n_below
+            except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
+                top_count = None
+            _return_freed_memory()
         above = j
     if not plans:  # no shift fitted anywhere between -shift and the top: nothing to slice
         raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")
-    # The count is one more factorisation, made only when a worker has come free: run beside
-    # all `workers` sets, it would slow each of them (the longest included) and hold one more
-    # factorisation in memory; on the free core it costs no wall time.
-    make_room(workers - 1)
-    top = plans[max(plans)]
-    try:
-        top_count: int | None = SliceFactor.of(W, A, top.high, order).n_below
-    except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
-        top_count = None
-    _return_freed_memory()
     while alive:  # free each factorisation as soon as its set ends, not when the last one does
         wait([futures[j] for j in alive], return_when=FIRST_COMPLETED)
         make_room()
