@@ -11,7 +11,8 @@ row pivoting, so that ``U = D L^T`` and, by Sylvester's law of inertia, the numb
 pivots in ``D`` *is* the number of eigenvalues below ``b``. The same factorisation runs the
 shift-invert Lanczos for the window around ``b``. Between two consecutive shifts the difference
 of their counts says exactly how many eigenpairs the interval holds, and an interval that comes
-back with a different number is redone or raises instead of silently dropping one.
+back short is completed (the missing pairs are looked for apart from the found ones), redone or
+raises instead of silently dropping one.
 """
 
 from __future__ import annotations
@@ -26,8 +27,9 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from threadpoolctl import threadpool_limits
 
-from .sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
+from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
+from .sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
 
 __all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
 
@@ -195,9 +197,11 @@ def slice_eigsh(
     takes the lower set's eigenvalues below a split point and the upper set's above it, the split
     sitting in the widest gap of the overlap so that no cluster of (near-)equal eigenvalues is cut
     (or, failing that, one set alone). The number taken must equal the difference of the two
-    inertia counts, and a last count in a gap just above ``lam_k`` certifies the top; otherwise a
-    window is redone twice as wide and finally a ``RuntimeError`` is raised: an eigenvalue is
-    never silently missed.
+    inertia counts, and a last count in a gap just above ``lam_k`` certifies the top. An interval
+    that comes out short (a block of 4 finds at most 4 copies of an exactly repeated eigenvalue:
+    5-fold ones on an icosphere) is completed by one small run, A-orthogonal to the pairs found,
+    at a shift in its middle; failing that a window is redone twice as wide, and finally a
+    ``RuntimeError`` is raised: an eigenvalue is never silently missed.
 
     Parameters
     ----------
@@ -463,7 +467,13 @@ def _submit_sets(
 
 
 def _split(
-    carry: NDArray[np.float64], carry_top: float, values: NDArray[np.float64], low_shift: float, shift: float, trusted: float, count: int
+    carry: NDArray[np.float64],
+    carry_top: float,
+    values: NDArray[np.float64],
+    low_shift: float,
+    shift: float,
+    trusted: float,
+    count: int | None,
 ) -> tuple[NDArray[np.bool_], NDArray[np.bool_]] | None:
     """Masks of ``carry`` and ``values`` that together hold exactly ``count`` eigenvalues of ``(low_shift, shift)``.
 
@@ -471,7 +481,8 @@ def _split(
     set at ``shift`` above ``trusted`` (the bounds of their windows). The split sits in the widest gap of the overlap (no
     cluster is cut), or one set alone is taken. ``None`` when no split gives ``count``: Lanczos can
     return only part of an exactly multiple eigenvalue and farther ones instead, so "complete
-    inside its window" is a hope, not a fact; the count decides.
+    inside its window" is a hope, not a fact; the count decides. ``count=None``: the masks of the
+    preferred split, whatever they hold.
     """
     low, top = max(trusted, low_shift), min(carry_top, shift)
     splits = [low_shift]
@@ -484,7 +495,7 @@ def _split(
     for split in splits:
         from_carry = carry < split
         mine = (values > split) & (values < shift)
-        if np.count_nonzero(from_carry) + np.count_nonzero(mine) == count:
+        if count is None or np.count_nonzero(from_carry) + np.count_nonzero(mine) == count:
             return from_carry, mine
     return None
 
@@ -506,8 +517,9 @@ def _stitch(
 
     Between the last shift and ``lam_k`` there is no shift: ``top_count``, the count at the top of
     the last window, proves that none below it is missing when the last set holds that many; else
-    a count at a point in a gap just above ``lam_k`` (among the last set's eigenvalues) decides. A
-    set that comes out short is redone with a window twice as wide.
+    a count at a point in a gap just above ``lam_k`` (among the last set's eigenvalues) decides. An
+    interval that comes out short is first completed (``complete``: only the missing pairs are
+    looked for), then its set is redone with a window twice as wide.
     """
     n = W.shape[0]
     # Intervals come in increasing order and each is ascending, so results fill in order; only
@@ -522,6 +534,45 @@ def _stitch(
         out_values[filled : filled + take] = vals[:take]
         out_vectors[:, filled : filled + take] = vecs[:, :take]
         filled += take
+
+    def complete(
+        low: float, high: float, count: int, found_values: NDArray[np.float64], found_vectors: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+        # The `count` eigenpairs in (low, high), of which these were found: a block of b vectors
+        # finds at most b copies of an exactly repeated eigenvalue (symmetric shapes: 5 on an
+        # icosphere), the rest only by round-off. So the missing ones are looked for A-orthogonally
+        # to the found ones, with twice the block, at a shift in the middle of the interval, where
+        # they are nearer than any eigenvalue outside it. None when that does not give them all.
+        # The tolerance is relative to the distance from the shift, which is larger here than
+        # from the shift of the set that missed them: a hundredth of it keeps them as accurate
+        # (and as A-orthogonal to the neighbouring sets) as that set's own pairs.
+        missing = count - found_values.size
+        if missing <= 0 or found_values.size + missing + 4 * BLOCK_SIZE >= n:
+            return None
+        basis = np.empty_like(found_vectors)
+        if found_values.size and cholesky_qr(found_vectors, A, out=basis) is None:
+            return None
+        middle = 0.5 * (low + high)
+        try:
+            factor = SliceFactor.of(W, A, middle, order)
+        except ValueError:  # the middle is an eigenvalue: a little off it is as good
+            middle += 1e-3 * (high - low)
+            try:
+                factor = SliceFactor.of(W, A, middle, order)
+            except ValueError:
+                return None
+        try:
+            new_values, new_vectors = nearest_eigenpairs(
+                factor.lu.solve, W, A, middle, missing, start=v0, window=(low, high), tol=1e-2 * tol,
+                block_size=2 * BLOCK_SIZE, deflate=basis, min_found=missing,
+            )
+        except RuntimeError:
+            return None
+        if new_values.size != missing:
+            return None
+        values = np.concatenate((found_values, new_values))
+        ascending = np.argsort(values, kind="stable")
+        return values[ascending], np.hstack((basis, new_vectors))[:, ascending]
 
     def redo(j: int, attempt: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         # Twice the window (its factorisation was dropped: factorise again, same result) and
@@ -543,6 +594,7 @@ def _stitch(
         interval = counts[j] - counts[j - 1]
         values, vectors = sets[j].result()
         sets[j] = None  # the set is copied out below: let it go
+        completed = None
         for attempt in range(3):
             masks = _split(carry_values, carry_top, values, shifts[j - 1], shifts[j], plans[j].low, interval)
             if masks is not None or attempt == 2:
@@ -553,14 +605,28 @@ def _stitch(
                 raise ValueError(
                     f"stiffness + {-shifts[0]:g} mass is not positive definite: stiffness must be positive semidefinite."
                 )
+            if attempt == 0:  # first look only for what is missing
+                from_carry, mine = _split(carry_values, carry_top, values, shifts[j - 1], shifts[j], plans[j].low, None)
+                completed = complete(
+                    shifts[j - 1],
+                    shifts[j],
+                    interval,
+                    np.concatenate((carry_values[from_carry], values[mine])),
+                    np.hstack((carry_vectors[:, from_carry], vectors[:, mine])),
+                )
+                if completed is not None:
+                    break
             values, vectors = redo(j, attempt + 1)
-        if masks is None:
+        if completed is not None:
+            fill(*completed)
+        elif masks is None:
             raise RuntimeError(
                 f"spectrum slicing did not find the {interval} eigenvalues that the inertia counts put between "
                 f"the shifts {shifts[j - 1]:.6g} and {shifts[j]:.6g}; use solver='arpack'."
             )
-        fill(carry_values[masks[0]], carry_vectors[:, masks[0]])
-        fill(values[masks[1]], vectors[:, masks[1]])
+        else:
+            fill(carry_values[masks[0]], carry_vectors[:, masks[0]])
+            fill(values[masks[1]], vectors[:, masks[1]])
         above = values > shifts[j]
         carry_values, carry_vectors, carry_top = values[above], vectors[:, above], plans[j].high
     if filled == k:  # the last shift is already above lam_k
@@ -568,6 +634,11 @@ def _stitch(
     if top_count is not None and carry_values.size >= k - filled and top_count == counts[-1] + carry_values.size:
         fill(carry_values, carry_vectors)
         return out_values, out_vectors, top_count
+    if top_count is not None and top_count - counts[-1] >= k - filled:  # pairs are missing below the top count
+        completed = complete(shifts[-1], plans[-1].high, top_count - counts[-1], carry_values, carry_vectors)
+        if completed is not None:
+            fill(*completed)
+            return out_values, out_vectors, top_count
     for attempt in range(3):
         # The last count goes in the widest gap between lam_k and the top of the last window.
         need = k - filled

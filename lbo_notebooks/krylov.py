@@ -53,7 +53,11 @@ def _rotate_in_place(Q: NDArray[np.float64], m: int, S: NDArray[np.float64], row
 
 
 def _orthonormal_block(
-    Y: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass, rng: np.random.Generator, Q: NDArray[np.float64]
+    Y: NDArray[np.float64],
+    mass: sp.spmatrix | DiagonalMass,
+    rng: np.random.Generator,
+    Q: NDArray[np.float64],
+    deflate: NDArray[np.float64] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """``Y = Q C + X R`` with ``X`` A-orthonormal and A-orthogonal to ``Q``; dependent directions replaced.
 
@@ -62,7 +66,7 @@ def _orthonormal_block(
     ill-conditioned that division amplifies round-off along ``Q``, so ``X`` is projected once more
     (the coefficients ``C``, usually zero, keep ``Y = Q C + X R`` exact). Directions with ``d``
     below ``DEPENDENT^2 max(d)`` (an invariant subspace was found) become random vectors orthogonal
-    to everything, with zero rows in ``R``, so the block keeps its size.
+    to everything (``deflate`` included), with zero rows in ``R``, so the block keeps its size.
     """
     n, b = Y.shape
     C = np.zeros((Q.shape[1], b))
@@ -76,6 +80,8 @@ def _orthonormal_block(
     R[:r] = np.sqrt(d[keep])[:, None] * U[:, keep].T
     if r < b:
         X[:, r:] = rng.standard_normal((n, b - r))
+        if deflate is not None:
+            _project_out(deflate, X[:, r:], mass)
     if r < b or d[keep][0] < 1e-8 * scale:
         C += _project_out(Q, X, mass) @ R
         if r < b:  # the fresh columns: orthogonal to the kept ones too
@@ -101,6 +107,8 @@ def nearest_eigenpairs(
     block_size: int = BLOCK_SIZE,
     max_basis: int | None = None,
     seed: int = 0,
+    deflate: NDArray[np.float64] | None = None,
+    min_found: int = 0,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The ``nev`` eigenpairs of ``stiffness phi = lam mass phi`` nearest ``shift``, ascending.
 
@@ -131,6 +139,13 @@ def nearest_eigenpairs(
         Largest basis before a thick restart; default ``max(BASIS_PER_PAIR nev, nev + 4 block_size)``.
     seed : int
         Seed of the start block's noise.
+    deflate : ndarray (n, d), optional
+        A-orthonormal eigenvectors already found: the space is kept A-orthogonal to them, so the
+        run returns only eigenpairs outside their span (e.g. the copies of a multiple eigenvalue
+        that an earlier run with a smaller block missed).
+    min_found : int
+        With ``window``: do not stop before at least this many pairs lie in it (e.g. the number an
+        inertia count puts there); a ``RuntimeError`` after ``MAX_RESTARTS`` restarts otherwise.
 
     Returns
     -------
@@ -153,11 +168,16 @@ def nearest_eigenpairs(
     n = stiffness.shape[0]
     if not 1 <= nev < n:
         raise ValueError(f"nev must be between 1 and n - 1 = {n - 1}, got {nev}.")
+    if deflate is not None and (deflate.ndim != 2 or deflate.shape[0] != n or deflate.shape[1] + nev >= n):
+        raise ValueError(f"deflate must be an (n, d) array with n = {n} and d + nev < n, got shape {deflate.shape}.")
     b = int(block_size)
     m_max = int(max_basis or max(int(BASIS_PER_PAIR * nev), nev + 4 * b))
     m_max = max(m_max - m_max % b, nev + 4 * b)  # room for three blocks after a thick restart
     if m_max + b >= n:  # the Krylov space would be most of the space: solve densely
         values, vectors = scipy.linalg.eigh(stiffness.toarray(), mass.toarray())
+        if deflate is not None:  # the eigenvectors outside span(deflate) (D^T A x ~ 0 for them)
+            rest = np.linalg.norm(deflate.T @ (mass @ vectors), axis=0) < 0.5
+            values, vectors = values[rest], vectors[:, rest]
         if window is not None:
             chosen = (values > window[0]) & (values < window[1])
         else:
@@ -173,7 +193,9 @@ def nearest_eigenpairs(
     H = np.zeros((m_max + b, m_max + b))
     first = rng.standard_normal((n, b))
     first[:, 0] = start
-    Q[:, :b], _, _ = _orthonormal_block(first, mass, rng, Q[:, :0])
+    if deflate is not None:
+        _project_out(deflate, first, mass)
+    Q[:, :b], _, _ = _orthonormal_block(first, mass, rng, Q[:, :0], deflate)
     m = b  # columns in the basis
     cur = 0  # first column of the block T is applied to next
     local = 0  # T Q_cur lies in span(Q[:, local:m]) in exact arithmetic (Lanczos)
@@ -181,12 +203,14 @@ def nearest_eigenpairs(
     next_check = nev + 2 * b
     while True:
         Y = np.asfortranarray(solve(mass @ Q[:, cur : cur + b]))
+        if deflate is not None:  # span(deflate) is invariant: only round-off and residuals land there
+            _project_out(deflate, Y, mass)
         # The recurrence's own coefficients, then one pass against the whole basis for the
         # round-off that the recurrence lets through (together: Gram-Schmidt twice where it matters).
         C = np.zeros((m, b))
         C[local:] = _project_out(Q[:, local:m], Y, mass)
         C += _project_out(Q[:, :m], Y, mass)
-        X, R, extra = _orthonormal_block(Y, mass, rng, Q[:, :m])
+        X, R, extra = _orthonormal_block(Y, mass, rng, Q[:, :m], deflate)
         C += extra
         H[:m, cur : cur + b] = C
         H[cur : cur + b, :m] = C.T
@@ -207,7 +231,7 @@ def nearest_eigenpairs(
                     H = np.pad(H[:m, :m], (0, m_max + b - m))
             residual = np.linalg.norm(R @ S[m - b : m, wanted], axis=0)
             converged = residual <= tol * np.abs(theta[wanted])
-            if np.all(converged) and (window is None or m >= nev + 2 * b):
+            if np.all(converged) and (window is None or (m >= nev + 2 * b and wanted.size >= min_found)):
                 _rotate_in_place(Q, m, S[:, wanted])
                 del Q
                 buffer.resize((wanted.size, n), refcheck=False)  # no view of it is left

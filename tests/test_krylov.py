@@ -108,3 +108,31 @@ def test_slicing_gives_the_same_bits_with_one_or_two_workers():
     assert np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1]) and one[2] == two[2]
     plain = np.sort(spla.eigsh(W, k=150, M=A, sigma=-0.01, which="LM")[0])
     np.testing.assert_allclose(one[0][1:], plain[1:], rtol=1e-8)
+
+
+def test_deflation_returns_only_the_pairs_outside_the_deflated_span():
+    # l = 4 on this icosphere is an exactly 5-fold and an exactly 4-fold eigenvalue near 20. With
+    # three and two of their eigenvectors deflated, the run returns the other four and no copy of
+    # the deflated ones: together they span the whole cluster.
+    W, A = operators(shapes.icosphere(4))
+    exact, exact_vectors = dense(W, A)
+    cluster = np.flatnonzero(np.abs(exact / 20 - 1) < 0.05)
+    assert cluster.size == 9
+    deflated = exact_vectors[:, [cluster[0], cluster[1], cluster[2], cluster[5], cluster[6]]]
+    shift = 20.2
+    values, vectors = nearest_eigenpairs(
+        solver(W, A, shift), W, A, shift, 4, start=np.ones(W.shape[0]), window=(19.5, 20.5), block_size=8,
+        deflate=deflated, min_found=4,
+    )
+    np.testing.assert_allclose(values, exact[[cluster[3], cluster[4], cluster[7], cluster[8]]], rtol=1e-10)
+    check_orthonormal(A, vectors)
+    assert np.abs(deflated.T @ (A @ vectors)).max() < 1e-8
+    together = np.hstack((deflated, vectors))
+    overlap = together.T @ (A @ exact_vectors[:, cluster])
+    assert np.linalg.svd(overlap, compute_uv=False).min() > 1 - 1e-8
+
+
+def test_deflation_needs_vectors_of_the_operators_size():
+    W, A = operators(shapes.icosphere(2))
+    with pytest.raises(ValueError, match="deflate"):
+        nearest_eigenpairs(solver(W, A, 3.0), W, A, 3.0, 4, start=np.ones(W.shape[0]), deflate=np.ones((5, 2)))
