@@ -544,8 +544,9 @@ def _stitch(
         # to the found ones, with twice the block, at a shift in the middle of the interval, where
         # they are nearer than any eigenvalue outside it. None when that does not give them all.
         # The tolerance is relative to the distance from the shift, which is larger here than
-        # from the shift of the set that missed them: a hundredth of it keeps them as accurate
-        # (and as A-orthogonal to the neighbouring sets) as that set's own pairs.
+        # from the shift of the set that missed them: with a hundredth of it a completed pair is
+        # as accurate as the sets' own (a dropped pair on a bumpy sphere came back with relative
+        # residual 2e-12, the sets' pairs up to 1e-10; at the sets' tolerance it was 4e-10).
         missing = count - found_values.size
         if missing <= 0 or found_values.size + missing + 4 * BLOCK_SIZE >= n:
             return None
