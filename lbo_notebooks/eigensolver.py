@@ -538,11 +538,11 @@ def _stitch(
     def complete(
         low: float, high: float, count: int, found_values: NDArray[np.float64], found_vectors: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
-        # The `count` eigenpairs in (low, high), of which these were found: a block of b vectors
-        # finds at most b copies of an exactly repeated eigenvalue (symmetric shapes: 5 on an
-        # icosphere), the rest only by round-off. So the missing ones are looked for A-orthogonally
-        # to the found ones, with twice the block, at a shift in the middle of the interval, where
-        # they are nearer than any eigenvalue outside it. None when that does not give them all.
+        # The `count` eigenpairs in (low, high), of which these were found (a set misses copies of
+        # an exactly repeated eigenvalue beyond its block size, see redo). The missing ones are
+        # looked for A-orthogonally to the found ones, with twice the block, at a shift in the
+        # middle of the interval, where they are nearer than any eigenvalue outside it. None when
+        # that does not give them all.
         # The tolerance is relative to the distance from the shift, which is larger here than
         # from the shift of the set that missed them: with a hundredth of it a completed pair is
         # as accurate as the sets' own (a dropped pair on a bumpy sphere came back with relative
@@ -553,18 +553,18 @@ def _stitch(
         basis = np.empty_like(found_vectors)
         if found_values.size and cholesky_qr(found_vectors, A, out=basis) is None:
             return None
-        middle = 0.5 * (low + high)
-        try:
-            factor = SliceFactor.of(W, A, middle, order)
-        except ValueError:  # the middle is an eigenvalue: a little off it is as good
-            middle += 1e-3 * (high - low)
+        # No inertia count is needed at this shift, only the solves: a plain factorisation.
+        for middle in (0.5 * (low + high), 0.5 * (low + high) + 1e-3 * (high - low)):
             try:
-                factor = SliceFactor.of(W, A, middle, order)
-            except ValueError:
-                return None
+                lu = symmetric_lu(W - middle * A, order)
+                break
+            except RuntimeError:  # the middle is an eigenvalue: a little off it is as good
+                continue
+        else:
+            return None
         try:
             new_values, new_vectors = nearest_eigenpairs(
-                factor.lu.solve, W, A, middle, missing, start=v0, window=(low, high), tol=1e-2 * tol,
+                lu.solve, W, A, middle, missing, start=v0, window=(low, high), tol=1e-2 * tol,
                 block_size=2 * BLOCK_SIZE, deflate=basis, min_found=missing,
             )
         except RuntimeError:
