@@ -120,6 +120,8 @@ def _read_text(p: Path, kind: str) -> str:
             f"this is binary data, not a text {kind} file (it contains NUL bytes). "
             f"Check that the file really is an {kind} file; re-export it from its source."
         )
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]  # a UTF-8 byte order mark, as some Windows editors write it: not data
     return data.decode("latin-1")
 
 
@@ -282,7 +284,7 @@ def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], 
 def _read_obj(p: Path, need_faces: bool = True) -> RawMesh:
     text = _read_text(p, "OBJ")
     _check_ends_with_line_break(text)
-    lines = text.splitlines()
+    lines = [line.lstrip() for line in text.splitlines()]  # an indented 'v' line is still a vertex
     vertex_lines = [line[2:].split("#", 1)[0] for line in lines if line[:2] in ("v ", "v\t")]
     face_lines = [line[2:] for line in lines if line[:2] in ("f ", "f\t")]
     if not vertex_lines:

@@ -837,3 +837,14 @@ def test_the_pts_count_line_is_checked(tmp_path):
             load_points(write(tmp_path / "bad.pts", f"{count}\n" + rows))
     with pytest.raises(MeshError, match="count"):
         load_points(write(tmp_path / "frac.pts", "2.5\n" + rows))
+
+
+def test_a_utf8_byte_order_mark_and_indented_obj_lines_do_not_drop_a_vertex(tmp_path):
+    # Found while writing the fuzz suite: both made the first vertex vanish, shifting every index
+    # (a silent wrong mesh whenever the last vertex is unused, a misleading error otherwise).
+    body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 2 3 4\n"
+    for name, data in (("bom.obj", b"\xef\xbb\xbf" + body.encode()), ("indented.obj", ("  " + body).encode())):
+        mesh = load_mesh(write(tmp_path / name, data), clean=True)
+        np.testing.assert_array_equal(mesh.vertices, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    bom_off = b"\xef\xbb\xbf" + off_text(SQUARE_V, SQUARE_F).encode()
+    assert load_mesh(write(tmp_path / "bom.off", bom_off)).n_vertices == 4
