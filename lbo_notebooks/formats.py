@@ -126,9 +126,13 @@ def _read_text(p: Path, kind: str) -> str:
 
 
 def _check_ends_with_line_break(text: str, comment: str = "#") -> None:
-    """Refuse a text whose last line has data but no line break: it may be cut inside a number."""
+    """Refuse a text whose last line has data but no line break: it may be cut inside a number.
+
+    A comment on that line shows that its data ended; a PLY body has no comments (``comment`` is
+    then a pattern that cannot occur in a line).
+    """
     tail = text[max(text.rfind("\n"), text.rfind("\r")) + 1 :]
-    if re.split(comment, tail, maxsplit=1)[0].strip():
+    if tail.strip() and re.search(comment, tail) is None:
         raise MeshError(
             f"the file does not end with a line break, so its last line {tail[-60:]!r} may have been cut off "
             "(a number cut short still parses, to a wrong value): the file is probably truncated. "
@@ -733,7 +737,7 @@ def read_point_text(p: Path) -> NDArray[np.float64]:
 
     Numbers are separated by spaces, tabs, commas or semicolons; ``#`` and ``//`` start comments.
     A first line holding one integer is a count (``.pts``) and must equal the number of points; a
-    first line with no number in it (such as ``x,y,z``) is a header and is skipped.
+    first line starting with a word (such as ``x,y,z``) is a header and is skipped.
     """
     text = _read_text(p, "point")
     _check_ends_with_line_break(text, comment="#|//")
@@ -761,8 +765,8 @@ def read_point_text(p: Path) -> NDArray[np.float64]:
                 "or corrupt. Re-export or re-download it."
             )
         rows = rows[1:]
-    elif not any(is_number(x) for x in rows[0]):
-        rows = rows[1:]  # a header line such as 'x,y,z'
+    elif not is_number(rows[0][0]) and re.search("[A-Za-z]", rows[0][0]):
+        rows = rows[1:]  # a header line such as 'x,y,z' (but '1_0 2 3' is a corrupt row, not a header)
     if not rows:
         raise MeshError("the file holds a header but no points.")
     out = np.empty((len(rows), 3))

@@ -269,7 +269,7 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
         ``.txt``, ``.csv`` (one point per line, numbers separated by spaces, tabs or commas; the
         first three columns are x y z, further columns such as normals or colours are ignored; a
         first line holding one integer is a ``.pts`` count and must match the number of points; a
-        first line without numbers is a header and is skipped; ``#`` and ``//`` start comments),
+        first line starting with a word (``x,y,z``) is a header and is skipped; ``#`` and ``//`` start comments),
         or ``.off``/``.obj``/``.stl`` (the mesh's vertices).
     clean : bool, default False
         Drop points with NaN/inf coordinates and repeated points (the first is kept), with a

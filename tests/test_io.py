@@ -864,7 +864,16 @@ def test_a_utf8_byte_order_mark_and_indented_obj_lines_do_not_drop_a_vertex(tmp_
     # (a silent wrong mesh whenever the last vertex is unused, a misleading error otherwise).
     body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 2 3 4\n"
     for name, data in (("bom.obj", b"\xef\xbb\xbf" + body.encode()), ("indented.obj", ("  " + body).encode())):
-        mesh = load_mesh(write(tmp_path / name, data), clean=True)
+        with pytest.warns(MeshRepairWarning, match="1 unreferenced vertices removed"):  # vertex 0, unused
+            mesh = load_mesh(write(tmp_path / name, data), clean=True)
         np.testing.assert_array_equal(mesh.vertices, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])
     bom_off = b"\xef\xbb\xbf" + off_text(SQUARE_V, SQUARE_F).encode()
     assert load_mesh(write(tmp_path / "bom.off", bom_off)).n_vertices == 4
+
+
+def test_point_list_header_and_count_lines(tmp_path):
+    rows = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n"
+    for header in ("x,y,z\n", "X Y Z nx ny nz\n", "Points: 5\n", "5\n"):
+        assert load_points(write(tmp_path / "p.txt", header + rows)).n_points == 5
+    # A comment after the last number shows the line ended: no line break needed.
+    assert load_points(write(tmp_path / "c.xyz", rows + "2 2 2 # last")).n_points == 6
