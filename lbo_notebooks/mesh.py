@@ -82,9 +82,11 @@ def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
 def _as_faces(faces: ArrayLike, n_vertices: int) -> NDArray[np.int64]:
     try:
         f = np.array(faces, copy=True)
-    except ValueError:  # NumPy refuses rows of different lengths ("inhomogeneous shape")
+    except (ValueError, TypeError):  # NumPy refuses rows of different lengths ("inhomogeneous shape")
         f = np.empty(0, dtype=object)
-    if f.dtype == object or f.ndim != 2 or f.shape[1] != 3:
+    # Python integers beyond int64 make an object array; they are checked against the range below.
+    big_ints = f.dtype == object and f.ndim == 2 and all(isinstance(x, (int, np.integer)) for x in f.ravel())
+    if (f.dtype == object and not big_ints) or f.ndim != 2 or f.shape[1] != 3:
         shape = f.shape if f.dtype != object else "ragged (rows of different lengths or not numbers)"
         raise MeshError(
             f"faces must have shape (m, 3) (triangles only), got {shape}; "
@@ -92,17 +94,18 @@ def _as_faces(faces: ArrayLike, n_vertices: int) -> NDArray[np.int64]:
         )
     if f.shape[0] == 0:
         raise MeshError("the mesh has no faces; an LBO needs at least one triangle.")
-    if not np.issubdtype(f.dtype, np.integer):
+    if not (big_ints or np.issubdtype(f.dtype, np.integer)):
         if not np.issubdtype(f.dtype, np.floating) or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
             raise MeshError(f"faces must hold integer vertex indices, got dtype {f.dtype} with non-integer values.")
-    f = f.astype(np.int64)
-    if f.min() < 0 or f.max() >= n_vertices:
-        bad = np.flatnonzero(((f < 0) | (f >= n_vertices)).any(axis=1))
+    # The range check comes before the cast to int64, so that an index is shown as given, not wrapped.
+    outside = ((f < 0) | (f >= n_vertices)).any(axis=1)
+    if outside.any():
+        bad = np.flatnonzero(outside)
         raise MeshError(
             f"{bad.size} faces use vertex indices outside 0..{n_vertices - 1} (first: face {bad[0]} = "
-            f"{f[bad[0]].tolist()}); indices are 0-based and must refer to existing vertices."
+            f"{[int(x) for x in f[bad[0]]]}); indices are 0-based and must refer to existing vertices."
         )
-    return f
+    return f.astype(np.int64)
 
 
 def _check_size(v: NDArray[np.float64], f: NDArray[np.int64]) -> None:

@@ -202,6 +202,14 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
     if v.ndim != 2 or v.shape[1] != 3:
         raise MeshError(f"vertices must have shape (n, 3), got {v.shape}.")
     n_poly = 0
+    given = np.asarray(faces) if isinstance(faces, np.ndarray) else None
+    if given is not None and given.size and given.dtype.kind in "uf":
+        # An unsigned index beyond int64 would wrap, a fractional one would be truncated: refuse both.
+        if given.dtype.kind == "f" and not np.all(np.isfinite(given) & (given == np.round(given))):
+            raise MeshError(f"faces must hold integer vertex indices, got dtype {given.dtype} with non-integer values.")
+        if given.max() > np.iinfo(np.int64).max:
+            raise MeshError(f"vertex index {given.max()} is too large for any mesh (beyond 64-bit integers); "
+                            "the faces are corrupt.")
     try:
         f = np.array(faces, dtype=np.int64, copy=True)
         if f.ndim == 2 and f.shape[1] == 3:
@@ -210,7 +218,7 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
             raise ValueError
         else:
             raise MeshError(f"faces must have shape (m, 3) or be a list of polygons, got shape {f.shape}.")
-    except (ValueError, TypeError):
+    except (ValueError, TypeError, OverflowError):
         polygons = [list(map(int, poly)) for poly in faces]
         short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
         if short:

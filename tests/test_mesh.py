@@ -152,3 +152,34 @@ def test_meshes_far_from_unit_size_keep_their_areas_and_pass_the_checks(scale):
     big = Mesh(sphere.vertices * scale, sphere.faces)
     np.testing.assert_allclose(big.face_areas, sphere.face_areas * scale**2, rtol=1e-13)
     np.testing.assert_allclose(big.face_normals, sphere.face_normals, rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("bad", [2**63, 2**64, -(2**70), 10**30])
+def test_a_face_index_beyond_int64_is_shown_as_given_not_wrapped(bad):
+    # Issue 26, item 8: 2**63 (uint64) showed as -9223372036854775808; 2**64 was called "ragged";
+    # clean_mesh raised OverflowError.
+    from lbo_notebooks.repair import clean_mesh
+
+    faces = [[0, 1, bad]]
+    inputs = [faces] + ([np.array(faces, dtype=np.uint64)] if 0 <= bad < 2**64 else [])
+    for given in inputs:
+        with pytest.raises(MeshError, match=str(bad)) as info:
+            Mesh(TRI_V[:3], given)
+        assert "ragged" not in str(info.value)
+        with pytest.raises(MeshError, match=str(bad)):
+            clean_mesh((TRI_V[:3], given))
+
+
+def test_clean_mesh_refuses_fractional_face_indices_instead_of_truncating_them():
+    from lbo_notebooks.repair import clean_mesh
+
+    with pytest.raises(MeshError, match="integer"):
+        clean_mesh((TRI_V, np.array([[0, 1, 2.5]])))
+
+
+def test_out_of_range_coordinates_are_named_by_clean_mesh_too():
+    from lbo_notebooks.repair import clean_mesh
+
+    sphere = shapes.icosphere(1)
+    with pytest.raises(MeshError, match="usable range"):
+        clean_mesh((sphere.vertices * 1e-100, sphere.faces))
