@@ -32,13 +32,14 @@ broken file must raise :class:`MeshError`, not kill the Python process or Jupyte
 - open3d writes text formats with six significant digits, which is lossy; here they are written
   with 17, so that saving and loading gives back the same float64 coordinates.
 
-Numbers are read as C and every mesh tool write them: Python's ``1_000`` is not a number, and a
+Numbers are read as C and every mesh tool writes them: Python's ``1_000`` is not a number, and a
 vertex index must be written as an integer (``2``, not ``2.0`` or ``2e0``) in every format; an
-index too large for a 64-bit integer is reported as written. Truncation must never load part of a
-file silently: counts announced by a header are checked, an ASCII STL must end with ``endsolid``
-after complete facets, a ``.pts`` count line must match its points, and a text file must end
-with a line break (or a comment), because a file cut inside its last number (``3 0 1 12`` cut to
-``3 0 1 1``) still parses.
+index too large for a 64-bit integer is reported as written. A truncated file is refused wherever
+the format lets us tell: counts announced by a header (OFF, PLY, binary STL) are checked, an ASCII
+STL must end with ``endsolid`` after complete facets, a ``.pts`` count line must match its points,
+and the last line of a text file must end with a line break unless it ends in a comment, because a
+file cut inside its last number (``3 0 1 12`` cut to ``3 0 1 1``) still parses. OBJ and the other
+point lists announce no count: one cut exactly at a line break loses whole lines unseen.
 
 STL stores three separate corners per triangle: corners with exactly equal coordinates are
 welded back into shared vertices, numbered in order of first appearance, so a closed surface
