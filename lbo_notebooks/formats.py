@@ -32,6 +32,15 @@ broken file must raise :class:`MeshError`, not kill the Python process or Jupyte
 - open3d writes text formats with six significant digits, which is lossy; here they are written
   with 17, so that saving and loading gives back the same float64 coordinates.
 
+Numbers are read as C and every mesh tool writes them: Python's ``1_000`` is not a number, and a
+vertex index must be written as an integer (``2``, not ``2.0`` or ``2e0``) in every format; an
+index too large for a 64-bit integer is reported as written. A truncated file is refused wherever
+the format lets us tell: counts announced by a header (OFF, PLY, binary STL) are checked, an ASCII
+STL must end with ``endsolid`` after complete facets, a ``.pts`` count line must match its points,
+and the last line of a text file must end with a line break unless it ends in a comment, because a
+file cut inside its last number (``3 0 1 12`` cut to ``3 0 1 1``) still parses. OBJ and the other
+point lists announce no count: one cut exactly at a line break loses whole lines unseen.
+
 STL stores three separate corners per triangle: corners with exactly equal coordinates are
 welded back into shared vertices, numbered in order of first appearance, so a closed surface
 stays closed.
@@ -112,7 +121,44 @@ def _read_text(p: Path, kind: str) -> str:
             f"this is binary data, not a text {kind} file (it contains NUL bytes). "
             f"Check that the file really is an {kind} file; re-export it from its source."
         )
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]  # a UTF-8 byte order mark, as some Windows editors write it: not data
     return data.decode("latin-1")
+
+
+def _check_ends_with_line_break(text: str, comment: str = "#") -> None:
+    """Refuse a text whose last line has data but no line break: it may be cut inside a number.
+
+    A comment on that line shows that its data ended; a PLY body has no comments (``comment`` is
+    then a pattern that cannot occur in a line).
+    """
+    tail = text[max(text.rfind("\n"), text.rfind("\r")) + 1 :]
+    if tail.strip() and re.search(comment, tail) is None:
+        raise MeshError(
+            f"the file does not end with a line break, so its last line {tail[-60:]!r} may have been cut off "
+            "(a number cut short still parses, to a wrong value): the file is probably truncated. "
+            "Re-export or re-download it; if it is complete, add a line break at its end."
+        )
+
+
+def _int(token: str) -> int:
+    """``int(token)`` for integers as files write them (Python's ``1_000`` is refused)."""
+    if "_" in token:
+        raise ValueError(token)
+    return int(token)
+
+
+def _float(token: str) -> float:
+    """``float(token)`` for numbers as files write them (Python's ``1_000`` is refused)."""
+    if "_" in token:
+        raise ValueError(token)
+    return float(token)
+
+
+def _clamped(ints: NDArray[np.int64]) -> bool:
+    """True if :func:`_numbers` may have clamped an integer too large for int64 (it returns the extreme)."""
+    info = np.iinfo(np.int64)
+    return bool(ints.size) and (int(ints.max()) == info.max or int(ints.min()) == info.min)
 
 
 def _content_lines(text: str) -> list[str]:
@@ -127,6 +173,8 @@ def _content_lines(text: str) -> list[str]:
 def _read_off(p: Path) -> RawMesh:
     text = _read_text(p, "OFF")
     lines = _content_lines(text)
+    if lines:
+        _check_ends_with_line_break(text)
     if not lines:
         raise MeshError("the file holds only comments or blank lines; no mesh.")
     head = lines[0].split()
@@ -141,7 +189,7 @@ def _read_off(p: Path) -> RawMesh:
     if len(head) < 4:
         rest = rest[1:]
     try:
-        nv, nf = int(counts[0]), int(counts[1])
+        nv, nf = _int(counts[0]), _int(counts[1])
     except (ValueError, IndexError):
         raise MeshError(
             f"the OFF header must give 'n_vertices n_faces n_edges' as integers, got {' '.join(counts)!r}."
@@ -192,7 +240,7 @@ def _parse_vertex_lines(lines: list[str], first_line: int) -> NDArray[np.float64
         try:
             if len(parts) < 3:
                 raise ValueError
-            out[k] = [float(x) for x in parts[:3]]
+            out[k] = [_float(x) for x in parts[:3]]
         except ValueError:
             raise MeshError(
                 f"vertex {k} ({line[:60]!r}) is not three numbers x y z; the file is corrupt."
@@ -201,28 +249,38 @@ def _parse_vertex_lines(lines: list[str], first_line: int) -> NDArray[np.float64
 
 
 def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], int]:
-    """Faces written as 'k i_1 ... i_k [colour...]' (OFF)."""
+    """Faces written as 'k i_1 ... i_k [colour...]' (OFF), with 0-based indices checked against ``nv``."""
     if not lines:
         return np.zeros((0, 3), dtype=np.int64), 0
     arr = _numbers("\n".join(lines), np.int64)
-    if arr is not None and arr.size == 4 * len(lines):  # fast path: all triangles, nothing else
+    # Fast path: all triangles, nothing else. NumPy clamps an integer too large for int64 to the
+    # extreme value; such a file takes the slow path, which reports the index as written.
+    if arr is not None and arr.size == 4 * len(lines) and not _clamped(arr):
         arr = arr.reshape(-1, 4)
         if np.all(arr[:, 0] == 3) and all(len(line.split()) == 4 for line in lines):
-            return arr[:, 1:].copy(), 0
+            bad = np.flatnonzero(((arr[:, 1:] < 0) | (arr[:, 1:] >= nv)).any(axis=1))
+            if bad.size == 0:
+                return arr[:, 1:].copy(), 0
     polygons = []
     for k, line in enumerate(lines):
         parts = line.split()
         try:
-            n = int(parts[0])
+            n = _int(parts[0])
             if n < 0 or len(parts) < n + 1:
                 raise ValueError
-            poly = [int(x) for x in parts[1 : n + 1]]
-        except (ValueError, IndexError, OverflowError):
+            poly = [_int(x) for x in parts[1 : n + 1]]
+        except (ValueError, IndexError):
             raise MeshError(
-                f"face {k} ({line[:60]!r}) is not 'n i_1 ... i_n' with integer vertex indices; the file is corrupt."
+                f"face {k} ({line[:60]!r}) is not 'n i_1 ... i_n' with integer vertex indices (written as integers, e.g. 2 and not 2.0); the file is corrupt."
             ) from None
         if n < 3:
             raise MeshError(f"face {k} has {n} corners; a face needs at least 3. Remove it from the file.")
+        outside = [i for i in poly if not 0 <= i < nv]
+        if outside:
+            raise MeshError(
+                f"face {k} ({line[:60]!r}) uses vertex index {outside[0]}, outside 0..{nv - 1} (the file has {nv} "
+                "vertices, indices are 0-based); fix the file's faces."
+            )
         polygons.append(poly)
     tris, n_poly = triangulate_polygons(polygons)
     return tris, n_poly
@@ -230,7 +288,8 @@ def _parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], 
 
 def _read_obj(p: Path, need_faces: bool = True) -> RawMesh:
     text = _read_text(p, "OBJ")
-    lines = text.splitlines()
+    _check_ends_with_line_break(text)
+    lines = [line.lstrip() for line in text.splitlines()]  # an indented 'v' line is still a vertex
     vertex_lines = [line[2:].split("#", 1)[0] for line in lines if line[:2] in ("v ", "v\t")]
     face_lines = [line[2:] for line in lines if line[:2] in ("f ", "f\t")]
     if not vertex_lines:
@@ -246,13 +305,13 @@ def _read_obj(p: Path, need_faces: bool = True) -> RawMesh:
         if "/" in block:
             block = re.sub(r"/\S*", "", block)
         idx = _numbers(block, np.int64)
-        if idx is not None and idx.size == 3 * len(face_lines) and all(len(x.split()) == 3 for x in block.split("\n")):
+        if idx is not None and not _clamped(idx) and idx.size == 3 * len(face_lines) and all(len(x.split()) == 3 for x in block.split("\n")):
             if idx.size and idx.min() == 0:
                 raise MeshError("a face uses vertex index 0; OBJ indices are 1-based. Fix the file's 'f' lines.")
             return RawMesh(vertices, _obj_check_range(idx.reshape(-1, 3) - 1, len(vertices)), len(face_lines), 0)
     # General path: polygons, negative (relative) indices, comments.
     polygons: list[list[int]] = []
-    nv = 0
+    nv, n_total = 0, len(vertices)
     for lineno, line in enumerate(lines, start=1):
         if line[:2] in ("v ", "v\t"):
             nv += 1
@@ -260,20 +319,28 @@ def _read_obj(p: Path, need_faces: bool = True) -> RawMesh:
             poly = []
             try:
                 for token in line[2:].split("#", 1)[0].split():
-                    i = int(token.split("/", 1)[0])
+                    i = _int(token.split("/", 1)[0])
                     if i == 0:
                         raise ValueError
+                    if not (i <= n_total if i > 0 else nv + i >= 0):
+                        raise MeshError(
+                            f"line {lineno} ({line[:60]!r}) uses vertex index {i}, outside 1..{n_total} (the file "
+                            f"has {n_total} 'v' lines; a negative index counts back from the {nv} 'v' lines above "
+                            "it); fix the file's 'f' lines."
+                        )
                     poly.append(i - 1 if i > 0 else nv + i)  # negative: relative to the last vertex
-            except ValueError:
+            except ValueError as exc:
+                if isinstance(exc, MeshError):
+                    raise
                 raise MeshError(
-                    f"line {lineno} ({line[:60]!r}) is not a face of 1-based vertex indices 'f a b c' "
+                    f"line {lineno} ({line[:60]!r}) is not a face of 1-based integer vertex indices 'f a b c' "
                     "(or 'a/t/n'); the file is corrupt."
                 ) from None
             if len(poly) < 3:
                 raise MeshError(f"line {lineno}: a face needs at least 3 corners, got {len(poly)}.")
             polygons.append(poly)
     triangles, n_poly = triangulate_polygons(polygons)
-    return RawMesh(vertices, _obj_check_range(triangles, len(vertices)), len(polygons), n_poly)
+    return RawMesh(vertices, triangles, len(polygons), n_poly)  # indices checked above, as written
 
 
 def _obj_check_range(triangles: NDArray[np.int64], nv: int) -> NDArray[np.int64]:
@@ -340,7 +407,7 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
                     raise MeshError(f"unknown PLY format {fmt!r}; expected ascii, binary_little_endian or binary_big_endian.")
                 out.append(f"format {fmt} {parts[2] if len(parts) > 2 else '1.0'}")
             elif parts[0] == "element":
-                count = int(parts[2])
+                count = _int(parts[2])
                 if count < 0:
                     raise MeshError("the PLY header announces a negative element count; it is corrupt.")
                 elements.append(_PlyElement(parts[1], count))
@@ -423,7 +490,34 @@ def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[ND
     return vertex, face
 
 
-def _ply_ascii_fast(p: Path, body_start: int, elements: list[_PlyElement]) -> RawMesh | None:
+def _ply_ascii_body(p: Path, body_start: int, elements: list[_PlyElement]) -> tuple[str, list[str]]:
+    """The body of an ASCII PLY and its non-blank lines, after the checks plyfile does not make.
+
+    plyfile reads numbers with Python's ``float`` (``1_000`` passes) and loads a file cut inside
+    its last number; and a face index written ``2.0`` must be refused here as plyfile refuses it.
+    """
+    with open(p, "rb") as fh:
+        fh.seek(body_start)
+        body = fh.read().decode("latin-1")
+    _check_ends_with_line_break(body, comment="\n")  # no comments in a PLY body
+    lines = [line for line in body.splitlines() if line.strip()]
+    if "_" in body:
+        k = next(k for k, line in enumerate(lines) if "_" in line)
+        raise MeshError(f"data line {k} ({lines[k][:60]!r}) holds '_', which is not part of a number; the file is corrupt.")
+    at = 0
+    for e in elements:
+        if e.name == "face" and [is_list for _, is_list in e.properties] == [True]:
+            for k, line in enumerate(lines[at : at + e.count]):
+                if re.search(r"[^0-9\s+-]", line):
+                    raise MeshError(
+                        f"face {k} ({line[:60]!r}) is not 'n i_1 ... i_n' with integer vertex indices (written as "
+                        "integers, e.g. 2 and not 2.0); the file is corrupt."
+                    )
+        at += e.count
+    return body, lines
+
+
+def _ply_ascii_fast(body: str, lines: list[str], elements: list[_PlyElement]) -> RawMesh | None:
     """ASCII PLY of scalar rows and triangle faces, parsed in one NumPy call; None if not that case.
 
     plyfile parses ASCII row by row in Python (about 8x slower on a 100k-vertex scan,
@@ -437,14 +531,11 @@ def _ply_ascii_fast(p: Path, body_start: int, elements: list[_PlyElement]) -> Ra
         if lists and (e.name != "face" or len(lists) > 1 or lists[0] not in _FACE_LISTS):
             return None
         widths.append(len(e.properties) + 3 * len(lists))  # a triangle list is 4 numbers
-    with open(p, "rb") as fh:
-        fh.seek(body_start)
-        body = fh.read().decode("latin-1")
     numbers = _numbers(body, np.float64)
     if numbers is None or numbers.size != sum(e.count * w for e, w in zip(elements, widths)):
         return None
     # One row per line, as plyfile requires (the same numbers spread differently are not this file).
-    per_line = np.array([len(line.split()) for line in body.splitlines() if line.strip()])
+    per_line = np.array([len(line.split()) for line in lines])
     if not np.array_equal(per_line, np.repeat(widths, [e.count for e in elements])):
         return None
     vertices = triangles = None
@@ -486,7 +577,7 @@ def _read_ply(p: Path, need_faces: bool = True) -> RawMesh:
     min_bytes = sum(e.count * (e.row_bytes + (3 * (1 if fmt != "ascii" else 2) if e.name == "face" else 0)) for e in elements)
     _check_counts(p, nv, nf, body_start + min_bytes)
     if fmt == "ascii":
-        fast = _ply_ascii_fast(p, body_start, elements)
+        fast = _ply_ascii_fast(*_ply_ascii_body(p, body_start, elements), elements)
         if fast is not None:
             return fast
     vertex, face = _ply_elements(p, header, body_start, fmt)
@@ -546,12 +637,35 @@ def _read_stl(p: Path) -> RawMesh:
 
 
 def _stl_ascii_corners(p: Path) -> NDArray[np.float64]:
+    """The corners of an ASCII STL, after checking that its facets are complete and ``endsolid`` ends it.
+
+    A file cut anywhere, even inside a number of its last facet, lacks its final ``endsolid``
+    line; a facet damaged inside lacks one of its keywords, so the keyword counts disagree.
+    """
     text = _read_text(p, "ASCII STL")
-    rows = re.findall(r"^[ \t]*vertex[ \t]+(.*)$", text, flags=re.MULTILINE)
-    if not rows:
-        raise MeshError("the ASCII STL file holds no 'vertex x y z' lines; no mesh.")
-    if len(rows) % 3:
-        raise MeshError(f"the ASCII STL file has {len(rows)} vertex lines, not a multiple of 3: it is truncated or corrupt.")
+    first, end = text.find("\n"), len(text.rstrip())
+    last_start = text.rfind("\n", 0, end)
+    last = text[last_start + 1 : end].strip() if 0 <= first < last_start else ""
+    body = text[first + 1 : last_start] if last else ""  # between the 'solid name' and 'endsolid name' lines
+    rows = re.findall(r"^[ \t]*vertex[ \t]+(.*)$", body, flags=re.MULTILINE)
+    if not last.startswith("endsolid"):
+        raise MeshError(
+            f"the ASCII STL file does not end with an 'endsolid' line (it ends with {last[-40:]!r}): it is "
+            f"truncated, cut off after about {len(rows) // 3} facets. Re-export or re-download it."
+        )
+    n_end = body.count("endfacet")
+    counts = {"facet": body.count("facet") - n_end, "outer loop": body.count("outer"),
+              "vertex": len(rows), "endloop": body.count("endloop"), "endfacet": n_end}
+    if counts["facet"] == 0:
+        raise MeshError("the ASCII STL file holds no facets; no mesh.")
+    m = counts["facet"]
+    if any(n != m for word, n in counts.items() if word != "vertex") or counts["vertex"] != 3 * m:
+        found = ", ".join(f"{n} '{word}'" for word, n in counts.items())
+        raise MeshError(
+            f"the ASCII STL file's facets are incomplete ({found}; each facet is 'facet normal nx ny nz', "
+            "'outer loop', three 'vertex x y z', 'endloop', 'endfacet'): it is truncated or corrupt. "
+            "Re-export or re-download it."
+        )
     return _parse_vertex_lines(rows, 0)
 
 
@@ -622,21 +736,38 @@ def _stl_text(v: NDArray[np.float64], f: NDArray[np.int64]) -> str:
 def read_point_text(p: Path) -> NDArray[np.float64]:
     """The first three columns of a text point list (.xyz, .pts, .txt, .csv), shape (n, 3).
 
-    Numbers are separated by spaces, tabs, commas or semicolons; ``#`` and ``//`` start comments;
-    a ``.pts`` count line and a non-numeric header line are skipped.
+    Numbers are separated by spaces, tabs, commas or semicolons; ``#`` and ``//`` start comments.
+    A first line holding one integer is a count (``.pts``) and must equal the number of points; a
+    first line starting with a word (such as ``x,y,z``) is a header and is skipped.
     """
     text = _read_text(p, "point")
+    _check_ends_with_line_break(text, comment="#|//")
     lines = [re.split(r"#|//", line, maxsplit=1)[0].strip() for line in text.splitlines()]
     lines = [line for line in lines if line]
     if not lines:
         raise MeshError("the file holds only comments or blank lines; no points.")
     rows = [re.split(r"[\s,;]+", line) for line in lines]
-    if len(rows[0]) == 1 and len(rows) > 1 and len(rows[1]) >= 3:
-        rows = rows[1:]  # .pts: a count line first
-    try:
-        [float(x) for x in rows[0][:3]]
-    except ValueError:
-        rows = rows[1:]  # a header line such as 'x,y,z'
+
+    def is_number(token: str) -> bool:
+        try:
+            _float(token)
+            return True
+        except ValueError:
+            return False
+
+    if len(rows[0]) == 1 and len(rows) > 1 and is_number(rows[0][0]):  # a count line (.pts)
+        try:
+            count = _int(rows[0][0])
+        except ValueError:
+            raise MeshError(f"the first line {lines[0][:40]!r} is one number but not a point count (an integer).") from None
+        if count != len(rows) - 1:
+            raise MeshError(
+                f"the count line announces {count} points but the file holds {len(rows) - 1}: it is truncated "
+                "or corrupt. Re-export or re-download it."
+            )
+        rows = rows[1:]
+    elif not is_number(rows[0][0]) and re.search("[A-Za-z]", rows[0][0]):
+        rows = rows[1:]  # a header line such as 'x,y,z' (but '1_0 2 3' is a corrupt row, not a header)
     if not rows:
         raise MeshError("the file holds a header but no points.")
     out = np.empty((len(rows), 3))
@@ -644,7 +775,7 @@ def read_point_text(p: Path) -> NDArray[np.float64]:
         try:
             if len(row) < 3:
                 raise ValueError
-            out[k] = [float(x) for x in row[:3]]
+            out[k] = [_float(x) for x in row[:3]]
         except ValueError:
             raise MeshError(f"point {k} ({' '.join(row)[:60]!r}) does not start with three numbers x y z; the file is corrupt.") from None
     return out

@@ -84,7 +84,8 @@ def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.in
     vertices : ndarray, shape (n, 3), float64
         As the file lists them (STL: welded corners, in order of first appearance).
     faces : ndarray, shape (m, 3), int64
-        0-based triangles; not checked against ``n``.
+        0-based triangles. OFF and OBJ indices are checked against ``n`` while reading (so
+        that an error shows the index as the file writes it); PLY and STL ones are not.
 
     Examples
     --------
@@ -267,8 +268,9 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
         ``.ply`` (the ``vertex`` element; faces, if any, are ignored), ``.xyz``, ``.pts``,
         ``.txt``, ``.csv`` (one point per line, numbers separated by spaces, tabs or commas; the
         first three columns are x y z, further columns such as normals or colours are ignored; a
-        ``.pts`` count line and a non-numeric header line are skipped; ``#`` and ``//`` start
-        comments), or ``.off``/``.obj``/``.stl`` (the mesh's vertices).
+        first line holding one integer is a ``.pts`` count and must match the number of points; a
+        first line starting with a word (``x,y,z``) is a header and is skipped; ``#`` and ``//`` start comments),
+        or ``.off``/``.obj``/``.stl`` (the mesh's vertices).
     clean : bool, default False
         Drop points with NaN/inf coordinates and repeated points (the first is kept), with a
         :class:`MeshRepairWarning` saying how many. Without it they raise.
@@ -282,7 +284,8 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
     FileNotFoundError, ValueError
         Missing file; unsupported extension.
     MeshError
-        Corrupt file, rows that are not at least three numbers, or (without ``clean``) bad points.
+        Corrupt or truncated file (see :mod:`lbo_notebooks.formats` for how truncation is
+        detected), rows that are not at least three numbers, or (without ``clean``) bad points.
 
     Examples
     --------

@@ -14,23 +14,57 @@ from typing import Any, Callable, Hashable, TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows", "per_mesh"]
+__all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows", "per_mesh", "USABLE_SIZE_RANGE",
+           "real_coordinates"]
 
 T = TypeVar("T")
 
 # A face is degenerate when its area is below this fraction of the squared bounding-box diagonal.
 DEGENERATE_AREA_TOL = 1e-14
 
+#: The sizes (largest extent of the bounding box of the vertices the faces use) a mesh may have.
+#: Areas and cotangents go through squared edge lengths and their products (fourth powers), which
+#: overflow double precision above about 1e77 and underflow below about 1e-77; the margin keeps
+#: every face that is not degenerate (area above ``DEGENERATE_AREA_TOL`` times the squared size)
+#: and the eigenvalues (about 1/size**2) far inside the range.
+USABLE_SIZE_RANGE = (1e-60, 1e60)
+
 
 class MeshError(ValueError):
     """A triangle mesh that cannot be used as given; the message says why and what to do."""
 
 
-def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
+def real_coordinates(values: ArrayLike, what: str) -> NDArray[np.float64]:
+    """``values`` as a new float64 array; complex or non-numeric input raises :class:`MeshError`.
+
+    NumPy would cut complex numbers to their real part with only a warning; a coordinate with an
+    imaginary part is a bug upstream (an eigenvector, an FFT), so it is refused, not guessed.
+
+    Examples
+    --------
+    >>> real_coordinates([[1, 2, 3]], "vertices").dtype
+    dtype('float64')
+    >>> real_coordinates([[1j, 2, 3]], "vertices")
+    Traceback (most recent call last):
+    ...
+    lbo_notebooks.mesh.MeshError: vertices are complex numbers; ...
+    """
     try:
-        v = np.array(vertices, dtype=np.float64, copy=True)
+        a = np.asarray(values)
+        if np.iscomplexobj(a) or (a.dtype == object and any(isinstance(x, complex) for x in a.ravel())):
+            raise MeshError(
+                f"{what} are complex numbers; coordinates must be real. Pass the real part explicitly "
+                "(np.real(...)) if the imaginary part is round-off, or find where it came from."
+            )
+        return np.array(a, dtype=np.float64, copy=True)
     except (TypeError, ValueError) as exc:
-        raise MeshError(f"vertices must be numbers convertible to float64: {exc}") from None
+        if isinstance(exc, MeshError):
+            raise
+        raise MeshError(f"{what} must be numbers convertible to float64: {exc}") from None
+
+
+def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
+    v = real_coordinates(vertices, "vertices")
     if v.ndim != 2 or v.shape[1] != 3:
         raise MeshError(f"vertices must have shape (n, 3), got {v.shape}; pass one xyz row per vertex.")
     if v.shape[0] < 3:
@@ -46,26 +80,54 @@ def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
 
 
 def _as_faces(faces: ArrayLike, n_vertices: int) -> NDArray[np.int64]:
-    f = np.array(faces, copy=True)
-    if f.ndim != 2 or f.shape[1] != 3:
-        shape = f.shape if f.dtype != object else "ragged"
+    try:
+        f = np.array(faces, copy=True)
+    except (ValueError, TypeError):  # NumPy refuses rows of different lengths ("inhomogeneous shape")
+        f = np.empty(0, dtype=object)
+    # Python integers beyond int64 make an object array; they are checked against the range below.
+    big_ints = f.dtype == object and f.ndim == 2 and all(isinstance(x, (int, np.integer)) for x in f.ravel())
+    if (f.dtype == object and not big_ints) or f.ndim != 2 or f.shape[1] != 3:
+        shape = f.shape if f.dtype != object else "ragged (rows of different lengths or not numbers)"
         raise MeshError(
             f"faces must have shape (m, 3) (triangles only), got {shape}; "
             "triangulate polygons first (e.g. load with load_mesh, which splits quads)."
         )
     if f.shape[0] == 0:
         raise MeshError("the mesh has no faces; an LBO needs at least one triangle.")
-    if not np.issubdtype(f.dtype, np.integer):
+    if not (big_ints or np.issubdtype(f.dtype, np.integer)):
         if not np.issubdtype(f.dtype, np.floating) or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
             raise MeshError(f"faces must hold integer vertex indices, got dtype {f.dtype} with non-integer values.")
-    f = f.astype(np.int64)
-    if f.min() < 0 or f.max() >= n_vertices:
-        bad = np.flatnonzero(((f < 0) | (f >= n_vertices)).any(axis=1))
+    # The range check comes before the cast to int64, so that an index is shown as given, not wrapped.
+    outside = ((f < 0) | (f >= n_vertices)).any(axis=1)
+    if outside.any():
+        bad = np.flatnonzero(outside)
         raise MeshError(
             f"{bad.size} faces use vertex indices outside 0..{n_vertices - 1} (first: face {bad[0]} = "
-            f"{f[bad[0]].tolist()}); indices are 0-based and must refer to existing vertices."
+            f"{[int(x) for x in f[bad[0]]]}); indices are 0-based and must refer to existing vertices."
         )
-    return f
+    return f.astype(np.int64)
+
+
+def _check_size(v: NDArray[np.float64], f: NDArray[np.int64]) -> None:
+    """Refuse a mesh whose size is outside :data:`USABLE_SIZE_RANGE`, saying so (not "degenerate faces")."""
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    pts = v[used]
+    with np.errstate(over="ignore", invalid="ignore"):
+        extent = pts.max(axis=0) - pts.min(axis=0)  # inf if the coordinates span more than 1.8e308
+    size = float(extent.max())
+    lo, hi = USABLE_SIZE_RANGE
+    if size == 0 or lo <= size <= hi:
+        return  # (size 0: every face is degenerate, which the topology check says)
+    far = int(np.flatnonzero(used)[np.argmax(np.abs(pts - np.median(pts, axis=0)).max(axis=1))])
+    outlier = f" The vertex farthest from the median is {far}, at {v[far].tolist()}." if size > hi else ""
+    raise MeshError(
+        f"coordinates out of a usable range: the mesh is {size:.3g} across (the largest side of its bounding box), "
+        f"outside {lo:g} .. {hi:g}, where squared edge lengths and areas overflow or underflow double precision "
+        f"(faces would come out with zero or infinite area).{outlier} Rescale the mesh, e.g. to unit size: "
+        "Mesh(vertices / s, faces) with s its size, and scale the results back (lengths by s, areas by s**2, "
+        "eigenvalues by 1/s**2)."
+    )
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -104,6 +166,7 @@ class Mesh:
     def __init__(self, vertices: ArrayLike, faces: ArrayLike, *, check: bool = True) -> None:
         v = _as_vertices(vertices)
         f = _as_faces(faces, v.shape[0])
+        _check_size(v, f)
         object.__setattr__(self, "_vertices", _readonly(v))
         object.__setattr__(self, "_faces", _readonly(f))
         object.__setattr__(self, "_cache", {})
@@ -141,6 +204,7 @@ class Mesh:
         object.__setattr__(new, "_vertices", _readonly(v))
         object.__setattr__(new, "_faces", self._faces)
         object.__setattr__(new, "_cache", {})
+        _check_size(v, self._faces)
         _check_degenerate(new)
         return new
 

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import MeshError
+from .mesh import MeshError, real_coordinates
 
 __all__ = ["PointCloud", "MIN_POINTS"]
 
@@ -46,10 +46,7 @@ class PointCloud:
     __slots__ = ("_points", "_cache")
 
     def __init__(self, points: ArrayLike) -> None:
-        try:
-            p = np.array(points, dtype=np.float64, copy=True)
-        except (TypeError, ValueError) as exc:
-            raise MeshError(f"points must be numbers convertible to float64: {exc}") from None
+        p = real_coordinates(points, "points")  # complex input is refused, not cut to its real part
         if p.ndim != 2 or p.shape[1] != 3:
             raise MeshError(
                 f"points must have shape (n, 3), got {p.shape}; pass one xyz row per point "

@@ -15,7 +15,7 @@ from typing import Any, Sequence, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import Mesh, MeshError, degenerate_faces, unique_rows
+from .mesh import Mesh, MeshError, degenerate_faces, real_coordinates, unique_rows
 
 __all__ = ["clean_mesh", "clean_arrays", "CleanReport", "triangulate_polygons"]
 
@@ -43,7 +43,11 @@ def triangulate_polygons(polygons: Sequence[Sequence[int]] | NDArray[np.integer]
         a = poly[0]
         for k in range(1, len(poly) - 1):
             tris.append((a, poly[k], poly[k + 1]))
-    return np.array(tris, dtype=np.int64).reshape(-1, 3), n_poly
+    try:
+        return np.array(tris, dtype=np.int64).reshape(-1, 3), n_poly
+    except OverflowError:
+        big = next(i for t in tris for i in t if not -(2**63) <= int(i) < 2**63)
+        raise MeshError(f"vertex index {big} is too large for any mesh (beyond 64-bit integers); the faces are corrupt.") from None
 
 
 @dataclass(frozen=True)
@@ -194,10 +198,18 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
             vertices, faces = mesh
         except (TypeError, ValueError):
             raise TypeError("clean_mesh needs a Mesh or a (vertices, faces) pair.") from None
-    v = np.array(vertices, dtype=np.float64, copy=True)
+    v = real_coordinates(vertices, "vertices")
     if v.ndim != 2 or v.shape[1] != 3:
         raise MeshError(f"vertices must have shape (n, 3), got {v.shape}.")
     n_poly = 0
+    given = np.asarray(faces) if isinstance(faces, np.ndarray) else None
+    if given is not None and given.size and given.dtype.kind in "uf":
+        # An unsigned index beyond int64 would wrap, a fractional one would be truncated: refuse both.
+        if given.dtype.kind == "f" and not np.all(np.isfinite(given) & (given == np.round(given))):
+            raise MeshError(f"faces must hold integer vertex indices, got dtype {given.dtype} with non-integer values.")
+        if given.max() > np.iinfo(np.int64).max:
+            raise MeshError(f"vertex index {given.max()} is too large for any mesh (beyond 64-bit integers); "
+                            "the faces are corrupt.")
     try:
         f = np.array(faces, dtype=np.int64, copy=True)
         if f.ndim == 2 and f.shape[1] == 3:
@@ -206,7 +218,7 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
             raise ValueError
         else:
             raise MeshError(f"faces must have shape (m, 3) or be a list of polygons, got shape {f.shape}.")
-    except (ValueError, TypeError):
+    except (ValueError, TypeError, OverflowError):
         polygons = [list(map(int, poly)) for poly in faces]
         short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
         if short:

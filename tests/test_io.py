@@ -15,12 +15,14 @@ import pytest
 from .strategies import corrupted_copies
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks import _open3d
+from lbo_notebooks.formats import mesh_text
 from lbo_notebooks.io import (
     FORMATS,
     CleanReport,
     MeshRepairWarning,
     clean_mesh,
     load_mesh,
+    load_points,
     read_mesh_arrays,
     save_mesh,
 )
@@ -254,9 +256,11 @@ BROKEN = [
     ("ply-quad-out-of-range", "qo.ply", _ascii_ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 99999999\n"), "more than three corners"),
     ("stl-binary-absurd", "ab.stl", b"\0" * 80 + struct.pack("<I", 4000000000) + b"\0" * 100, "neither a binary STL"),
     ("stl-binary-zero", "z.stl", b"\0" * 80 + struct.pack("<I", 0), "0 triangles"),
-    ("stl-ascii-truncated", "t.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n", "multiple of 3"),
-    ("stl-ascii-nan", "n.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\n", "non-finite"),
-    ("stl-degenerate", "d.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\n", "degenerate"),
+    ("stl-ascii-truncated", "t.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n", "truncated"),
+    ("stl-ascii-nan", "n.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\n"
+     "endloop\nendfacet\nendsolid x\n", "non-finite"),
+    ("stl-degenerate", "d.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\n"
+     "endloop\nendfacet\nendsolid x\n", "degenerate"),
 ]
 
 
@@ -440,15 +444,35 @@ def test_read_mesh_arrays_gives_the_raw_data_for_clean_mesh(tmp_path):
 
 
 # --- a scan-sized mesh --------------------------------------------------------------------------
+def scan_like_arrays(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """About 100k vertices: two icospheres(6) with 12 holes each, and a torus; 3 components.
+
+    Clean ``(vertices, faces)`` arrays (the vertices inside the holes are dropped). benchmarks/io.py
+    times loading a mesh made the same way; tests do not import benchmarks.
+    """
+    rng = np.random.default_rng(seed)
+    sphere, torus = shapes.icosphere(6), shapes.torus(1.0, 0.3, n_major=160, n_minor=128)
+    vs, fs, offset = [], [], 0
+    for shift in ([0.0, 0.0, 0.0], [3.0, 0.0, 0.0]):
+        centres = rng.normal(size=(12, 3))
+        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
+        c = sphere.vertices[sphere.faces].mean(axis=1)
+        hole = (np.linalg.norm(c[:, None, :] - centres[None], axis=2) < 0.12).any(axis=1)
+        vs.append(sphere.vertices + shift)
+        fs.append(sphere.faces[~hole] + offset)
+        offset += sphere.n_vertices
+    vs.append(torus.vertices + [0.0, 3.0, 0.0])
+    fs.append(torus.faces + offset)
+    v, f = np.concatenate(vs), np.concatenate(fs)
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    return v[used], (np.cumsum(used) - 1)[f]
+
+
 @pytest.fixture(scope="module")
 def scan_like(tmp_path_factory) -> tuple[Path, np.ndarray, np.ndarray]:
-    """About 100k vertices, holes and 3 components (built by benchmarks/io.py), as binary PLY."""
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location("_io_bench", Path(__file__).parents[1] / "benchmarks" / "io.py")
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    v, f = bench.scan_like_arrays()
+    """About 100k vertices, holes and 3 components, as binary PLY."""
+    v, f = scan_like_arrays()
     folder = tmp_path_factory.mktemp("scan")
     save_mesh(Mesh(v, f, check=False), folder / "scan.ply")
     return folder, v, f
@@ -713,3 +737,143 @@ def test_clean_load_of_a_mesh_in_pieces_says_how_many_zero_eigenvalues_to_expect
     with pytest.warns(MeshRepairWarning, match="1 smaller components removed") as caught:
         largest = load_mesh(path, clean=True, keep_largest_component=True)
     assert largest.n_components == 1 and "connected components" not in str(caught[0].message)
+
+
+# --- issue 26: no silent wrong answer from a damaged text file -----------------------------------
+def _cut_inside_a_number(text: str, at: float = 0.5) -> str:
+    """``text`` cut between two digits of a number, about a fraction ``at`` into the file."""
+    i = int(len(text) * at)
+    while not (text[i - 1].isdigit() and text[i].isdigit()):
+        i += 1
+    return text[:i]
+
+
+def test_truncated_ascii_stl_is_refused_not_loaded_with_half_its_facets(tmp_path):
+    # Issue 26, item 2: cut inside a number, a 320-facet file loaded 162 facets and a wrong vertex.
+    text = mesh_text(shapes.icosphere(2).vertices, shapes.icosphere(2).faces, ".stl")
+    for at in (0.5, 0.9):
+        path = write(tmp_path / f"cut{at}.stl", _cut_inside_a_number(text, at))
+        for clean in (False, True):
+            with pytest.raises(MeshError, match="truncated") as info:
+                load_mesh(path, clean=clean)
+            assert "cut" in str(info.value)
+        with pytest.raises(MeshError, match="truncated"):
+            load_points(path)
+    # A facet missing its closing lines, or a file missing 'endsolid', is truncated too.
+    facet = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n"
+    for name, content in (("noend.stl", "solid t\n" + facet), ("nofacetend.stl", "solid t\n" + facet[:-9] + "endsolid t\n")):
+        with pytest.raises(MeshError, match="truncated"):
+            load_mesh(write(tmp_path / name, content))
+    assert load_mesh(write(tmp_path / "ok.stl", "solid t\n" + facet + "endsolid t")).n_faces == 1
+
+
+@pytest.mark.parametrize("ext", [".off", ".obj", ".ply", ".xyz"])
+def test_a_text_file_cut_inside_its_last_number_is_refused(tmp_path, ext):
+    # The same defect in every text format: "3 0 1 12" cut to "3 0 1 1" still parses.
+    sphere = shapes.icosphere(1)
+    if ext == ".xyz":
+        text = "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in sphere.vertices.tolist())
+    else:
+        text = mesh_text(sphere.vertices, sphere.faces, ext)
+    cut = text.rstrip("\n")[:-1].rstrip(".")
+    assert cut[-1].isdigit()
+    path = write(tmp_path / f"cut{ext}", cut)
+    loaders = [load_points] if ext == ".xyz" else [load_mesh, lambda p: load_mesh(p, clean=True), load_points]
+    for load in loaders:
+        with pytest.raises(MeshError, match="line break") as info:
+            load(path)
+        assert "cut" in str(info.value) and path.name in str(info.value)
+    # A comment as the last line needs no line break (PLY has no comments after its header).
+    write(path, text if ext == ".ply" else text + "# end")
+    for load in loaders:
+        load(path)
+
+
+@pytest.mark.parametrize("ext,text", [
+    (".off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 {big}\n"),
+    (".off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 {big}\n"),
+    (".obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 {big}\n"),
+    (".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 {big}\n"),
+    (".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -{big}\n"),
+])
+@pytest.mark.parametrize("big", [2**63, 2**64 + 5, 10**30])
+def test_a_face_index_too_large_for_int64_is_a_mesh_error_showing_the_index_as_written(tmp_path, ext, text, big):
+    # Issue 26, items 3 and 8: OverflowError, or an index shown wrapped or clamped.
+    path = write(tmp_path / f"big{ext}", text.format(big=big))
+    for load in (load_mesh, lambda p: load_mesh(p, clean=True), load_points):
+        with pytest.raises(MeshError) as info:
+            load(path)
+        message = str(info.value)
+        assert str(big) in message and path.name in message, message
+        for wrapped in ("9223372036854775807", "-9223372036854775808"):  # int64's extremes, unless written so
+            assert wrapped not in message or wrapped in path.read_text(), message
+
+
+def test_an_obj_relative_index_out_of_range_is_shown_as_written(tmp_path):
+    path = write(tmp_path / "rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n")
+    with pytest.raises(MeshError, match="-7") as info:
+        load_mesh(path)
+    assert "-3" not in str(info.value)
+
+
+@pytest.mark.parametrize("name,content", [
+    ("u.off", "OFF\n3 1 0\n0 0 0\n1_000 0 0\n0 1 0\n3 0 1 2\n"),
+    ("u2.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2_0\n"),
+    ("u.obj", "v 0 0 0\nv 1_0 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ("u2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0_3\n"),
+    ("u.ply", _ascii_ply(3, 1, "0 0 0\n1_0 0 0\n0 1 0\n3 0 1 2\n")),
+    ("u.xyz", "0 0 0\n1_0 0 0\n0 1 0\n0 0 1\n1 1 1\n"),
+    ("u.csv", "1_0,0,0\n0,0,0\n0,1,0\n0,0,1\n1,1,1\n"),
+])
+def test_python_style_underscores_are_not_numbers(tmp_path, name, content):
+    # Issue 26, item 8: float("1_000") is Python syntax, not a number any mesh tool writes.
+    path = write(tmp_path / name, content)
+    loaders = [load_points] if name.endswith((".xyz", ".csv")) else [load_mesh, load_points]
+    for load in loaders:
+        with pytest.raises(MeshError) as info:
+            load(path)
+        assert "1_0" in str(info.value) or "2_0" in str(info.value) or "0_3" in str(info.value), str(info.value)
+
+
+@pytest.mark.parametrize("name,content", [
+    ("f.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n"),
+    ("f.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3.0\n"),
+    ("f.ply", _ascii_ply(3, 1, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n")),
+    ("e.ply", _ascii_ply(3, 1, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2e0\n")),
+])
+def test_a_face_index_written_as_a_decimal_is_refused_in_every_format(tmp_path, name, content):
+    # Issue 26, item 8: "2.0" was accepted in ASCII PLY only; indices are integers in every format.
+    with pytest.raises(MeshError, match="integer"):
+        load_mesh(write(tmp_path / name, content))
+
+
+def test_the_pts_count_line_is_checked(tmp_path):
+    # Issue 26, item 8: a count line claiming 6,666,666 points loaded the 162 that were there.
+    points = shapes.icosphere(2).vertices
+    rows = "".join(f"{x!r} {y!r} {z!r} 0 255 255 255\n" for x, y, z in points.tolist())
+    assert load_points(write(tmp_path / "ok.pts", f"{len(points)}\n" + rows)).n_points == len(points)
+    for count in (6666666, len(points) - 1):
+        with pytest.raises(MeshError, match=f"{count}.*{len(points)}|{len(points)}.*{count}"):
+            load_points(write(tmp_path / "bad.pts", f"{count}\n" + rows))
+    with pytest.raises(MeshError, match="count"):
+        load_points(write(tmp_path / "frac.pts", "2.5\n" + rows))
+
+
+def test_a_utf8_byte_order_mark_and_indented_obj_lines_do_not_drop_a_vertex(tmp_path):
+    # Found while writing the fuzz suite: both made the first vertex vanish, shifting every index
+    # (a silent wrong mesh whenever the last vertex is unused, a misleading error otherwise).
+    body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 2 3 4\n"
+    for name, data in (("bom.obj", b"\xef\xbb\xbf" + body.encode()), ("indented.obj", ("  " + body).encode())):
+        with pytest.warns(MeshRepairWarning, match="1 unreferenced vertices removed"):  # vertex 0, unused
+            mesh = load_mesh(write(tmp_path / name, data), clean=True)
+        np.testing.assert_array_equal(mesh.vertices, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    bom_off = b"\xef\xbb\xbf" + off_text(SQUARE_V, SQUARE_F).encode()
+    assert load_mesh(write(tmp_path / "bom.off", bom_off)).n_vertices == 4
+
+
+def test_point_list_header_and_count_lines(tmp_path):
+    rows = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n"
+    for header in ("x,y,z\n", "X Y Z nx ny nz\n", "Points: 5\n", "5\n"):
+        assert load_points(write(tmp_path / "p.txt", header + rows)).n_points == 5
+    # A comment after the last number shows the line ended: no line break needed.
+    assert load_points(write(tmp_path / "c.xyz", rows + "2 2 2 # last")).n_points == 6

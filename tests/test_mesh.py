@@ -99,3 +99,87 @@ def test_check_false_skips_topology_checks_only():
 def test_summary_mentions_topology():
     text = shapes.icosphere(1).summary()
     assert "42 vertices" in text and "Euler characteristic 2" in text
+
+
+# --- issue 26 -----------------------------------------------------------------------------------
+@pytest.mark.parametrize("faces", [[[0, 1, 2], [0, 1]], [[0, 1, 2], [0, 1, 2, 3]], [[0, 1, 2], 5]])
+def test_ragged_faces_are_a_mesh_error(faces):
+    # Issue 26, item 7: numpy's "inhomogeneous shape" ValueError leaked instead of a MeshError.
+    with pytest.raises(MeshError, match="ragged"):
+        Mesh(TRI_V, faces)
+
+
+def test_complex_coordinates_are_refused_not_cut_to_their_real_part():
+    # Issue 26, item 8: complex input was silently cast to its real part (with a ComplexWarning).
+    from lbo_notebooks import PointCloud
+    from lbo_notebooks.repair import clean_mesh
+
+    sphere = shapes.icosphere(1)
+    for build in (lambda v: Mesh(v, sphere.faces), lambda v: sphere.with_vertices(v), lambda v: clean_mesh((v, sphere.faces)),
+                  PointCloud):
+        with pytest.raises(MeshError, match="complex"):
+            build(sphere.vertices + 1j)
+        with pytest.raises(MeshError, match="complex"):
+            build(sphere.vertices.astype(complex))  # even with a zero imaginary part: a real array is expected
+
+
+@pytest.mark.parametrize("case", ["one vertex at 1e308", "one vertex at 1e100", "scaled by 1e300", "scaled by 1e70",
+                                  "scaled by 1e-70", "scaled by 1e-100", "scaled by 1e-160"])
+def test_coordinates_out_of_the_usable_range_are_named_as_such_not_as_degenerate_faces(case):
+    # Issue 26, item 6: these meshes were reported as "320 degenerate (zero-area) faces ... Remove them".
+    sphere = shapes.icosphere(2)
+    v = sphere.vertices.copy()
+    if case.startswith("one vertex"):
+        v[0] = float(case.split()[-1])
+    else:
+        v *= float(case.split()[-1])
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow RuntimeWarning on the way to the message
+        for build in (lambda: Mesh(v, sphere.faces), lambda: sphere.with_vertices(v)):
+            with pytest.raises(MeshError) as info:
+                build()
+            message = str(info.value)
+            assert "degenerate" not in message and "usable range" in message, message
+            assert "rescale" in message.lower()
+
+
+@pytest.mark.parametrize("scale", [1e-55, 1e-12, 1e12, 1e55])
+def test_meshes_far_from_unit_size_keep_their_areas_and_pass_the_checks(scale):
+    # Inside the usable range the checks are scale-free: areas scale exactly by scale**2.
+    sphere = shapes.icosphere(2)
+    big = Mesh(sphere.vertices * scale, sphere.faces)
+    np.testing.assert_allclose(big.face_areas, sphere.face_areas * scale**2, rtol=1e-13)
+    np.testing.assert_allclose(big.face_normals, sphere.face_normals, rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("bad", [2**63, 2**64, -(2**70), 10**30])
+def test_a_face_index_beyond_int64_is_shown_as_given_not_wrapped(bad):
+    # Issue 26, item 8: 2**63 (uint64) showed as -9223372036854775808; 2**64 was called "ragged";
+    # clean_mesh raised OverflowError.
+    from lbo_notebooks.repair import clean_mesh
+
+    faces = [[0, 1, bad]]
+    inputs = [faces] + ([np.array(faces, dtype=np.uint64)] if 0 <= bad < 2**64 else [])
+    for given in inputs:
+        with pytest.raises(MeshError, match=str(bad)) as info:
+            Mesh(TRI_V[:3], given)
+        assert "ragged" not in str(info.value)
+        with pytest.raises(MeshError, match=str(bad)):
+            clean_mesh((TRI_V[:3], given))
+
+
+def test_clean_mesh_refuses_fractional_face_indices_instead_of_truncating_them():
+    from lbo_notebooks.repair import clean_mesh
+
+    with pytest.raises(MeshError, match="integer"):
+        clean_mesh((TRI_V, np.array([[0, 1, 2.5]])))
+
+
+def test_out_of_range_coordinates_are_named_by_clean_mesh_too():
+    from lbo_notebooks.repair import clean_mesh
+
+    sphere = shapes.icosphere(1)
+    with pytest.raises(MeshError, match="usable range"):
+        clean_mesh((sphere.vertices * 1e-100, sphere.faces))

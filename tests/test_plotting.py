@@ -253,3 +253,51 @@ def test_same_scale_draws_equal_sizes_equally_large_even_beside_a_colour_bar(dog
     heights = [s.domain.y[1] - s.domain.y[0] for s in scenes]
     np.testing.assert_allclose(eyes, eyes[0], rtol=1e-12)      # same distance and same height:
     np.testing.assert_allclose(heights, heights[0], rtol=1e-12)  # the same size on screen
+
+
+# --- issue 26, item 11: point clouds are plotted like meshes -----------------------------------------
+@pytest.fixture(scope="module")
+def cloud():
+    from lbo_notebooks import PointCloud
+
+    return PointCloud(shapes.icosphere(2).vertices)
+
+
+def test_plot_mesh_draws_a_point_cloud_as_points_coloured_by_the_function(cloud):
+    f = cloud.points[:, 2]
+    fig = plotting.plot_mesh(cloud, f, symmetric=True, title="z")
+    trace = fig.data[0]
+    assert trace.type == "scatter3d" and trace.mode == "markers"
+    np.testing.assert_array_equal(np.column_stack([trace.x, trace.y, trace.z]), cloud.points)
+    np.testing.assert_allclose(trace.marker.color, f)
+    assert trace.marker.cmin == -trace.marker.cmax and trace.marker.showscale
+    assert plotting.plot_mesh(cloud).data[0].type == "scatter3d"  # no function: one colour
+    with pytest.raises(ValueError, match=f"one value per point, shape \\({cloud.n_points},\\)"):
+        plotting.plot_mesh(cloud, f[:-1])
+
+
+def test_large_clouds_are_thinned_for_display_with_the_values_of_the_points_shown():
+    from lbo_notebooks import PointCloud
+
+    big = PointCloud(shapes.icosphere(5).vertices)
+    fig = plotting.plot_mesh(big, big.points[:, 0], max_faces=2000)
+    trace = fig.data[0]
+    shown = np.column_stack([trace.x, trace.y, trace.z])
+    assert len(shown) <= 2000
+    np.testing.assert_array_equal(trace.marker.color, shown[:, 0])
+
+
+def test_plot_meshes_static_and_slider_accept_point_clouds(cloud, sphere):
+    basis = eigenbasis(cloud, 6)
+    fig = plotting.plot_meshes([sphere, cloud], [sphere.vertices[:, 0], basis.vectors[:, 1]], ["mesh", "cloud"])
+    assert [t.type for t in fig.data] == ["mesh3d", "scatter3d"]
+    ax = plotting.plot_mesh_static(cloud, basis.vectors[:, 1], up="z")
+    assert len(ax.collections) == 1 and len(ax.collections[0].get_offsets()) == cloud.n_points
+    w = plotting.mesh_slider(cloud, lambda i: basis.vectors[:, i], range(6), "index", symmetric=True, start=1)
+    w.slider.value = 4
+    np.testing.assert_allclose(w.figure.data[0].marker.color, basis.vectors[:, 4])
+    moving = plotting.mesh_slider(cloud, lambda t: cloud.points * t, [1.0, 2.0], "scale")
+    moving.slider.value = 2.0
+    np.testing.assert_allclose(moving.figure.data[0].x, 2 * cloud.points[:, 0])
+    vertices, faces, index = plotting.display_mesh(cloud)
+    assert faces is None and index is None and len(vertices) == cloud.n_points

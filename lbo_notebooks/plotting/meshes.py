@@ -1,9 +1,12 @@
-"""Figures of meshes and functions on them: interactive plotly 3D, a static matplotlib fallback,
-and sliders that drive a figure.
+"""Figures of meshes and point clouds and functions on them: interactive plotly 3D, a static
+matplotlib fallback, and sliders that drive a figure.
 
-plotly, ipywidgets and open3d are imported inside the functions, so importing this module is
-cheap. Meshes above ``max_faces`` triangles are decimated for display only (quadric decimation),
-with each displayed vertex taking the value of its nearest original vertex.
+Every function that takes a :class:`~lbo_notebooks.Mesh` also takes a
+:class:`~lbo_notebooks.PointCloud`, drawn as points coloured by the function (its values are per
+point, as a cloud's spectrum gives them). plotly, ipywidgets and open3d are imported inside the
+functions, so importing this module is cheap. Meshes above ``max_faces`` triangles are decimated
+for display only (quadric decimation), with each displayed vertex taking the value of its nearest
+original vertex; clouds above ``max_faces`` points show an evenly spaced subset of their points.
 """
 
 from __future__ import annotations
@@ -15,16 +18,41 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..mesh import Mesh
+from ..pointcloud import PointCloud
 
 __all__ = ["plot_mesh", "plot_meshes", "plot_mesh_static", "mesh_slider", "MeshSlider", "display_mesh", "tidy_label"]
 
 DEFAULT_MAX_FACES = 40_000
+_POINT_SIZE = 3                # px, the markers of a point cloud
+
+
+def _positions(shape: Mesh | PointCloud) -> NDArray[np.float64]:
+    """The vertices of a mesh or the points of a cloud."""
+    if isinstance(shape, Mesh):
+        return shape.vertices
+    if isinstance(shape, PointCloud):
+        return shape.points
+    raise TypeError(f"expected a Mesh or a PointCloud, got {type(shape).__name__}; build one with "
+                    "lbo.Mesh(vertices, faces) or lbo.PointCloud(points).")
 
 
 class _Display:
-    """A mesh as shown on screen: possibly decimated, with a map back to the original vertices."""
+    """A mesh or cloud as shown on screen: possibly decimated, with a map back to the original
+    vertices. ``faces`` is None for a point cloud."""
 
-    def __init__(self, mesh: Mesh, max_faces: int) -> None:
+    faces: NDArray[np.int64] | None
+
+    def __init__(self, mesh: Mesh | PointCloud, max_faces: int) -> None:
+        _positions(mesh)  # a Mesh or a PointCloud, or a TypeError naming what it got
+        if isinstance(mesh, PointCloud):
+            n = mesh.n_points
+            self.faces, self.index = None, None
+            if n <= max_faces:
+                self.vertices = mesh.points
+            else:  # evenly spaced in the file's order, deterministic
+                self.index = np.unique(np.linspace(0, n - 1, int(max_faces)).round().astype(np.int64))
+                self.vertices = mesh.points[self.index]
+            return
         if mesh.n_faces <= max_faces:
             self.vertices, self.faces, self.index = mesh.vertices, mesh.faces, None
             return
@@ -45,18 +73,24 @@ class _Display:
         return per_vertex if self.index is None else per_vertex[self.index]
 
 
-def display_mesh(mesh: Mesh, max_faces: int = DEFAULT_MAX_FACES) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64] | None]:
-    """Vertices and faces to draw for ``mesh`` and, if decimated, the original vertex behind each."""
+def display_mesh(mesh: Mesh | PointCloud, max_faces: int = DEFAULT_MAX_FACES
+                 ) -> tuple[NDArray[np.float64], NDArray[np.int64] | None, NDArray[np.int64] | None]:
+    """Vertices and faces to draw for ``mesh`` and, if decimated, the original vertex behind each.
+
+    For a :class:`~lbo_notebooks.PointCloud` the faces are None and the vertices are its points
+    (an evenly spaced subset of at most ``max_faces`` of them).
+    """
     d = _Display(mesh, max_faces)
     return d.vertices, d.faces, d.index
 
 
-def _check_scalars(mesh: Mesh, scalars: ArrayLike | None) -> NDArray[np.float64] | None:
+def _check_scalars(mesh: Mesh | PointCloud, scalars: ArrayLike | None) -> NDArray[np.float64] | None:
     if scalars is None:
         return None
     s = np.asarray(scalars, dtype=np.float64)
-    if s.shape != (mesh.n_vertices,):
-        raise ValueError(f"scalars must have one value per vertex, shape ({mesh.n_vertices},); got {s.shape}.")
+    n, what = len(_positions(mesh)), "point" if isinstance(mesh, PointCloud) else "vertex"
+    if s.shape != (n,):
+        raise ValueError(f"scalars must have one value per {what}, shape ({n},); got {s.shape}.")
     if not np.all(np.isfinite(s)):
         raise ValueError("scalars contain NaN or inf; plotly would draw them as holes. Replace them first.")
     return s
@@ -208,6 +242,14 @@ def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin:
     import plotly.graph_objects as go
 
     v, f = d.vertices, d.faces
+    if f is None:  # a point cloud: markers coloured by the function
+        marker: dict[str, Any] = dict(size=_POINT_SIZE, color="#5b7a99")
+        if s is not None:
+            marker.update(color=d.values(s), colorscale=colorscale, cmin=cmin, cmax=cmax, showscale=showscale)
+            if colorbar is not None:
+                marker["colorbar"] = colorbar
+        return go.Scatter3d(x=v[:, 0], y=v[:, 1], z=v[:, 2], mode="markers", marker=marker, name=name, scene=scene,
+                            hoverinfo="skip")
     kwargs: dict[str, Any] = dict(
         x=v[:, 0], y=v[:, 1], z=v[:, 2], i=f[:, 0], j=f[:, 1], k=f[:, 2], name=name, scene=scene,
         flatshading=False, lighting=dict(ambient=0.45, diffuse=0.8, specular=0.15, roughness=0.6),
@@ -228,7 +270,7 @@ _COLORBAR_PX = 70              # room for a colour bar and its tick labels, in p
 
 
 def plot_mesh(
-    mesh: Mesh,
+    mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
     *,
     title: str | None = None,
@@ -247,8 +289,9 @@ def plot_mesh(
 
     Parameters
     ----------
-    mesh : Mesh
-    scalars : array_like, shape (n_vertices,), optional
+    mesh : Mesh or PointCloud
+        A cloud is drawn as points (plotly ``Scatter3d`` markers) coloured by ``scalars``.
+    scalars : array_like, shape (n_vertices,) or (n_points,), optional
         A function on the vertices; drawn with smooth (per-vertex) colour interpolation.
     title : str, optional
     colorscale : str
@@ -263,7 +306,7 @@ def plot_mesh(
         an animal, whether the file is y-up or z-up) and looks along the thinnest horizontal
         axis, slightly from above.
     max_faces : int
-        Meshes with more triangles are decimated for display.
+        Meshes with more triangles are decimated for display (clouds with more points thinned).
     height : int
         Figure height in pixels.
 
@@ -273,17 +316,20 @@ def plot_mesh(
 
     Examples
     --------
-    >>> from lbo_notebooks import shapes
+    >>> from lbo_notebooks import shapes, PointCloud
     >>> sphere = shapes.icosphere(2)
     >>> fig = plot_mesh(sphere, sphere.vertices[:, 2], title="z", up="y")
     >>> fig.data[0].type, fig.layout.scene.camera.up.y
     ('mesh3d', 1.0)
+    >>> cloud = PointCloud(sphere.vertices)
+    >>> plot_mesh(cloud, cloud.points[:, 2]).data[0].type
+    'scatter3d'
     """
     import plotly.graph_objects as go
 
     s = _check_scalars(mesh, scalars)
     lo, hi = _colour_range(s, cmin, cmax, symmetric)
-    view = _View(mesh.vertices, up)
+    view = _View(_positions(mesh), up)
     radius = view.radius * (1 + _MARGIN)
     top = 40 if title else 10
     fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi,
@@ -295,7 +341,7 @@ def plot_mesh(
 
 
 def plot_meshes(
-    meshes: Sequence[Mesh],
+    meshes: Sequence[Mesh | PointCloud],
     scalars: Sequence[ArrayLike | None] | None = None,
     titles: Sequence[str] | None = None,
     *,
@@ -319,7 +365,8 @@ def plot_meshes(
 
     Parameters
     ----------
-    meshes : sequence of Mesh
+    meshes : sequence of Mesh or PointCloud
+        Clouds are drawn as points.
     scalars : sequence of (array_like or None), optional
         One function per mesh (or ``None`` for a plain surface).
     titles : sequence of str, optional
@@ -372,7 +419,7 @@ def plot_meshes(
     cols = int(cols) if cols is not None else (n if n <= 4 else -(-n // 2))
     cols = min(cols, n)
     rows = -(-n // cols)
-    views = [_View(m.vertices, up) for m in meshes]
+    views = [_View(_positions(m), up) for m in meshes]
     shared_radius = max(v.radius for v in views) * (1 + _MARGIN)
 
     panel_px = _NOMINAL_WIDTH / cols
@@ -423,7 +470,7 @@ def _view_rotation(view: _View) -> NDArray[np.float64]:
 
 
 def plot_mesh_static(
-    mesh: Mesh,
+    mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
     *,
     ax: Any = None,
@@ -437,7 +484,7 @@ def plot_mesh_static(
 ) -> Any:
     """A static matplotlib rendering of ``mesh`` (for print, PDFs and environments without plotly).
 
-    The mesh is turned so that ``up`` (as in :func:`plot_mesh`) points up and seen from the same
+    A :class:`~lbo_notebooks.PointCloud` is drawn as points coloured by ``scalars``. The mesh is turned so that ``up`` (as in :func:`plot_mesh`) points up and seen from the same
     direction as the interactive figure, with equal scale on all axes and its whole bounding
     sphere inside the axes. ``elev`` and ``azim`` (degrees) override the viewing angles.
 
@@ -456,13 +503,21 @@ def plot_mesh_static(
 
     s = _check_scalars(mesh, scalars)
     d = _Display(mesh, max_faces)
-    view = _View(mesh.vertices, up)
+    view = _View(_positions(mesh), up)
     # Rotate into the view frame: x to the right, y away from the viewer, z up; matplotlib then
     # looks from -y (azimuth -90) at the given elevation.
     rotation = _view_rotation(view)
     shown = (d.vertices - view.centre) @ rotation.T
     if ax is None:
         ax = plt.figure(figsize=(5, 5)).add_subplot(projection="3d")
+    if d.faces is None:  # a point cloud
+        if s is None:
+            colours: Any = "#5b7a99"
+        else:
+            lo, hi = _colour_range(s, None, None, symmetric)
+            colours = colormaps[cmap]((d.values(s) - lo) / (hi - lo))
+        ax.scatter(shown[:, 0], shown[:, 1], shown[:, 2], c=colours, s=6, depthshade=True, linewidths=0)
+        return _finish_static(ax, view, elev, azim, title)
     tris = shown[d.faces]
     normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
     lengths = np.linalg.norm(normals, axis=1, keepdims=True)
@@ -476,6 +531,11 @@ def plot_mesh_static(
         colours = colormaps[cmap]((face_values - lo) / (hi - lo))
         colours[:, :3] *= shade[:, None]
     ax.add_collection3d(Poly3DCollection(tris, facecolors=colours, edgecolors="none"))
+    return _finish_static(ax, view, elev, azim, title)
+
+
+def _finish_static(ax: Any, view: _View, elev: float | None, azim: float | None, title: str | None) -> Any:
+    """Equal axes holding the bounding sphere, the viewing angles and the title of a static figure."""
     r = view.radius * (1 + _MARGIN)
     ax.set(xlim=(-r, r), ylim=(-r, r), zlim=(-r, r))
     ax.set_box_aspect((1, 1, 1))
@@ -488,13 +548,13 @@ def plot_mesh_static(
 
 
 class MeshSlider:
-    """A plotly ``FigureWidget`` of a mesh driven by an ipywidgets slider.
+    """A plotly ``FigureWidget`` of a mesh (or point cloud) driven by an ipywidgets slider.
 
     Build it with :func:`mesh_slider`. ``widget`` is what to display (the notebook displays the
     object itself); ``figure`` and ``slider`` are exposed so that code and tests can drive it.
     """
 
-    def __init__(self, mesh: Mesh, frame: Callable[[Any], Any], values: Sequence[Any], description: str,
+    def __init__(self, mesh: Mesh | PointCloud, frame: Callable[[Any], Any], values: Sequence[Any], description: str,
                  *, colorscale: str, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None,
                  up: str | ArrayLike = "auto", start: Any = None) -> None:
         import ipywidgets as widgets
@@ -511,7 +571,7 @@ class MeshSlider:
         self._symmetric, self._colorscale = symmetric, colorscale
         self._display = _Display(mesh, max_faces)
         self.figure = go.FigureWidget(plot_mesh(mesh, None, max_faces=max_faces, height=height, up=up))
-        self._view = _View(mesh.vertices, up)
+        self._view = _View(_positions(mesh), up)
         self._radius = self._view.radius * (1 + _MARGIN)
         if title is not None:  # leave room for the title that update() sets
             self.figure.layout.margin.t = 40
@@ -535,8 +595,9 @@ class MeshSlider:
             vertices, arr = arr, None
         if vertices is not None:
             v = np.asarray(vertices, dtype=np.float64)
-            if v.shape != self.mesh.vertices.shape:
-                raise ValueError(f"frame returned vertices of shape {v.shape}, expected {self.mesh.vertices.shape}.")
+            expected = _positions(self.mesh).shape
+            if v.shape != expected:
+                raise ValueError(f"frame returned positions of shape {v.shape}, expected {expected}.")
             v = self._display.values(v) if self._display.index is not None else v
         with self.figure.batch_update():
             trace = self.figure.data[0]
@@ -546,8 +607,12 @@ class MeshSlider:
             if arr is not None:
                 s = _check_scalars(self.mesh, arr)
                 lo, hi = _colour_range(s, None, None, self._symmetric)
-                trace.intensity, trace.intensitymode = self._display.values(s), "vertex"
-                trace.colorscale, trace.cmin, trace.cmax, trace.showscale = self._colorscale, lo, hi, True
+                if self._display.faces is None:  # a point cloud: the markers carry the colours
+                    trace.marker.update(color=self._display.values(s), colorscale=self._colorscale, cmin=lo, cmax=hi,
+                                        showscale=True)
+                else:
+                    trace.intensity, trace.intensitymode = self._display.values(s), "vertex"
+                    trace.colorscale, trace.cmin, trace.cmax, trace.showscale = self._colorscale, lo, hi, True
             if self._title is not None:
                 self.figure.layout.title = tidy_label(self._title(value))
 
@@ -568,7 +633,7 @@ class MeshSlider:
 
 
 def mesh_slider(
-    mesh: Mesh,
+    mesh: Mesh | PointCloud,
     frame: Callable[[Any], Any],
     values: Sequence[Any],
     description: str = "n",
@@ -585,7 +650,8 @@ def mesh_slider(
 
     Parameters
     ----------
-    mesh : Mesh
+    mesh : Mesh or PointCloud
+        A cloud is drawn as points coloured by the scalars.
     frame : callable
         ``frame(value)`` returns per-vertex scalars (n,), new vertex positions (n, 3), or a tuple
         ``(positions, scalars)`` (either may be None).
