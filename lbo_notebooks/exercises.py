@@ -318,7 +318,7 @@ def check_leg_area(predicted: Any, n_vertices: int, species: str = "dog", *, sho
 
         template = creature(species, n_vertices=n_vertices)
         parts = creature_parts(species, n_vertices=n_vertices)
-        legs = (parts["front_legs"] | parts["hind_legs"])[template.faces].any(axis=1)
+        legs = (parts["front_legs"] | parts["hind_legs"])[template.faces].all(axis=1)
         leg, rest = template.face_areas[legs].sum(), template.face_areas[~legs].sum()
         for s, got in predicted.items():
             s, got = float(s), _number(got, f"a number for s = {s}")
@@ -419,7 +419,7 @@ def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
     >>> check_stiffness(operators.stiffness_matrix, show=False).correct
     True
     >>> print(check_stiffness(lambda mesh: 2 * operators.stiffness_matrix(mesh), show=False).message)
-    Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice?
+    Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice? (first seen on the right triangle.)
     """
     from .operators import stiffness_matrix
 
