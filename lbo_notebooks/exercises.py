@@ -102,9 +102,11 @@ class Feedback:
     def _repr_html_(self) -> str:
         colour, mark = _STYLE[self.status]
         text = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(self.message, quote=False))
+        reveal = ("" if self.correct else
+                  f' <span style="opacity: 0.6">(to see a solution: <code>exercises.solution("{html.escape(self.exercise)}")</code>)</span>')
         return (f'<div class="lbo-feedback" data-exercise="{html.escape(self.exercise)}" data-status="{self.status}" '
                 f'style="border-left: 4px solid {colour}; padding: 2px 8px; margin: 2px 0">'
-                f'<b style="color: {colour}">{mark} {self.status}</b> · exercise {html.escape(self.exercise)}: {text}</div>')
+                f'<b style="color: {colour}">{mark} {self.status}</b> · exercise {html.escape(self.exercise)}: {text}{reveal}</div>')
 
     def _bundle(self) -> dict[str, Any]:
         return {"text/plain": str(self), "text/html": self._repr_html_(),

@@ -3,12 +3,17 @@
     python scripts/student_edition.py                 # write build/student/ (every notebook)
     python scripts/student_edition.py --check         # ... then check both editions (CI)
 
+(``./make.sh student [--check]`` runs it in the project's environment; ``./make.sh student lab``
+opens JupyterLab on the edition for self-study.)
+
 The build runs ``nbgrader generate_assignment`` on a throw-away course directory whose source is
 ``notebooks/``: solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) become a stub,
 hidden tests (``### BEGIN HIDDEN TESTS`` ...) disappear, check cells are locked, outputs are
 cleared. Notebooks without exercises pass through unchanged apart from that. Files a notebook
 reads by a relative path outside its folder (``../benchmarks/...``) are copied to the same place
-relative to the edition, so it runs where it is written.
+relative to the edition, so it runs where it is written. A notebook in ``build/student/`` that
+changed since it was written (a student's answers) is never overwritten: the new edition of it
+is written beside it as ``NN_name.new.ipynb``.
 
 ``--check`` then verifies, for the notebooks that have exercises (nbgrader grade cells):
 
@@ -24,6 +29,7 @@ notebooks in wall time on two cores. See docs/exercises.md.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import re
@@ -40,6 +46,7 @@ ASSIGNMENT = "series"
 STUDENT = "self-check"
 MIME_TYPE = "application/vnd.lbo-notebooks.feedback+json"  # lbo_notebooks.exercises.MIME_TYPE
 CODE_STUB = "# YOUR CODE HERE\npass"  # not nbgrader's `raise NotImplementedError()`: the edition must run unanswered
+MANIFEST = ".edition.json"  # digests of the notebooks as written, to tell a student's changes
 RELATIVE_FILE = re.compile(r"""\.\./[\w./-]+""")
 
 CONFIG = """\
@@ -91,29 +98,52 @@ def course(root: Path) -> Path:
     return source_dir
 
 
-def build(out: Path, root: Path) -> list[Path]:
-    """Write the student edition of every notebook into ``out``; return the written notebooks."""
-    course(root)
-    if nbgrader(root, "generate_assignment", ASSIGNMENT, "--force", "--log-level=WARN").wait() != 0:
-        raise SystemExit("nbgrader generate_assignment failed (its messages are above)")
-    if out.exists():
-        shutil.rmtree(out)
-    out.mkdir(parents=True)
-    written = []
-    for nb in sorted((root / "release" / ASSIGNMENT).glob("*.ipynb")):
-        shutil.copy2(nb, out / nb.name)
-        written.append(out / nb.name)
+def copy_relative_files(folder: Path) -> None:
+    """Copy the files the notebooks in ``folder`` read by a path outside it (``../benchmarks/...``)."""
+    for nb in sorted(folder.glob("*.ipynb")):
         for rel in sorted(set(RELATIVE_FILE.findall("\n".join(source(c) for c in read(nb)["cells"])))):
             rel = rel.rstrip(".\\")
             if (NOTEBOOKS / rel).is_file():
-                target = (out / rel).resolve()
+                target = (folder / rel).resolve()
                 target.parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy2(NOTEBOOKS / rel, target)
-    leaked = [p.name for p in written if "BEGIN SOLUTION" in p.read_text(encoding="utf-8")]
+
+
+def build(root: Path) -> Path:
+    """Make the student edition of every notebook with nbgrader; return the folder it is in."""
+    course(root)
+    if nbgrader(root, "generate_assignment", ASSIGNMENT, "--force", "--log-level=WARN").wait() != 0:
+        raise SystemExit("nbgrader generate_assignment failed (its messages are above)")
+    release = root / "release" / ASSIGNMENT
+    leaked = [p.name for p in release.glob("*.ipynb") if "BEGIN SOLUTION" in p.read_text(encoding="utf-8")]
     if leaked:
         raise SystemExit(f"solution markers left in the student edition of {leaked}")
-    log(f"wrote {len(written)} notebooks to {out.relative_to(ROOT) if out.is_relative_to(ROOT) else out}")
-    return written
+    copy_relative_files(release)
+    return release
+
+
+def digest(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def publish(release: Path, out: Path) -> None:
+    """Copy the edition to ``out``. A notebook there that changed since it was written (a student's
+    answers, or outputs saved by JupyterLab) is kept, never overwritten: its new version goes beside it."""
+    out.mkdir(parents=True, exist_ok=True)
+    manifest_path = out / MANIFEST
+    manifest = json.loads(manifest_path.read_text()) if manifest_path.exists() else {}
+    for nb in sorted(release.glob("*.ipynb")):
+        target = out / nb.name
+        if target.exists() and manifest_path.exists() and manifest.get(nb.name) != digest(target):
+            target = out / f"{nb.stem}.new.ipynb"
+            log(f"kept {nb.name}, which changed since it was written (your work); the new edition is {target.name}")
+        else:
+            manifest[nb.name] = digest(nb)
+        shutil.copy2(nb, target)
+    manifest_path.write_text(json.dumps(manifest, indent=1) + "\n", encoding="utf-8")
+    copy_relative_files(out)
+    shown = out.relative_to(ROOT) if out.is_relative_to(ROOT) else out
+    log(f"wrote the student edition of {len(manifest)} notebooks to {shown}/")
 
 
 def answered(student: Path, instructor: Path) -> dict:
@@ -152,9 +182,9 @@ def feedback_statuses(nb: dict) -> list[tuple[str, str]]:
     return found
 
 
-def check(out: Path, root: Path) -> bool:
+def check(release: Path, root: Path) -> bool:
     """(a) unanswered run: clean, every check "not attempted"; (b) autograde of the instructor's answers: full marks."""
-    graded = [p for p in sorted(out.glob("*.ipynb")) if has_exercises(p)]
+    graded = [p for p in sorted(release.glob("*.ipynb")) if has_exercises(p)]
     if not graded:
         log("no notebook has exercises yet: nothing to check")
         return True
@@ -208,8 +238,9 @@ def main() -> int:
     args = parser.parse_args()
     root = Path(tempfile.mkdtemp(prefix="lbo-course-"))
     try:
-        build(args.out.resolve(), root)
-        ok = check(args.out.resolve(), root) if args.check else True
+        release = build(root)
+        publish(release, args.out.resolve())
+        ok = check(release, root) if args.check else True
     finally:
         if args.keep:
             log(f"course directory kept: {root}")

@@ -254,6 +254,8 @@ def test_feedback_object():
     assert not fb.correct and fb.attempted and str(fb) == "02-mass · wrong: Twice too large: use `np.cross`."
     html = fb._repr_html_()
     assert 'data-status="wrong"' in html and "<code>np.cross</code>" in html and "#b42318" in html
+    assert 'exercises.solution("02-mass")' in html                              # the way to a solution, on purpose
+    assert "exercises.solution" not in ex.Feedback("02-mass", CORRECT, "Right.")._repr_html_()
     assert ex.Feedback("x", NOT_ATTEMPTED, "").attempted is False
     bundle = fb._bundle()
     assert bundle[ex.MIME_TYPE] == {"exercise": "02-mass", "status": "wrong"} and bundle["text/plain"] == str(fb)
