@@ -84,6 +84,8 @@ def nbgrader(root: Path, *args: str) -> subprocess.Popen:
     # nbgrader runs the `alembic` command of its environment: put that environment's bin/ first on PATH
     # (it is not there when the venv's python is called by its path).
     env = dict(os.environ, PATH=os.pathsep.join([str(Path(sys.executable).parent), os.environ.get("PATH", "")]))
+    # nbgrader's gradebook code warns (SAWarning) at every autograde under SQLAlchemy 2; nothing to act on.
+    env["PYTHONWARNINGS"] = ",".join(filter(None, [os.environ.get("PYTHONWARNINGS"), "ignore:::nbgrader.api"]))
     return subprocess.Popen([sys.executable, "-m", "nbgrader", *args], cwd=root, env=env)
 
 
