@@ -251,7 +251,8 @@ def check_edge_count(n_edges: Any, mesh: Any, *, show: bool = True) -> Feedback:
         e, f = len(mesh.edges), mesh.n_faces
         got = _number(n_edges, "a whole number")
         if got == e:
-            return "Right: each triangle has three edges and each edge borders two triangles, so E = 3F/2 and V - E + F = 2."
+            chi = mesh.n_vertices - e + f
+            return f"Right: each triangle has three edges and each edge borders two triangles, so E = 3F/2; here V - E + F = {chi}."
         if got == 3 * f:
             raise _Stop(WRONG, "Off by a factor of two: three edges per triangle counts every edge twice, once from each of the two triangles it borders.")
         if got == e / 2:
@@ -306,7 +307,7 @@ def check_smallest_angles(angles: Any, species: str = "dog", *, show: bool = Tru
             if got > 60:
                 raise _Stop(WRONG, f"n = {n}: every triangle has an angle of at most 60°, so the smallest angle cannot exceed 60°: take the minimum over all corners.")
             raise _Stop(WRONG, f"n = {n}: not the smallest corner angle of that mesh; `corner_angles(mesh)` gives every corner's angle.")
-        return "Right: the remeshing keeps the triangles well shaped at every size."
+        return "Right: those are the smallest corner angles of the meshes you built."
     return _run("01-angles", show, body)
 
 
