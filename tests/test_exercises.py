@@ -306,3 +306,68 @@ def test_every_check_in_the_notebooks_exists():
             if meta.get("grade"):
                 call = re.search(r"exercises\.(check_\w+)\(", "".join(cell["source"]))
                 assert call and call.group(1) in ex.__all__, (path.name, meta["grade_id"])
+
+
+# --- the machinery of the student edition (scripts/), without running nbgrader --------------------
+
+def _script(name):
+    import importlib.util
+    import sys
+
+    path = Path(__file__).resolve().parent.parent / "scripts" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_exercise_cells_are_valid_nbgrader_cells():
+    import nbformat
+
+    cells = _script("exercise_cells").exercise(
+        "04-demo", "compute", "What is 1 + 1?", "two = ...", "two = 2", "exercises.check_area_factor(two, scale=2 ** 0.5)")
+    prompt, answer, check = cells
+    assert prompt.source.startswith("**Exercise 04-demo** · *compute*.")
+    assert answer.source == "two = ...\n### BEGIN SOLUTION\ntwo = 2\n### END SOLUTION"
+    assert answer.metadata.nbgrader["solution"] and not answer.metadata.nbgrader["grade"]
+    assert check.metadata.nbgrader["grade"] and check.metadata.nbgrader["locked"] and check.metadata.nbgrader["points"] == 1
+    assert "### BEGIN HIDDEN TESTS\nassert feedback.correct" in check.source
+    nb = nbformat.v4.new_notebook(cells=cells)
+    nbformat.validate(nb)
+    validator = pytest.importorskip("nbgrader.nbgraderformat").MetadataValidator()
+    validator.validate_nb(nb)                                       # nbgrader accepts the marking
+    namespace = {"exercises": ex}
+    exec(answer.source, namespace)
+    exec(check.source, namespace)                                   # the instructor edition passes its hidden test
+
+
+def test_rebuilt_edition_keeps_a_students_work(tmp_path):
+    edition = _script("student_edition")
+    release, out = tmp_path / "release", tmp_path / "out"
+    release.mkdir()
+    (release / "01_a.ipynb").write_text('{"cells": []}')
+    (release / "02_b.ipynb").write_text('{"cells": []}')
+    edition.publish(release, out)
+    (out / "02_b.ipynb").write_text('{"cells": [], "answer": 42}')     # the student worked in 02
+    (release / "01_a.ipynb").write_text('{"cells": [], "v": 2}')        # a new edition of both
+    (release / "02_b.ipynb").write_text('{"cells": [], "v": 2}')
+    edition.publish(release, out)
+    assert json.loads((out / "01_a.ipynb").read_text())["v"] == 2     # unchanged by the student: updated
+    assert json.loads((out / "02_b.ipynb").read_text())["answer"] == 42  # the student's work: kept
+    assert json.loads((out / "02_b.new.ipynb").read_text())["v"] == 2
+
+
+def test_instructor_answers_are_put_back_by_grade_id(tmp_path):
+    edition = _script("student_edition")
+    cell = lambda src, gid, **kw: {"cell_type": "code", "source": src, "metadata": {"nbgrader": {"grade_id": gid, **kw}}}  # noqa: E731
+    student = {"cells": [cell("x = ...\n# YOUR CODE HERE\npass", "9-x-answer", solution=True),
+                         cell("feedback = check(x)", "9-x-check", grade=True)]}
+    instructor = {"cells": [cell("x = ...\n### BEGIN SOLUTION\nx = 1\n### END SOLUTION", "9-x-answer", solution=True)]}
+    (tmp_path / "s.ipynb").write_text(json.dumps(student))
+    (tmp_path / "i.ipynb").write_text(json.dumps(instructor))
+    nb = edition.answered(tmp_path / "s.ipynb", tmp_path / "i.ipynb")
+    assert "x = 1" in nb["cells"][0]["source"] and nb["cells"][1]["source"] == "feedback = check(x)"
+    statuses = edition.feedback_statuses({"cells": [{"outputs": [{"data": {ex.MIME_TYPE: {"exercise": "9-x", "status": "wrong"}}}]}]})
+    assert statuses == [("9-x", "wrong")]
+    assert edition.MIME_TYPE == ex.MIME_TYPE                        # the script reads what the checks write
