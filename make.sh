@@ -6,6 +6,9 @@
 #   ./make.sh browser real-browser test: JupyterLab driven by Debian's chromium (Playwright)
 #   ./make.sh binder  rebuild a fresh environment from binder/ only and run the notebooks in it
 #   ./make.sh site    execute the notebooks and write a static HTML site into build/site
+#   ./make.sh student write the student edition (solutions removed by nbgrader) into build/student;
+#                     `student --check` also runs it unanswered and autogrades the instructor's answers,
+#                     `student lab` opens JupyterLab on it for self-study (docs/exercises.md)
 #   ./make.sh bench   print the benchmark tables (benchmarks/*.py)
 #   ./make.sh install only install
 #   ./make.sh pull    update a clone in which notebooks have been run (see README, "Course staff")
@@ -99,6 +102,15 @@ case "${1:-}" in
     fi
     one_blas_thread
     LBO_BROWSER_TESTS=1 exec "$VENV/bin/python" -m pytest -p no:dash tests/browser -v "${@:2}" ;;
+  student)
+    system_packages; python_env "[test]"; one_blas_thread
+    if [ "${2:-}" = lab ]; then
+      "$VENV/bin/python" scripts/student_edition.py
+      root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)
+      log "starting JupyterLab on the student edition, build/student/ (Ctrl-C to stop)"
+      exec "$VENV/bin/jupyter" lab --notebook-dir=build/student "${root[@]}" "${@:3}"
+    fi
+    exec "$VENV/bin/python" scripts/student_edition.py "${@:2}" ;;
   binder)
     exec scripts/binder_parity.sh "${@:2}" ;;
   bench)
@@ -111,5 +123,5 @@ case "${1:-}" in
     git add -u -- notebooks
     exec git pull "${@:2}" ;;
   *)
-    echo "usage: ./make.sh {lab|test|browser|binder|site|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
+    echo "usage: ./make.sh {lab|test|browser|binder|site|student|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
 esac

@@ -3,7 +3,10 @@
 Checked for each ``notebooks/*.ipynb``: valid nbformat; no outputs, execution counts or saved
 widget state; the first cell is a markdown title ``# NN · ...`` (NN = the file's number) followed
 by "What you will learn" and "What you need"; the last section is "Exercises"; the solutions come
-after it in code cells hidden with ``{"jupyter": {"source_hidden": true}}``; cells that display a
+after it in code cells hidden with ``{"jupyter": {"source_hidden": true}}``, or, in a notebook marked
+for nbgrader (docs/exercises.md), every exercise is an answer cell whose solution lies between
+``### BEGIN SOLUTION`` and ``### END SOLUTION`` followed by its locked check cell, with at least
+two exercises inside the body and at least one in the Exercises section; cells that display a
 slider widget start with ``# NBVAL_IGNORE_OUTPUT`` (a widget's repr changes from run to run).
 """
 
@@ -71,6 +74,9 @@ def test_ends_with_exercises_and_hidden_solutions(notebook):
     assert "exercise" in last_heading.lower(), (
         f"{path.name}: the last section should be 'Exercises', found {last_heading!r}")
     after = nb.cells[last_index + 1:]
+    if any("nbgrader" in c.metadata for c in nb.cells):  # the course edition's marking (docs/exercises.md)
+        _check_marked_exercises(path, nb, last_index)
+        return
     code_after = [c for c in after if c.cell_type == "code"]
     solution_link = re.search(r"\]\(([^)]*solution[^)]*)\)", _source(nb.cells[last_index]), re.IGNORECASE)
     if solution_link:  # solutions in a separate file: it must exist
@@ -80,6 +86,21 @@ def test_ends_with_exercises_and_hidden_solutions(notebook):
     shown = [nb.cells.index(c) for c in code_after if not c.metadata.get("jupyter", {}).get("source_hidden")]
     assert not shown, (f"{path.name}: solution cells {shown} are not collapsed; set their metadata to "
                        '{"jupyter": {"source_hidden": true}}')
+
+
+def _check_marked_exercises(path, nb, exercises_index):
+    answers = {i: c.metadata.nbgrader.grade_id for i, c in enumerate(nb.cells)
+               if c.metadata.get("nbgrader", {}).get("solution")}
+    checks = {c.metadata.nbgrader.grade_id for c in nb.cells if c.metadata.get("nbgrader", {}).get("grade")}
+    for i, grade_id in answers.items():
+        text = _source(nb.cells[i])
+        assert "BEGIN SOLUTION" in text and "END SOLUTION" in text, (
+            f"{path.name}: answer cell {grade_id} has no ### BEGIN SOLUTION / ### END SOLUTION region")
+        assert grade_id.endswith("-answer") and grade_id[:-len("answer")] + "check" in checks, (
+            f"{path.name}: answer cell {grade_id} needs a check cell with grade id ...-check")
+    inside = sum(i < exercises_index for i in answers)
+    assert inside >= 2, f"{path.name}: {inside} marked exercises inside the body; put at least two where the ideas are taught"
+    assert len(answers) > inside, f"{path.name}: the Exercises section has no marked exercise"
 
 
 def test_widget_cells_ignore_their_output(notebook):

@@ -1,0 +1,662 @@
+"""Self-checks for the notebooks' exercises: feedback on an attempt, never the answer.
+
+Each exercise in the notebooks ends with a call such as ``exercises.check_stiffness(my_stiffness)``.
+The check compares the student's answer with the library (or with the exact value), and says one of
+
+- **correct**, sometimes with a remark (e.g. which of two valid mass matrices was built);
+- **wrong**, with a hint aimed at the typical mistake: a factor of two, a wrong sign, a transpose,
+  the Euclidean inner product where the ``A`` inner product belongs, a missing diagonal, ...;
+- **not attempted**, when the answer is still the placeholder the student edition leaves
+  (``...``, ``None``, ``NotImplemented``, a function that raises ``NotImplementedError`` or
+  returns nothing). This never raises, so the student edition runs top to bottom unanswered.
+
+Messages never contain the reference value. In Jupyter the feedback is shown as one coloured
+line (IPython's display machinery; plain text elsewhere), and the check returns a
+:class:`Feedback` whose ``correct`` attribute the autograder asserts (the hidden tests of the
+notebooks, see docs/exercises.md). :func:`solution` shows the instructor's solution of an
+exercise on purpose, read from the instructor edition (``notebooks/``) when it is available.
+
+This module needs neither the grader nor IPython; the checks import the heavier parts of the
+library (creatures, spectra) only when an attempt has to be compared with them.
+
+Examples
+--------
+>>> from lbo_notebooks import exercises
+>>> exercises.check_area_factor(..., scale=1.6, show=False).status
+'not attempted'
+>>> exercises.check_area_factor(1.6, scale=1.6, show=False).status
+'wrong'
+>>> exercises.check_area_factor(1.6**2, scale=1.6, show=False).correct
+True
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import re
+from collections.abc import Callable, Mapping
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution",
+    "check_edge_count", "check_area_factor", "check_stretch_growth", "check_smallest_angles", "check_leg_area",
+    "check_stiffness", "check_mass", "check_convergence_factor", "check_coefficients", "check_consistent_mass",
+    "check_eigenvalue_scaling", "check_zero_eigenvalues",
+]
+
+CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
+MIME_TYPE = "application/vnd.lbo-notebooks.feedback+json"
+"""Extra MIME type of the displayed feedback: ``{"exercise", "status"}``, for scripts that read outputs."""
+
+_STYLE = {CORRECT: ("#1a7f37", "✔"), WRONG: ("#b42318", "✘"), NOT_ATTEMPTED: ("#8a6d00", "…")}
+
+
+class Feedback:
+    """The result of a check: exercise id, status and a message (which never gives the answer away).
+
+    Attributes
+    ----------
+    exercise : str
+        The exercise's id, e.g. ``"02-stiffness"`` (its cells in the notebook carry the grade ids
+        ``"02-stiffness-answer"`` and ``"02-stiffness-check"``).
+    status : {"correct", "wrong", "not attempted"}
+    message : str
+        One or two sentences, with inline code in backticks.
+
+    Examples
+    --------
+    >>> fb = Feedback("01-edges", "wrong", "Off by a factor of two.")
+    >>> fb.correct, fb.attempted
+    (False, True)
+    >>> print(fb)
+    01-edges · wrong: Off by a factor of two.
+    """
+
+    __slots__ = ("exercise", "status", "message", "_shown_at")
+
+    def __init__(self, exercise: str, status: str, message: str) -> None:
+        if status not in _STYLE:
+            raise ValueError(f"status must be one of {tuple(_STYLE)}, got {status!r}.")
+        self.exercise, self.status, self.message = exercise, status, message
+        self._shown_at: int | None = None
+
+    @property
+    def correct(self) -> bool:
+        return self.status == CORRECT
+
+    @property
+    def attempted(self) -> bool:
+        return self.status != NOT_ATTEMPTED
+
+    def __str__(self) -> str:
+        return f"{self.exercise} · {self.status}: {self.message}"
+
+    def __repr__(self) -> str:
+        return f"Feedback({self.exercise!r}, {self.status!r}, {self.message!r})"
+
+    def _repr_html_(self) -> str:
+        colour, mark = _STYLE[self.status]
+        text = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(self.message, quote=False))
+        reveal = ("" if self.correct else
+                  f' <span style="opacity: 0.6">(to see a solution: <code>exercises.solution("{html.escape(self.exercise)}")</code>)</span>')
+        return (f'<div class="lbo-feedback" data-exercise="{html.escape(self.exercise)}" data-status="{self.status}" '
+                f'style="border-left: 4px solid {colour}; padding: 2px 8px; margin: 2px 0">'
+                f'<b style="color: {colour}">{mark} {self.status}</b> · exercise {html.escape(self.exercise)}: {text}{reveal}</div>')
+
+    def _bundle(self) -> dict[str, Any]:
+        return {"text/plain": str(self), "text/html": self._repr_html_(),
+                MIME_TYPE: {"exercise": self.exercise, "status": self.status}}
+
+    def _ipython_display_(self) -> None:
+        # A check shows its feedback itself; returned as a cell's last value, it is not shown twice.
+        shell = _shell()
+        if shell is not None and self._shown_at == shell.execution_count:
+            return
+        _show(self)
+
+
+def _shell() -> Any:
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython is a dependency of JupyterLab
+        return None
+    return get_ipython()
+
+
+def _show(feedback: Feedback) -> None:
+    shell = _shell()
+    if shell is None:
+        print(feedback)
+        return
+    from IPython.display import display
+
+    display(feedback._bundle(), raw=True)
+    feedback._shown_at = shell.execution_count
+
+
+def _result(exercise: str, status: str, message: str, show: bool) -> Feedback:
+    feedback = Feedback(exercise, status, message)
+    if show:
+        _show(feedback)
+    return feedback
+
+
+# --- the answer as given -------------------------------------------------------------------------
+
+def _is_placeholder(x: Any) -> bool:
+    return x is None or x is Ellipsis or x is NotImplemented or (isinstance(x, str) and x.strip() in ("", "..."))
+
+
+def _unanswered(x: Any) -> str | None:
+    """Why ``x`` counts as not attempted (a message), or None if it is an attempt."""
+    if _is_placeholder(x):
+        return "Replace the `...` placeholder with your answer and run the cell again."
+    parts = list(x.values()) if isinstance(x, Mapping) else list(x) if isinstance(x, (list, tuple)) else []
+    if parts and all(_is_placeholder(p) for p in parts):
+        return "Replace the `...` placeholders with your answers and run the cell again."
+    return None
+
+
+class _Stop(Exception):
+    """Raised inside a check to finish it early with this feedback status and message."""
+
+    def __init__(self, status: str, message: str) -> None:
+        super().__init__(message)
+        self.status, self.message = status, message
+
+
+def _run(exercise: str, show: bool, body: Callable[[], str]) -> Feedback:
+    """Run a check's body: it returns the message of a correct answer or raises _Stop."""
+    try:
+        return _result(exercise, CORRECT, body(), show)
+    except _Stop as stop:
+        return _result(exercise, stop.status, stop.message, show)
+
+
+def _attempt(x: Any) -> None:
+    why = _unanswered(x)
+    if why is not None:
+        raise _Stop(NOT_ATTEMPTED, why)
+    if isinstance(x, (Mapping, list, tuple)):
+        parts = list(x.values()) if isinstance(x, Mapping) else list(x)
+        if any(_is_placeholder(p) for p in parts):
+            raise _Stop(WRONG, "Some parts are still `...`: fill in every part.")
+
+
+def _number(x: Any, what: str = "a number") -> float:
+    try:
+        value = float(np.asarray(x, dtype=np.float64).reshape(()))
+    except (TypeError, ValueError):
+        raise _Stop(WRONG, f"Expected {what}, got {type(x).__name__}.") from None
+    if not np.isfinite(value):
+        raise _Stop(WRONG, f"Expected {what}, got {value}.")
+    return value
+
+
+def _call(function: Any, *args: Any) -> Any:
+    """Call the student's function; placeholders and stubs count as not attempted."""
+    if _is_placeholder(function):
+        raise _Stop(NOT_ATTEMPTED, "Write the function, then run the cell again.")
+    if not callable(function):
+        raise _Stop(WRONG, f"Pass the function itself (without calling it); got {type(function).__name__}.")
+    try:
+        value = function(*args)
+    except NotImplementedError:
+        raise _Stop(NOT_ATTEMPTED, "The function body is still the stub: write it, then run the cell again.") from None
+    except Exception as err:  # the student's bug, reported, not raised
+        raise _Stop(WRONG, f"Your function raised {type(err).__name__}: {err}") from None
+    if _is_placeholder(value):
+        raise _Stop(NOT_ATTEMPTED, "Your function returns nothing: still the stub, or a missing `return`?")
+    return value
+
+
+def _near(x: float, target: float, rtol: float = 1e-2) -> bool:
+    return abs(x - target) <= rtol * abs(target)
+
+
+def _choice(exercise: str, answer: Any, options: Mapping[str, str | None], show: bool) -> Feedback:
+    """A multiple-choice answer: ``options`` maps each choice to its hint (None: the right one)."""
+    def body() -> str:
+        _attempt(answer)
+        if not isinstance(answer, str) or answer.strip().lower() not in options:
+            raise _Stop(WRONG, "Answer with one of: " + ", ".join(f'"{o}"' for o in options) + ".")
+        hint = options[answer.strip().lower()]
+        if hint is not None:
+            raise _Stop(WRONG, hint)
+        return "Right."
+    return _run(exercise, show, body)
+
+
+# --- 01 · the shape collection -------------------------------------------------------------------
+
+def check_edge_count(n_edges: Any, mesh: Any, *, show: bool = True) -> Feedback:
+    """Exercise 01-edges: the number of edges of a closed triangle mesh, from its faces alone.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> ball = shapes.icosphere(1)
+    >>> check_edge_count(3 * ball.n_faces // 2, ball, show=False).correct
+    True
+    >>> "two" in check_edge_count(3 * ball.n_faces, ball, show=False).message
+    True
+    """
+    def body() -> str:
+        _attempt(n_edges)
+        e, f = len(mesh.edges), mesh.n_faces
+        got = _number(n_edges, "a whole number")
+        if got == e:
+            chi = mesh.n_vertices - e + f
+            return f"Right: each triangle has three edges and each edge borders two triangles, so E = 3F/2; here V - E + F = {chi}."
+        if got == 3 * f:
+            raise _Stop(WRONG, "Off by a factor of two: three edges per triangle counts every edge twice, once from each of the two triangles it borders.")
+        if got == e / 2:
+            raise _Stop(WRONG, "Off by a factor of two (too few): you divided once too often.")
+        raise _Stop(WRONG, "Count the edge slots (three per triangle), then ask how many triangles share each edge of a closed surface.")
+    return _run("01-edges", show, body)
+
+
+def check_area_factor(prediction: Any, scale: float, *, show: bool = True) -> Feedback:
+    """Exercise 01-area: by what factor does the area of a part grow when the part is scaled by ``scale``?"""
+    def body() -> str:
+        _attempt(prediction)
+        got = _number(prediction)
+        if _near(got, scale**2):
+            return "Right: lengths grow by s, areas by s²."
+        if _near(got, scale):
+            raise _Stop(WRONG, "That is the factor of the lengths; an area has two length dimensions.")
+        if _near(got, scale**3):
+            raise _Stop(WRONG, "That is how a volume scales; a surface area has two length dimensions.")
+        if _near(got, scale**-2) or _near(got, 1 / scale):
+            raise _Stop(WRONG, "The part gets bigger, so its area grows: check the direction of your factor.")
+        raise _Stop(WRONG, "Think of a square of side L scaled by s: what is its new area?")
+    return _run("01-area", show, body)
+
+
+def check_stretch_growth(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 01-stretch: what happens to the worst edge stretch when a bend's angle doubles?"""
+    return _choice("01-stretch", answer, {
+        "same": "The stretch rθ/L depends on the angle θ: a larger bend over the same band stretches more.",
+        "double": None,
+        "quadruple": "rθ/L is linear in θ, not quadratic: you may be thinking of an area.",
+        "half": "A larger bend stretches the outer side more, not less.",
+    }, show)
+
+
+def check_smallest_angles(angles: Any, species: str = "dog", *, show: bool = True) -> Feedback:
+    """Exercise 01-angles: the smallest triangle angle (degrees) of ``creature(species, n_vertices=n)``, per size n."""
+    def body() -> str:
+        _attempt(angles)
+        if not isinstance(angles, Mapping) or not angles:
+            raise _Stop(WRONG, "Give a dict {number of vertices asked for: smallest angle in degrees}.")
+        from .creatures import creature
+        from .operators import corner_angles
+
+        for n, got in angles.items():
+            got = _number(got, f"a number for n = {n}")
+            exact = float(np.degrees(corner_angles(creature(species, n_vertices=int(n)))).min())
+            if _near(got, exact, 1e-3):
+                continue
+            if _near(got, np.radians(exact), 1e-3):
+                raise _Stop(WRONG, "These look like radians: convert with `np.degrees`.")
+            if got > 60:
+                raise _Stop(WRONG, f"n = {n}: every triangle has an angle of at most 60°, so the smallest angle cannot exceed 60°: take the minimum over all corners.")
+            raise _Stop(WRONG, f"n = {n}: not the smallest corner angle of that mesh; `corner_angles(mesh)` gives every corner's angle.")
+        return "Right: those are the smallest corner angles of the meshes you built."
+    return _run("01-angles", show, body)
+
+
+def check_leg_area(predicted: Any, n_vertices: int, species: str = "dog", *, show: bool = True) -> Feedback:
+    """Exercise 01-legs: predicted total area for legs scaled by s, ``{s: area}``, against the built shapes (1%)."""
+    def body() -> str:
+        _attempt(predicted)
+        if not isinstance(predicted, Mapping) or not predicted:
+            raise _Stop(WRONG, "Give a dict {scale s: predicted total area}.")
+        from .creatures import creature, creature_parts
+
+        template = creature(species, n_vertices=n_vertices)
+        parts = creature_parts(species, n_vertices=n_vertices)
+        legs = (parts["front_legs"] | parts["hind_legs"])[template.faces].all(axis=1)
+        leg, rest = template.face_areas[legs].sum(), template.face_areas[~legs].sum()
+        for s, got in predicted.items():
+            s, got = float(s), _number(got, f"a number for s = {s}")
+            actual = creature(species, parts={"legs": s}, n_vertices=n_vertices).area
+            if _near(got, actual, 0.015):
+                continue
+            if s != 1 and _near(got, s * leg + rest, 0.005):
+                raise _Stop(WRONG, f"s = {s}: the legs' area grows by s², not s.")
+            if s != 1 and _near(got, s**2 * (leg + rest), 0.005):
+                raise _Stop(WRONG, f"s = {s}: only the legs are scaled; the rest of the body keeps its area.")
+            if s != 1 and _near(got, s**2 * leg, 0.05):
+                raise _Stop(WRONG, f"s = {s}: add the area of the rest of the body.")
+            raise _Stop(WRONG, f"s = {s}: off by more than 1.5% from the scaled shape's area; prediction = (leg area) × s² + (rest).")
+        return "Right: within 1.5% for every scale (the blend band at the hips and shoulders is not scaled by exactly s²)."
+    return _run("01-legs", show, body)
+
+
+# --- 02 · the Laplace–Beltrami operator ----------------------------------------------------------
+
+@lru_cache(maxsize=1)
+def _test_meshes() -> tuple[Any, ...]:
+    """Small meshes the build-it-yourself checks run on: a right triangle, an irregular closed
+    surface and an open sheet with obtuse triangles."""
+    from . import shapes
+    from .mesh import Mesh
+
+    rng = np.random.default_rng(28)
+    triangle = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    ball = shapes.icosphere(1)
+    blob = ball.with_vertices(ball.vertices * rng.uniform(0.8, 1.25, size=(ball.n_vertices, 1)))
+    sheet = shapes.rectangle(2.0, 1.0, 4, 3)
+    v = sheet.vertices.copy()
+    v[:, :2] += rng.uniform(-0.12, 0.12, size=(len(v), 2))
+    v[:, 2] = 0.2 * np.sin(v[:, 0])
+    return triangle, blob, sheet.with_vertices(v)
+
+
+def _matrix(value: Any, n: int, name: str) -> np.ndarray:
+    import scipy.sparse as sp
+
+    if sp.issparse(value):
+        value = value.toarray()
+    try:
+        m = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise _Stop(WRONG, f"{name} should be a matrix (NumPy array or scipy.sparse); got {type(value).__name__}.") from None
+    if m.shape != (n, n):
+        raise _Stop(WRONG, f"{name} should be n × n, one row and one column per vertex (n = {n}); got shape {m.shape}.")
+    return m
+
+
+def _same(m: np.ndarray, ref: np.ndarray, rtol: float = 1e-8) -> bool:
+    return bool(np.abs(m - ref).max() <= rtol * max(np.abs(ref).max(), 1e-300))
+
+
+def _diagnose_stiffness(m: np.ndarray, ref: np.ndarray) -> str | None:
+    """None if m is the stiffness matrix ref, else a hint at what is off."""
+    if _same(m, ref):
+        return None
+    if _same(m, 2 * ref):
+        return "Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice?"
+    if _same(m, ref / 2):
+        return "Half too small: an interior edge has two opposite angles, one in each of its triangles; add both cotangents."
+    if _same(m, -ref):
+        return "Wrong sign: W is positive semidefinite, with negative off-diagonal entries -½ (cot a + cot b) and a positive diagonal."
+    d, d_ref = np.diag(m), np.diag(ref)
+    off, off_ref = m - np.diag(d), ref - np.diag(d_ref)
+    if not np.allclose(m, m.T, rtol=0, atol=1e-10 * np.abs(ref).max()):
+        if _same(off + off.T, off_ref):
+            return "Only one of W_ij and W_ji is filled in: W is symmetric, so add each edge's weight at (i, j) and at (j, i)."
+        return "W should be symmetric (the weight of edge ij is the weight of edge ji); yours is not."
+    scale = max(np.abs(off_ref).max(), 1e-300)
+    for factor, hint in ((1, None), (2, "twice too large (the ½)"), (0.5, "half too small (one of the two opposite angles missing)"),
+                         (-1, "of the wrong sign (they are -½ (cot a + cot b) ≤ 0 for acute angles)")):
+        if np.abs(off - factor * off_ref).max() <= 1e-8 * scale:
+            if hint is not None:
+                return f"The off-diagonal entries are {hint}."
+            if np.abs(d).max() <= 1e-12 * scale:
+                return "The diagonal is missing: each row of W sums to zero, so W_ii = -Σ_j W_ij."
+            if np.abs(d + d_ref).max() <= 1e-8 * scale:
+                return "The diagonal has the wrong sign: W_ii = -Σ_{j≠i} W_ij, which is positive."
+            return "The off-diagonal entries are right but the diagonal is not: each row of W sums to zero."
+    if np.abs(m.sum(axis=1)).max() > 1e-8 * np.abs(ref).max():
+        return "The rows of W should sum to zero (constants have no energy); yours do not."
+    return ("Not the cotangent weights: edge ij uses the angles *opposite* it (at the third corner of each of its "
+            "triangles), cot = cos/sin. Try your function on the worked triangle first.")
+
+
+def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-stiffness: the student's ``stiffness(mesh)`` against ``operators.stiffness_matrix``.
+
+    Run on three small meshes (a right triangle, an irregular closed surface, an open sheet with
+    obtuse triangles); the hint names the first thing that differs.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import operators
+    >>> check_stiffness(operators.stiffness_matrix, show=False).correct
+    True
+    >>> print(check_stiffness(lambda mesh: 2 * operators.stiffness_matrix(mesh), show=False).message)
+    Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice? (first seen on the right triangle.)
+    """
+    from .operators import stiffness_matrix
+
+    def body() -> str:
+        for mesh in _test_meshes():
+            m = _matrix(_call(stiffness, mesh), mesh.n_vertices, "W")
+            hint = _diagnose_stiffness(m, stiffness_matrix(mesh).toarray())
+            if hint is not None:
+                where = "the right triangle" if mesh.n_faces == 1 else f"a mesh of {mesh.n_vertices} vertices"
+                raise _Stop(WRONG, f"{hint} (first seen on {where}.)")
+        return "Right: it matches `operators.stiffness_matrix` on a triangle, a closed surface and an open sheet."
+    return _run("02-stiffness", show, body)
+
+
+def _pure_voronoi(mesh: Any) -> np.ndarray:
+    """Circumcentric Voronoi areas without the mixed rule for obtuse triangles (a typical attempt)."""
+    from .operators import face_cotangents
+
+    v, f = mesh.vertices, mesh.faces
+    cot = face_cotangents(mesh)
+    sq = np.stack([np.sum((v[f[:, (k + 1) % 3]] - v[f[:, (k + 2) % 3]]) ** 2, axis=1) for k in range(3)], axis=1)
+    corner = np.stack([(sq[:, (k + 2) % 3] * cot[:, (k + 2) % 3] + sq[:, (k + 1) % 3] * cot[:, (k + 1) % 3]) / 8
+                       for k in range(3)], axis=1)
+    return np.bincount(f.ravel(), weights=corner.ravel(), minlength=mesh.n_vertices)
+
+
+def check_mass(mass: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-mass: the student's lumped ``mass(mesh)`` against the Voronoi or barycentric mass.
+
+    Either lumped mass is accepted (the message says which one was built).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import operators
+    >>> check_mass(lambda mesh: operators.mass_matrix(mesh, "barycentric"), show=False).correct
+    True
+    >>> import numpy as np
+    >>> "Euclidean" in check_mass(lambda mesh: np.eye(mesh.n_vertices), show=False).message
+    True
+    """
+    from .operators import mass_matrix
+
+    def body() -> str:
+        matches = {"voronoi": True, "barycentric": True}
+        for mesh in _test_meshes():
+            n = mesh.n_vertices
+            m = _matrix(_call(mass, mesh), n, "A")
+            for kind in matches:
+                matches[kind] &= _same(m, mass_matrix(mesh, kind).toarray())
+            if any(matches.values()):
+                continue
+            where = "the right triangle" if mesh.n_faces == 1 else f"a mesh of {n} vertices"
+            if np.allclose(m, np.eye(n)):
+                raise _Stop(WRONG, "That is the identity, the Euclidean inner product: it weighs every vertex alike, whatever the size of its triangles. A weighs each vertex by its share of the area.")
+            if _same(m, mass_matrix(mesh, "consistent").toarray()):
+                raise _Stop(WRONG, "That is the consistent (full) mass matrix, a valid one, but the exercise asks for a lumped (diagonal) one: give each vertex its share of area on the diagonal.")
+            d = np.diag(m)
+            if np.abs(m - np.diag(d)).max() > 1e-12 * np.abs(d).max():
+                raise _Stop(WRONG, f"A lumped mass matrix is diagonal; yours has off-diagonal entries (on {where}).")
+            if (d < 0).any():
+                raise _Stop(WRONG, "Negative areas: a triangle's area is ½ ‖(p1 - p0) × (p2 - p0)‖, a norm, never negative.")
+            for kind in ("barycentric", "voronoi"):
+                ref = mass_matrix(mesh, kind).diagonal()
+                for factor, hint in ((2, "Twice too large: a triangle's area is *half* the norm of the cross product."),
+                                     (3, "Three times too large: each triangle's area is shared among its three corners."),
+                                     (6, "Six times too large: a triangle's area is half the norm of the cross product, and it is shared among three corners."),
+                                     (0.5, "Half too small: a triangle's area is ½ ‖(p1 - p0) × (p2 - p0)‖ (only one ½)."),
+                                     (1 / 3, "Three times too small: every corner of a triangle gets a share, not only one.")):
+                    if _same(d, factor * ref):
+                        raise _Stop(WRONG, hint)
+            if _same(d, _pure_voronoi(mesh)):
+                raise _Stop(WRONG, f"That is the pure Voronoi area, wrong at obtuse triangles (on {where}): use the mixed rule (half the triangle's area to an obtuse corner, a quarter to the others).")
+            ratio = d.sum() / mesh.area
+            raise _Stop(WRONG, f"The diagonal should share out the surface area; on {where} it sums to {ratio:.3g} × the area." if not _near(ratio, 1, 1e-8)
+                        else f"The total is right but the shares are not (on {where}): a third of each triangle to each corner (barycentric), or the mixed Voronoi rule.")
+        which = "mixed Voronoi" if matches["voronoi"] else "barycentric"
+        return f"Right: that is the {which} mass matrix (both lumped masses are accepted; the library's default is mixed Voronoi)."
+    return _run("02-mass", show, body)
+
+
+def check_convergence_factor(factor: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-convergence: by what factor does an O(h²) error drop when h is halved?"""
+    def body() -> str:
+        _attempt(factor)
+        got = _number(factor)
+        if _near(got, 4.0, 0.1):
+            return "Right: error ∝ h², so halving h divides it by 2² = 4."
+        if _near(got, 2.0, 0.1):
+            raise _Stop(WRONG, "That is first order, error ∝ h; this discretisation is second order, error ∝ h².")
+        if _near(got, 0.25, 0.1) or _near(got, 0.5, 0.1):
+            raise _Stop(WRONG, "Give the factor by which the error *drops* (a number above 1): error_before / error_after.")
+        if _near(got, 8.0, 0.1) or _near(got, 16.0, 0.1):
+            raise _Stop(WRONG, "That would be a higher order than h²: error ∝ h^p drops by 2^p when h halves, with p = 2 here.")
+        raise _Stop(WRONG, "If error ≈ C h^p and h becomes h/2, by what factor does the error change? Here p = 2.")
+    return _run("02-convergence", show, body)
+
+
+def check_coefficients(coefficients: Any, spectrum: Any, f: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-coefficients: the coefficients of ``f`` in the eigenbasis, written by hand.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis
+    >>> s = eigenbasis(shapes.icosphere(2), 9)
+    >>> f = shapes.icosphere(2).vertices[:, 2]
+    >>> check_coefficients(s.vectors.T @ (s.mass @ f), s, f, show=False).correct
+    True
+    >>> "Euclidean" in check_coefficients(s.vectors.T @ f, s, f, show=False).message
+    True
+    """
+    def body() -> str:
+        _attempt(coefficients)
+        phi, mass = spectrum.vectors, spectrum.mass
+        g = np.asarray(f, dtype=np.float64)
+        ref = spectrum.project(g)
+        try:
+            c = np.asarray(coefficients, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise _Stop(WRONG, f"Expected an array of coefficients, got {type(coefficients).__name__}.") from None
+        if c.shape != ref.shape:
+            if c.shape == g.shape:
+                raise _Stop(WRONG, f"One coefficient per eigenfunction: the result has length k = {ref.shape[0]}, not one value per vertex. A transpose (Φ instead of Φᵀ) or a reconstruction Φ c instead of c?")
+            raise _Stop(WRONG, f"Expected shape {ref.shape} (one coefficient per eigenfunction), got {c.shape}.")
+        scale = max(np.abs(ref).max(), 1e-300)
+        near = lambda other: np.abs(c - other).max() <= 1e-6 * scale  # noqa: E731
+        if near(ref):
+            return "Right: c = Φᵀ A f, the A inner product of f with each eigenfunction."
+        if near(phi.T @ g):
+            raise _Stop(WRONG, "That is Φᵀ f, the Euclidean inner product: the eigenvectors are A-orthonormal, so the coefficients need the mass matrix.")
+        if near(-ref):
+            raise _Stop(WRONG, "Wrong sign.")
+        if near(2 * ref) or near(ref / 2):
+            raise _Stop(WRONG, "Off by a factor of two.")
+        if near(phi.T @ (g / mass.diagonal())):
+            raise _Stop(WRONG, "You divided by the mass; the A inner product multiplies by it.")
+        raise _Stop(WRONG, "Not Φᵀ A f: take the A inner product ⟨φ_i, f⟩_A = φ_iᵀ A f for each eigenfunction φ_i.")
+    return _run("02-coefficients", show, body)
+
+
+def check_consistent_mass(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-consistent: do the consistent-mass eigenvalues of the sphere lie above or below ℓ(ℓ+1)?"""
+    return _choice("02-consistent", answer, {
+        "above": None,
+        "below": "Look at the computed values again: the lumped ones are below, the consistent ones are not.",
+        "equal": "Neither discretisation is exact on a sphere made of flat triangles.",
+    }, show)
+
+
+def check_eigenvalue_scaling(factor: Any, scale: float = 2.0, *, show: bool = True) -> Feedback:
+    """Exercise 02-scaling: the factor by which every eigenvalue changes when the shape is scaled by ``scale``."""
+    def body() -> str:
+        _attempt(factor)
+        got = _number(factor)
+        if _near(got, scale**-2, 1e-3):
+            return "Right: λ has units of 1/length², so scaling lengths by s divides every eigenvalue by s²."
+        if _near(got, scale**2, 1e-3):
+            raise _Stop(WRONG, "Upside down: a bigger shape vibrates more slowly, so its eigenvalues get smaller.")
+        if _near(got, 1 / scale, 1e-3) or _near(got, scale, 1e-3):
+            raise _Stop(WRONG, "λ has units of 1/length² (think of π²/a² on an interval of length a), not 1/length.")
+        if _near(got, 1.0, 1e-3):
+            raise _Stop(WRONG, "Scaling is not an isometry: lengths change, and so does the spectrum.")
+        raise _Stop(WRONG, "What are the units of λ in W φ = λ A φ? (W is unitless on a surface; A is an area.)")
+    return _run("02-scaling", show, body)
+
+
+def check_zero_eigenvalues(torus: Any, two_spheres: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-kernel: the number of zero eigenvalues of a torus and of two disjoint spheres."""
+    def body() -> str:
+        _attempt([torus, two_spheres])
+        t, s = _number(torus, "a whole number"), _number(two_spheres, "a whole number")
+        if (t, s) == (1, 2):
+            return "Right: one zero eigenvalue per connected component (a constant on each); the genus does not matter."
+        if t != 1:
+            raise _Stop(WRONG, "The torus: the handle does not matter, only how many pieces the surface has; a zero eigenvalue means zero energy, a function constant on each piece.")
+        raise _Stop(WRONG, "Two disjoint spheres: a function constant on each sphere separately has zero energy too.")
+    return _run("02-kernel", show, body)
+
+
+# --- revealing a solution on purpose -------------------------------------------------------------
+
+_REGION = re.compile(r"^[ \t]*(?:#+|<!--)\s*BEGIN SOLUTION.*?$\n(.*?)^[ \t]*(?:#+|<!--)\s*END SOLUTION.*?$",
+                     re.MULTILINE | re.DOTALL)
+
+
+def _instructor_notebooks() -> Path | None:
+    here = Path(__file__).resolve().parent.parent / "notebooks"
+    return here if here.is_dir() else None
+
+
+def solution(exercise: str, *, show: bool = True) -> str:
+    """The instructor's solution of one exercise, on purpose: try first, then look.
+
+    Reads the solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) of the cells with
+    the grade id ``<exercise>-answer`` (and ``<exercise>-explain``) in the instructor edition,
+    ``notebooks/`` of the checkout the package is installed from. The student edition has no
+    solutions in it; where no checkout is at hand (a handed-out edition), this says so.
+
+    Parameters
+    ----------
+    exercise : str
+        The exercise id shown by its check, e.g. ``"02-mass"``.
+    show : bool
+        Display the solution (as Markdown in Jupyter, as text elsewhere).
+
+    Returns
+    -------
+    str
+        The solution's text.
+
+    Examples
+    --------
+    >>> "BEGIN SOLUTION" not in solution("02-scaling", show=False)
+    True
+    """
+    folder = _instructor_notebooks()
+    if folder is None:
+        text = "The solutions are not part of this edition (no instructor notebooks found next to the package)."
+    else:
+        number = exercise.split("-", 1)[0]
+        pieces = []
+        for path in sorted(folder.glob(f"{number}_*.ipynb")):
+            for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+                grade_id = cell.get("metadata", {}).get("nbgrader", {}).get("grade_id", "")
+                if grade_id in (f"{exercise}-answer", f"{exercise}-explain"):
+                    source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+                    for region in _REGION.findall(source):
+                        pieces.append(f"```python\n{region.rstrip()}\n```" if cell["cell_type"] == "code" else region.strip())
+        text = "\n\n".join(pieces) if pieces else f"No solution found for exercise {exercise!r}."
+    if show:
+        shell = _shell()
+        if shell is None:
+            print(text)
+        else:
+            from IPython.display import Markdown, display
+
+            display(Markdown(f"**Solution of exercise {exercise}**\n\n{text}"))
+    return text

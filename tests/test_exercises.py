@@ -1,0 +1,373 @@
+"""The exercises' self-checks (lbo_notebooks.exercises), tested three ways: the reference solution
+passes, each typical wrong answer gets its own hint, and an unanswered exercise reports "not
+attempted" without raising. Also: no message gives the answer away, the feedback displays as one
+coloured line in Jupyter and as text elsewhere, and solutions are revealed only on request."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from lbo_notebooks import exercises as ex
+from lbo_notebooks import operators, shapes
+from lbo_notebooks.exercises import CORRECT, NOT_ATTEMPTED, WRONG
+
+NOTEBOOKS = Path(__file__).resolve().parent.parent / "notebooks"
+PLACEHOLDERS = [..., None, NotImplemented, "...", ""]
+
+
+def _status(feedback, status, *words):
+    assert feedback.status == status, feedback
+    for word in words:
+        assert word.lower() in feedback.message.lower(), (word, feedback.message)
+
+
+def _stub(mesh):
+    raise NotImplementedError()
+
+
+def _empty(mesh):
+    pass
+
+
+def _solution_function(exercise: str, name: str):
+    """The function an answer cell of the instructor edition defines (the reference solution)."""
+    cell = next(c for path in NOTEBOOKS.glob(f"{exercise[:2]}_*.ipynb") for c in json.loads(path.read_text())["cells"]
+                if c.get("metadata", {}).get("nbgrader", {}).get("grade_id") == f"{exercise}-answer")
+    namespace = {"np": np, "sp": sp}
+    exec("".join(cell["source"]), namespace)
+    return namespace[name]
+
+
+# --- 01 -------------------------------------------------------------------------------------------
+
+def test_edge_count():
+    ball = shapes.icosphere(2)
+    _status(ex.check_edge_count(3 * ball.n_faces // 2, ball, show=False), CORRECT)
+    _status(ex.check_edge_count(len(ball.edges), ball, show=False), CORRECT)
+    _status(ex.check_edge_count(3 * ball.n_faces, ball, show=False), WRONG, "factor of two")
+    _status(ex.check_edge_count(len(ball.edges) // 2, ball, show=False), WRONG, "factor of two")
+    _status(ex.check_edge_count(ball.n_faces, ball, show=False), WRONG, "three per triangle")
+    _status(ex.check_edge_count("many", ball, show=False), WRONG, "whole number")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_edge_count(placeholder, ball, show=False), NOT_ATTEMPTED)
+
+
+def test_area_factor():
+    _status(ex.check_area_factor(2.56, scale=1.6, show=False), CORRECT)
+    _status(ex.check_area_factor(1.6, scale=1.6, show=False), WRONG, "lengths")
+    _status(ex.check_area_factor(1.6**3, scale=1.6, show=False), WRONG, "volume")
+    _status(ex.check_area_factor(1 / 2.56, scale=1.6, show=False), WRONG, "direction")
+    _status(ex.check_area_factor(3.0, scale=1.6, show=False), WRONG, "square")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_area_factor(placeholder, scale=1.6, show=False), NOT_ATTEMPTED)
+
+
+def test_stretch_growth_is_a_choice():
+    _status(ex.check_stretch_growth("double", show=False), CORRECT)
+    _status(ex.check_stretch_growth(" Double ", show=False), CORRECT)
+    _status(ex.check_stretch_growth("quadruple", show=False), WRONG, "linear")
+    _status(ex.check_stretch_growth("same", show=False), WRONG, "angle")
+    _status(ex.check_stretch_growth("twice", show=False), WRONG, '"double"')
+    _status(ex.check_stretch_growth(2, show=False), WRONG, "one of")
+    _status(ex.check_stretch_growth(..., show=False), NOT_ATTEMPTED)
+
+
+def test_smallest_angles():
+    from lbo_notebooks.creatures import creature
+
+    exact = float(np.degrees(operators.corner_angles(creature("dog", n_vertices=2000))).min())
+    _status(ex.check_smallest_angles({2000: exact}, show=False), CORRECT)
+    _status(ex.check_smallest_angles({2000: np.radians(exact)}, show=False), WRONG, "radians")
+    _status(ex.check_smallest_angles({2000: 95.0}, show=False), WRONG, "60°")
+    _status(ex.check_smallest_angles({2000: exact + 3}, show=False), WRONG, "corner_angles")
+    _status(ex.check_smallest_angles({2000: ..., 3000: ...}, show=False), NOT_ATTEMPTED)
+    _status(ex.check_smallest_angles({2000: exact, 3000: ...}, show=False), WRONG, "every part")
+    _status(ex.check_smallest_angles([exact], show=False), WRONG, "dict")
+
+
+def test_leg_area():
+    from lbo_notebooks.creatures import creature, creature_parts
+
+    n = 2000
+    dog, parts = creature("dog", n_vertices=n), creature_parts("dog", n_vertices=n)
+    in_legs = (parts["front_legs"] | parts["hind_legs"])[dog.faces].all(axis=1)
+    leg, rest = dog.face_areas[in_legs].sum(), dog.face_areas[~in_legs].sum()
+    reference = {s: leg * s**2 + rest for s in (1.0, 1.3)}              # the notebook's solution
+    _status(ex.check_leg_area(reference, n_vertices=n, show=False), CORRECT)
+    _status(ex.check_leg_area({1.3: leg * 1.3 + rest}, n_vertices=n, show=False), WRONG, "s²")
+    _status(ex.check_leg_area({1.3: (leg + rest) * 1.3**2}, n_vertices=n, show=False), WRONG, "only the legs")
+    _status(ex.check_leg_area({1.3: leg * 1.3**2}, n_vertices=n, show=False), WRONG, "rest of the body")
+    _status(ex.check_leg_area({1.0: ..., 1.3: ...}, n_vertices=n, show=False), NOT_ATTEMPTED)
+
+
+# --- 02: build it yourself --------------------------------------------------------------------------
+
+def _upper_only(mesh):
+    W = operators.stiffness_matrix(mesh).toarray()
+    return np.triu(W, 1) + np.diag(np.diag(W))
+
+
+def _without_diagonal(mesh):
+    W = operators.stiffness_matrix(mesh)
+    return W - sp.diags(W.diagonal())
+
+
+def _flipped_diagonal(mesh):
+    W = operators.stiffness_matrix(mesh)
+    return W - 2 * sp.diags(W.diagonal())
+
+
+def _adjacent_angles(mesh):
+    """A typical slip: each corner's cotangent put on an edge *at* the corner, not the opposite one."""
+    f, n = mesh.faces, mesh.n_vertices
+    cot = operators.face_cotangents(mesh)
+    i, j = np.concatenate([f[:, 0], f[:, 1], f[:, 2]]), np.concatenate([f[:, 1], f[:, 2], f[:, 0]])
+    off = sp.coo_matrix((-0.5 * cot.T.ravel(), (i, j)), shape=(n, n))
+    off = (off + off.T).tocsr()
+    return off - sp.diags(np.asarray(off.sum(axis=1)).ravel())
+
+
+@pytest.mark.parametrize("attempt, hint", [
+    (lambda m: 2 * operators.stiffness_matrix(m), "twice"),
+    (lambda m: operators.stiffness_matrix(m) / 2, "two opposite angles"),
+    (lambda m: -operators.stiffness_matrix(m), "sign"),
+    (_upper_only, "(j, i)"),
+    (_without_diagonal, "diagonal is missing"),
+    (_flipped_diagonal, "diagonal has the wrong sign"),
+    (_adjacent_angles, "opposite"),
+    (lambda m: np.eye(m.n_vertices + 1), "n × n"),
+    (lambda m: 1 / 0, "ZeroDivisionError"),
+    (operators.stiffness_matrix(shapes.icosphere(1)), "function itself"),
+])
+def test_stiffness_hints(attempt, hint):
+    _status(ex.check_stiffness(attempt, show=False), WRONG, hint)
+
+
+def test_stiffness_reference_and_unanswered():
+    _status(ex.check_stiffness(operators.stiffness_matrix, show=False), CORRECT)
+    _status(ex.check_stiffness(lambda m: operators.stiffness_matrix(m).toarray(), show=False), CORRECT)
+    _status(ex.check_stiffness(_solution_function("02-stiffness", "my_stiffness"), show=False), CORRECT)
+    for attempt in (..., None, _stub, _empty):
+        _status(ex.check_stiffness(attempt, show=False), NOT_ATTEMPTED)
+
+
+def _pure_voronoi(mesh):
+    return sp.diags(ex._pure_voronoi(mesh))
+
+
+@pytest.mark.parametrize("attempt, hint", [
+    (lambda m: np.eye(m.n_vertices), "Euclidean"),
+    (lambda m: operators.mass_matrix(m, "consistent"), "consistent"),
+    (lambda m: 2 * operators.mass_matrix(m, "barycentric"), "the norm of the cross product"),
+    (lambda m: 3 * operators.mass_matrix(m, "barycentric"), "three corners"),
+    (lambda m: operators.mass_matrix(m) / 2, "half too small"),
+    (lambda m: -operators.mass_matrix(m), "negative"),
+    (_pure_voronoi, "mixed rule"),
+    (lambda m: operators.mass_matrix(m) + 0.01 * sp.eye(m.n_vertices), "sums to"),
+    (lambda m: sp.diags(np.full(m.n_vertices, m.area / m.n_vertices)), "shares"),
+])
+def test_mass_hints(attempt, hint):
+    _status(ex.check_mass(attempt, show=False), WRONG, hint)
+
+
+def test_mass_reference_and_unanswered():
+    _status(ex.check_mass(operators.mass_matrix, show=False), CORRECT, "mixed Voronoi")
+    _status(ex.check_mass(lambda m: operators.mass_matrix(m, "barycentric"), show=False), CORRECT, "barycentric")
+    _status(ex.check_mass(_solution_function("02-mass", "my_mass"), show=False), CORRECT)
+    for attempt in (..., None, _stub, _empty):
+        _status(ex.check_mass(attempt, show=False), NOT_ATTEMPTED)
+
+
+# --- 02: the other exercises -----------------------------------------------------------------------
+
+def test_convergence_factor():
+    _status(ex.check_convergence_factor(4, show=False), CORRECT)
+    _status(ex.check_convergence_factor(2, show=False), WRONG, "first order")
+    _status(ex.check_convergence_factor(0.25, show=False), WRONG, "drops")
+    _status(ex.check_convergence_factor(8, show=False), WRONG, "higher order")
+    _status(ex.check_convergence_factor(3, show=False), WRONG, "h^p")
+    _status(ex.check_convergence_factor(None, show=False), NOT_ATTEMPTED)
+
+
+@pytest.fixture(scope="module")
+def sphere_spectrum():
+    from lbo_notebooks import eigenbasis
+
+    mesh = shapes.bumpy_sphere(2)
+    return mesh, eigenbasis(mesh, 12)
+
+
+def test_coefficients(sphere_spectrum):
+    mesh, s = sphere_spectrum
+    f = mesh.vertices[:, 0]
+    phi, mass = s.vectors, s.mass
+    _status(ex.check_coefficients(phi.T @ (mass @ f), s, f, show=False), CORRECT)
+    _status(ex.check_coefficients(phi.T @ f, s, f, show=False), WRONG, "Euclidean")
+    _status(ex.check_coefficients(phi @ (phi.T @ (mass @ f)), s, f, show=False), WRONG, "transpose")
+    _status(ex.check_coefficients(-(phi.T @ (mass @ f)), s, f, show=False), WRONG, "sign")
+    _status(ex.check_coefficients(2 * phi.T @ (mass @ f), s, f, show=False), WRONG, "factor of two")
+    _status(ex.check_coefficients(phi.T @ (f / mass.diagonal()), s, f, show=False), WRONG, "divided")
+    _status(ex.check_coefficients(np.ones(12), s, f, show=False), WRONG, "φ_iᵀ A f")
+    _status(ex.check_coefficients(np.ones(5), s, f, show=False), WRONG, "shape")
+    _status(ex.check_coefficients(..., s, f, show=False), NOT_ATTEMPTED)
+
+
+def test_choices_and_counts():
+    _status(ex.check_consistent_mass("above", show=False), CORRECT)
+    _status(ex.check_consistent_mass("below", show=False), WRONG, "lumped")
+    _status(ex.check_consistent_mass(..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_eigenvalue_scaling(0.25, scale=2, show=False), CORRECT)
+    _status(ex.check_eigenvalue_scaling(4, scale=2, show=False), WRONG, "upside down")
+    _status(ex.check_eigenvalue_scaling(0.5, scale=2, show=False), WRONG, "1/length²")
+    _status(ex.check_eigenvalue_scaling(1, scale=2, show=False), WRONG, "isometry")
+    _status(ex.check_eigenvalue_scaling(..., scale=2, show=False), NOT_ATTEMPTED)
+    _status(ex.check_zero_eigenvalues(1, 2, show=False), CORRECT)
+    _status(ex.check_zero_eigenvalues(2, 2, show=False), WRONG, "handle")
+    _status(ex.check_zero_eigenvalues(1, 1, show=False), WRONG, "each sphere")
+    _status(ex.check_zero_eigenvalues(..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_zero_eigenvalues(1, ..., show=False), WRONG, "every part")
+
+
+# --- the feedback itself -------------------------------------------------------------------------
+
+def test_messages_never_give_the_answer():
+    """A wrong numeric answer's message contains no reference value (to 2 significant digits or more)."""
+    ball = shapes.icosphere(2)
+    cases = [(ex.check_edge_count(7, ball, show=False), len(ball.edges)),
+             (ex.check_area_factor(3.0, scale=1.6, show=False), 2.56),
+             (ex.check_eigenvalue_scaling(3.0, scale=2, show=False), 0.25),
+             (ex.check_convergence_factor(3, show=False), 4.0)]
+    for feedback, answer in cases:
+        assert feedback.status == WRONG
+        numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
+        assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2)), feedback.message
+
+
+def test_feedback_object():
+    fb = ex.Feedback("02-mass", WRONG, "Twice too large: use `np.cross`.")
+    assert not fb.correct and fb.attempted and str(fb) == "02-mass · wrong: Twice too large: use `np.cross`."
+    html = fb._repr_html_()
+    assert 'data-status="wrong"' in html and "<code>np.cross</code>" in html and "#b42318" in html
+    assert 'exercises.solution("02-mass")' in html                              # the way to a solution, on purpose
+    assert "exercises.solution" not in ex.Feedback("02-mass", CORRECT, "Right.")._repr_html_()
+    assert ex.Feedback("x", NOT_ATTEMPTED, "").attempted is False
+    bundle = fb._bundle()
+    assert bundle[ex.MIME_TYPE] == {"exercise": "02-mass", "status": "wrong"} and bundle["text/plain"] == str(fb)
+    with pytest.raises(ValueError, match="status must be one of"):
+        ex.Feedback("x", "maybe", "")
+
+
+def test_plain_text_outside_jupyter(capsys):
+    fb = ex.check_area_factor(2.56, scale=1.6)
+    assert capsys.readouterr().out.strip() == str(fb)
+    ex.check_area_factor(2.56, scale=1.6, show=False)
+    assert capsys.readouterr().out == ""
+
+
+def test_jupyter_shows_one_coloured_line_once(monkeypatch):
+    shown = []
+
+    class Shell:
+        execution_count = 7
+
+    monkeypatch.setattr(ex, "_shell", lambda: Shell())
+    monkeypatch.setattr("IPython.display.display", lambda obj, raw=False: shown.append((obj, raw)))
+    fb = ex.check_area_factor(..., scale=1.6)
+    assert len(shown) == 1 and shown[0][1] and shown[0][0][ex.MIME_TYPE]["status"] == NOT_ATTEMPTED
+    fb._ipython_display_()                      # the same cell returning it: not shown twice
+    assert len(shown) == 1
+    Shell.execution_count = 8                   # a later cell: shown again
+    fb._ipython_display_()
+    assert len(shown) == 2
+
+
+def test_solution_is_revealed_on_request(capsys, monkeypatch):
+    text = ex.solution("02-stiffness", show=False)
+    assert "def " not in text and "np.cross" in text and "BEGIN SOLUTION" not in text
+    assert capsys.readouterr().out == ""
+    ex.solution("01-area")
+    assert "1.6**2" in capsys.readouterr().out
+    assert "No solution found" in ex.solution("99-nothing", show=False)
+    monkeypatch.setattr(ex, "_instructor_notebooks", lambda: None)
+    assert "not part of this edition" in ex.solution("02-stiffness", show=False)
+
+
+def test_every_check_in_the_notebooks_exists():
+    """Each check cell of the instructor edition calls a check of this module, for its own exercise id."""
+    for path in sorted(NOTEBOOKS.glob("*.ipynb")):
+        for cell in json.loads(path.read_text())["cells"]:
+            meta = cell.get("metadata", {}).get("nbgrader", {})
+            if meta.get("grade"):
+                call = re.search(r"exercises\.(check_\w+)\(", "".join(cell["source"]))
+                assert call and call.group(1) in ex.__all__, (path.name, meta["grade_id"])
+
+
+# --- the machinery of the student edition (scripts/), without running nbgrader --------------------
+
+def _script(name):
+    import importlib.util
+    import sys
+
+    path = Path(__file__).resolve().parent.parent / "scripts" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_exercise_cells_are_valid_nbgrader_cells():
+    import nbformat
+
+    cells = _script("exercise_cells").exercise(
+        "04-demo", "compute", "What is 1 + 1?", "two = ...", "two = 2", "exercises.check_area_factor(two, scale=2 ** 0.5)")
+    prompt, answer, check = cells
+    assert prompt.source.startswith("**Exercise 04-demo** · *compute*.")
+    assert answer.source == "two = ...\n### BEGIN SOLUTION\ntwo = 2\n### END SOLUTION"
+    assert answer.metadata.nbgrader["solution"] and not answer.metadata.nbgrader["grade"]
+    assert check.metadata.nbgrader["grade"] and check.metadata.nbgrader["locked"] and check.metadata.nbgrader["points"] == 1
+    assert "### BEGIN HIDDEN TESTS\nassert feedback.correct" in check.source
+    nb = nbformat.v4.new_notebook(cells=cells)
+    nbformat.validate(nb)
+    validator = pytest.importorskip("nbgrader.nbgraderformat").MetadataValidator()
+    validator.validate_nb(nb)                                       # nbgrader accepts the marking
+    namespace = {"exercises": ex}
+    exec(answer.source, namespace)
+    exec(check.source, namespace)                                   # the instructor edition passes its hidden test
+
+
+def test_rebuilt_edition_keeps_a_students_work(tmp_path):
+    edition = _script("student_edition")
+    release, out = tmp_path / "release", tmp_path / "out"
+    release.mkdir()
+    (release / "01_a.ipynb").write_text('{"cells": []}')
+    (release / "02_b.ipynb").write_text('{"cells": []}')
+    edition.publish(release, out)
+    (out / "02_b.ipynb").write_text('{"cells": [], "answer": 42}')     # the student worked in 02
+    (release / "01_a.ipynb").write_text('{"cells": [], "v": 2}')        # a new edition of both
+    (release / "02_b.ipynb").write_text('{"cells": [], "v": 2}')
+    edition.publish(release, out)
+    assert json.loads((out / "01_a.ipynb").read_text())["v"] == 2     # unchanged by the student: updated
+    assert json.loads((out / "02_b.ipynb").read_text())["answer"] == 42  # the student's work: kept
+    assert json.loads((out / "02_b.new.ipynb").read_text())["v"] == 2
+
+
+def test_instructor_answers_are_put_back_by_grade_id(tmp_path):
+    edition = _script("student_edition")
+    cell = lambda src, gid, **kw: {"cell_type": "code", "source": src, "metadata": {"nbgrader": {"grade_id": gid, **kw}}}  # noqa: E731
+    student = {"cells": [cell("x = ...\n# YOUR CODE HERE\npass", "9-x-answer", solution=True),
+                         cell("feedback = check(x)", "9-x-check", grade=True)]}
+    instructor = {"cells": [cell("x = ...\n### BEGIN SOLUTION\nx = 1\n### END SOLUTION", "9-x-answer", solution=True)]}
+    (tmp_path / "s.ipynb").write_text(json.dumps(student))
+    (tmp_path / "i.ipynb").write_text(json.dumps(instructor))
+    nb = edition.answered(tmp_path / "s.ipynb", tmp_path / "i.ipynb")
+    assert "x = 1" in nb["cells"][0]["source"] and nb["cells"][1]["source"] == "feedback = check(x)"
+    statuses = edition.feedback_statuses({"cells": [{"outputs": [{"data": {ex.MIME_TYPE: {"exercise": "9-x", "status": "wrong"}}}]}]})
+    assert statuses == [("9-x", "wrong")]
+    assert edition.MIME_TYPE == ex.MIME_TYPE                        # the script reads what the checks write
