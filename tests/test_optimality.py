@@ -323,7 +323,7 @@ def test_the_trap_is_exact_on_a_tilted_eigenbasis_that_w_does_not_map_into_a_v(b
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_ky_fan_the_eigenframe_has_the_least_total_energy(blob, sheet, seed):
-    # The paper's eq. (5): trace(Q^T W Q) >= lam_0 + ... + lam_{n-1} over A-orthonormal n-frames,
+    # The paper's eq. (6): trace(Q^T W Q) >= lam_0 + ... + lam_{n-1} over A-orthonormal n-frames,
     # with equality for the eigenframe and its rotations, and a second-order excess near it.
     rng = np.random.default_rng(seed)
     for m, s in (blob, sheet):
