@@ -17,12 +17,20 @@ Error: mean geodesic error on the source / sqrt(area) (heat-method distances). T
 times of the whole pipeline including eigenbases, on a shared machine: read the ratios.
 Run:
 
-    python benchmarks/matching.py
+    python benchmarks/matching.py            # both tables
+    python benchmarks/matching.py --record   # the second table only, also written to results/matching.json
+
+``--record`` stores the semi-local scaling table with its date, machine load and BLAS threads;
+notebook 09 quotes those numbers as recorded and asserts its prose against the file.
 """
 
 from __future__ import annotations
 
+import json
+import os
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -54,7 +62,42 @@ def pyfm(source: Mesh, target: Mesh, zoomout: bool) -> np.ndarray:
     return np.asarray(model.get_p2p(n_jobs=1))
 
 
+def scaling_table() -> list[dict]:
+    """Match standing -> walking with a rescaled part for alpha = 0, 0.4, 1; one row per pair."""
+    print("\nsemi-local scaling, standing -> walking with a rescaled part; mean error / sqrt(area) by alpha")
+    print(f"{'species':8s} {'n':>5s} {'parts':18s} {'alpha=0':>8s} {'alpha=0.4':>10s} {'alpha=1':>8s}")
+    rows = []
+    for i, (species, n, parts) in enumerate(SCALING_PAIRS):
+        source = creature(species, "standing", n_vertices=n)
+        target, perm = shuffled(creature(species, "walking", parts, n_vertices=n), seed=i)
+        errs = [float(matching_error(source, match(source, target, alpha=a), perm).mean()) for a in (0.0, 0.4, 1.0)]
+        print(f"{species:8s} {source.n_vertices:5d} {str(parts):18s} {errs[0]:8.4f} {errs[1]:10.4f} {errs[2]:8.4f}", flush=True)
+        rows.append({"species": species, "n_vertices_requested": n, "n_vertices": source.n_vertices, "parts": parts,
+                     "error": {"0": errs[0], "0.4": errs[1], "1": errs[2]}})
+    return rows
+
+
+def record() -> None:
+    """Run the scaling table and write it, with when and where it ran, to results/matching.json."""
+    load = os.getloadavg()[0]
+    rows = scaling_table()
+    out = {
+        "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+        "cores": os.cpu_count(),
+        "load_average": max(load, os.getloadavg()[0]),
+        "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS", "default"),
+        "error": "mean geodesic error on the source / sqrt(area), all vertices, targets shuffled",
+        "scaling": rows,
+    }
+    path = Path(__file__).resolve().parent / "results" / "matching.json"
+    path.write_text(json.dumps(out, indent=1) + "\n")
+    print(f"written {path}")
+
+
 def main() -> None:
+    if "--record" in sys.argv[1:]:
+        record()
+        return
     methods = {
         "lbo.match (defaults)": lambda s, t: match(s, t),
         "pyFM default": lambda s, t: pyfm(s, t, zoomout=False),
@@ -74,14 +117,7 @@ def main() -> None:
             base = seconds if base is None else base
             err = matching_error(source, p2p, perm).mean()
             print(f"{name:42s} {label:24s} {err:8.4f} {seconds:9.2f} {seconds / base:12.2f}", flush=True)
-
-    print("\nsemi-local scaling, standing -> walking with a rescaled part; mean error / sqrt(area) by alpha")
-    print(f"{'species':8s} {'n':>5s} {'parts':18s} {'alpha=0':>8s} {'alpha=0.4':>10s} {'alpha=1':>8s}")
-    for i, (species, n, parts) in enumerate(SCALING_PAIRS):
-        source = creature(species, "standing", n_vertices=n)
-        target, perm = shuffled(creature(species, "walking", parts, n_vertices=n), seed=i)
-        errs = [matching_error(source, match(source, target, alpha=a), perm).mean() for a in (0.0, 0.4, 1.0)]
-        print(f"{species:8s} {source.n_vertices:5d} {str(parts):18s} {errs[0]:8.4f} {errs[1]:10.4f} {errs[2]:8.4f}", flush=True)
+    scaling_table()
 
 
 if __name__ == "__main__":

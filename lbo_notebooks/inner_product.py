@@ -400,9 +400,10 @@ def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) 
 def default_shift(mass: sp.spmatrix) -> float:
     """Default shift ``s = 1e-2 * 4 pi / area`` for shift-invert at ``sigma = -s``.
 
-    The first nonzero eigenvalue of a surface of area S is of order ``4 pi / S`` (2 on the unit
-    sphere), so this shift is small against the spectrum at every scale yet keeps ``W + s A``
-    positive definite (``W`` alone is singular: constants are in its kernel).
+    ``4 pi / S`` is 1 on the unit sphere, whose first nonzero eigenvalue is 2 (``8 pi / S``).
+    The shift scales like the eigenvalues, so ``s / lam[1]`` does not depend on the units; it
+    depends on the shape (0.005 on a round sphere, about 0.02 on a procedural dog). It keeps
+    ``W + s A`` positive definite (``W`` alone is singular: constants are in its kernel).
 
     Examples
     --------

@@ -222,7 +222,7 @@ def min_rayleigh_quotient(
     --------
     >>> import numpy as np
     >>> M = np.diag([1.0, 2.0, 4.0])
-    >>> min_rayleigh_quotient(M, np.eye(3), orthogonal_to=[1.0, 0.0, 0.0])  # lam_2 for this plane
+    >>> min_rayleigh_quotient(M, np.eye(3), orthogonal_to=[1.0, 0.0, 0.0])  # lam_1 (from 0) for this plane
     2.0
     >>> round(min_rayleigh_quotient(M, np.eye(3), orthogonal_to=[1.0, 1.0, 0.0]), 6)  # any other: less
     1.5
@@ -301,9 +301,10 @@ def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
 def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
     """Unit normal of a plane through the origin of R^3, rotated by ``angle`` degrees.
 
-    At 0 the plane is orthogonal to the first eigenvector ``v1`` of the symmetric 3 x 3 ``matrix``
-    (the optimal plane of Courant–Fischer, minimum quotient ``lam_2``); the normal then turns
-    towards ``(v2 + v3) / sqrt(2)``, reaching it at 90 degrees.
+    At 0 the plane is orthogonal to the first eigenvector ``v0`` of the symmetric 3 x 3 ``matrix``
+    (eigenvalues ``lam_0 <= lam_1 <= lam_2``, indices from 0; the optimal plane of Courant–Fischer,
+    minimum quotient ``lam_1``); the normal then turns towards ``(v1 + v2) / sqrt(2)``, reaching it
+    at 90 degrees.
 
     Examples
     --------
@@ -359,9 +360,10 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
     This uses ``W`` itself on the complement of V instead of the Schur complement, i.e. it only
     looks at functions with no component in V. It is ``1 / min_rayleigh_quotient(W, A,
     orthogonal_to=basis)`` (Courant–Fischer's quantity), a *lower* bound on
-    :func:`~lbo_notebooks.optimality.worst_case_ratio`, and equal to it only when ``W`` maps V
-    into ``A V`` (e.g. V spanned by eigenvectors). Kept to show the difference; do not use it as
-    the worst-case constant.
+    :func:`~lbo_notebooks.optimality.worst_case_ratio`. It is equal to it when ``W`` maps V into
+    ``A V`` (e.g. V spanned by eigenvectors) -- a sufficient condition, not a necessary one: the
+    tilted span of ``phi_0..phi_8, phi_9 + 0.5 phi_15`` on a dog is exact too (docs/maths.md,
+    "Optimality"). Kept to show the difference; do not use it as the worst-case constant.
 
     Examples
     --------

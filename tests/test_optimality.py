@@ -301,3 +301,43 @@ def test_witness_function_needs_enough_eigenpairs(blob):
     s = eigenbasis(m, 5)
     with pytest.raises(ValueError, match="n \\+ 1 = 6"):
         witness_function(s, s.vectors[:, :5])
+
+
+def test_the_trap_is_exact_on_a_tilted_eigenbasis_that_w_does_not_map_into_a_v(blob):
+    # "W maps V into A V" is sufficient for the trap to be exact, not necessary: the tilt
+    # phi_{n-1} + eps phi_m (eps below the closed-form threshold) keeps C(V) lam_n = 1 and the trap
+    # equal to it, although W Q leaves A V by a sizeable fraction (docs/maths.md, "Optimality").
+    m, s = blob
+    n, mm = 10, 15
+    lam = s.values
+    eps_star = np.sqrt(lam[n - 1] * (lam[mm] - lam[n]) / (lam[mm] * (lam[n] - lam[n - 1])))
+    V = np.array(s.vectors[:, :n])
+    V[:, n - 1] += 0.5 * eps_star * s.vectors[:, mm]
+    Q = a_orthonormalize(V, s.mass)
+    WQ = s.stiffness @ Q
+    outside = np.linalg.norm(WQ - s.mass @ Q @ (Q.T @ WQ)) / np.linalg.norm(WQ)
+    assert outside > 0.05
+    assert worst_case_ratio(V, s.stiffness, s.mass) * lam[n] == pytest.approx(1.0, abs=1e-10)
+    assert complement_ratio(V, s.stiffness, s.mass) * lam[n] == pytest.approx(1.0, abs=1e-10)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_ky_fan_the_eigenframe_has_the_least_total_energy(blob, sheet, seed):
+    # The paper's eq. (6): trace(Q^T W Q) >= lam_0 + ... + lam_{n-1} over A-orthonormal n-frames,
+    # with equality for the eigenframe and its rotations, and a second-order excess near it.
+    rng = np.random.default_rng(seed)
+    for m, s in (blob, sheet):
+        n = 8
+        lam_sum = s.values[:n].sum()
+        rotation = np.linalg.qr(rng.normal(size=(n, n)))[0]
+        assert np.trace((s.vectors[:, :n] @ rotation).T @ s.stiffness @ s.vectors[:, :n] @ rotation) == pytest.approx(
+            lam_sum, rel=1e-10
+        )
+        random_frame = a_orthonormalize(rng.normal(size=(m.n_vertices, n)), s.mass)
+        assert np.trace(random_frame.T @ s.stiffness @ random_frame) > lam_sum
+        noise = rng.normal(size=(m.n_vertices, n)) * np.abs(s.vectors[:, :n]).mean()
+        excess = [
+            np.trace(Q.T @ s.stiffness @ Q) / lam_sum - 1
+            for Q in (a_orthonormalize(s.vectors[:, :n] + e * noise, s.mass) for e in (1e-3, 2e-3))
+        ]
+        assert excess[0] > 0 and excess[1] / excess[0] == pytest.approx(4.0, rel=2e-2)

@@ -83,7 +83,7 @@ class PlaneSlider:
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
             marker.x, marker.y, marker.z = [point[0]], [point[1]], [point[2]]
             marker.name = f"min on plane = {value:.3f}"
-            self.figure.layout.title = f"angle {angle:.0f} deg: min on the plane {value:.3f} <= lam_2 = {self.lam[1]:.3f}"
+            self.figure.layout.title = f"angle {angle:.0f} deg: min on the plane {value:.3f} <= lam_1 = {self.lam[1]:.3f}"
 
     def _ipython_display_(self) -> None:
         from IPython.display import display
