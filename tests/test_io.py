@@ -813,7 +813,8 @@ def test_an_obj_relative_index_out_of_range_is_shown_as_written(tmp_path):
     path = write(tmp_path / "rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n")
     with pytest.raises(MeshError, match="-7") as info:
         load_mesh(path)
-    assert "-3" not in str(info.value)
+    message = str(info.value).replace(str(path), "<file>")  # the temporary path may hold "-3"
+    assert "-3" not in message
 
 
 @pytest.mark.parametrize("name,content", [
