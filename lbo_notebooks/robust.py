@@ -27,13 +27,13 @@ True
 
 from __future__ import annotations
 
-import warnings
 from typing import Any, Literal
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._deprecation import warn
 from .mesh import Mesh, MeshError
 from .pointcloud import PointCloud
 
@@ -313,12 +313,11 @@ def select_operators(
             "(or the default laplacian='auto'), which builds the intrinsic tufted Laplacian of Sharp & Crane 2020."
         )
     _check_robust_options(mass_kind, alpha)
-    warnings.warn(
+    warn(
         f"eigenbasis used the robust (intrinsic tufted) Laplacian of Sharp & Crane 2020 instead of the cotangent "
         f"one, because the mesh has {why}. Pass laplacian='robust' to choose it explicitly."
         + _component_note(shape.n_components),
         LaplacianWarning,
-        stacklevel=3,
     )
     return robust_operators(shape)
 
