@@ -154,10 +154,12 @@ def eigenbasis(
         otherwise ``W`` is unchanged and the mass is
         :func:`~lbo_notebooks.curvature.metric_mass_matrix` (``1``: scale-invariant spectrum).
     shift : float, optional
-        Positive number ``s``; shift-invert Lanczos runs at ``sigma = -s``. The shift is
-        *negative* because ``W`` is singular (constants are in its kernel), so ``sigma = 0`` would
-        factorise a singular matrix, while ``W + s A`` is positive definite. The default scales
-        with the surface area, so results do not depend on the mesh's units.
+        Positive number ``s`` (in the units of the eigenvalues); shift-invert Lanczos runs at
+        ``sigma = -s``. The shift is *negative* because ``W`` is singular (constants are in its
+        kernel), so ``sigma = 0`` would factorise a singular matrix, while ``W + s A`` is positive
+        definite. The default scales with the surface area. Results do not depend on the units of
+        the data: every path solves the problem scaled to about unit area
+        (:mod:`lbo_notebooks.units`), so a shape scaled by ``s`` gets eigenvalues divided by ``s^2``.
     curvature_floor : float > 0, optional
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
@@ -180,7 +182,9 @@ def eigenbasis(
         ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices from
         ``k = eigensolver.SLICE_SIZE`` (100) on, where it is faster (below, one ARPACK run is as
         fast or faster: ``benchmarks/eigen.py``), and falls back to ARPACK with a
-        ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result.
+        ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result. Below
+        100, ARPACK's set is checked by one inertia count (it can miss copies of a repeated
+        eigenvalue) and completed by slicing when it is short.
     tol : float, optional
         Convergence tolerance of the Lanczos runs: each pair's residual in the shift-inverted
         problem, relative to its eigenvalue there. Default: slicing's ``1e-10``, ARPACK's machine
