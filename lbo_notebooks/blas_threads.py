@@ -40,7 +40,7 @@ ENVIRONMENT = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "M
 _lock = threading.Lock()
 _open = 0  # regions open
 _limiter: Any = None  # the threadpoolctl limiter of the first region in, or None if nothing was set
-_owner: ThreadPoolExecutor | None = None  # the one thread that sets and restores
+_owner: tuple[int, ThreadPoolExecutor] | None = None  # (process id, the one thread that sets and restores)
 
 
 def user_chose_threads() -> bool:
@@ -57,9 +57,9 @@ def user_chose_threads() -> bool:
 
 def _in_owner_thread(function: Any) -> Any:
     global _owner
-    if _owner is None:
-        _owner = ThreadPoolExecutor(max_workers=1, thread_name_prefix="lbo-blas-threads")
-    return _owner.submit(function).result()
+    if _owner is None or _owner[0] != os.getpid():  # a forked child has the executor but not its thread
+        _owner = (os.getpid(), ThreadPoolExecutor(max_workers=1, thread_name_prefix="lbo-blas-threads"))
+    return _owner[1].submit(function).result()
 
 
 def _limit() -> Any:

@@ -136,3 +136,25 @@ def test_measure_cost_and_the_heat_method_restore_the_blas_threads(caller_thread
     assert blas_threads() == caller_threads
     concurrently(lambda: lbo.geodesics.geodesic_distances(sphere, np.arange(20)), n_threads=3)
     assert blas_threads() == caller_threads
+
+
+def test_a_forked_child_can_still_limit_its_blas_threads(caller_threads):
+    """The owner thread does not survive os.fork: the child must start its own, not wait forever."""
+    import multiprocessing
+
+    from lbo_notebooks.blas_threads import one_blas_thread
+
+    with one_blas_thread():  # the parent's owner thread exists now
+        pass
+    context = multiprocessing.get_context("fork")
+    with context.Pool(1) as pool:
+        result = pool.apply_async(_limited_in_child)
+        assert result.get(timeout=60) == "done"
+
+
+def _limited_in_child() -> str:
+    from lbo_notebooks.blas_threads import one_blas_thread
+
+    with one_blas_thread():
+        pass
+    return "done"
