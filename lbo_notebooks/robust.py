@@ -59,8 +59,8 @@ LAPLACIANS: tuple[str, ...] = ("auto", "cotan", "robust")
 #: intrinsic Delaunay flips remove such weights.
 NEEDLE_ANGLE = 1e-4
 
-#: Neighbours of each point in its local triangulation, by default; a cloud of at most this many
-#: points uses all the others (``n_points - 1``), so every cloud PointCloud accepts has a default.
+#: Neighbours of each point in its local triangulation, by default; on a cloud of at most this many
+#: points the default means all the others (``n_points - 1``), so every cloud PointCloud accepts has one.
 N_NEIGHBORS = 30
 
 #: robust-laplacian's default: edge lengths are padded by this fraction of the mean edge length
@@ -208,7 +208,7 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
 
 
 def point_cloud_operators(
-    cloud: PointCloud, *, n_neighbors: int | None = None, mollify_factor: float = MOLLIFY_FACTOR
+    cloud: PointCloud, *, n_neighbors: int = N_NEIGHBORS, mollify_factor: float = MOLLIFY_FACTOR
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """The point-cloud Laplacian of Sharp & Crane (2020): ``(stiffness, mass)``, CSR float64.
 
@@ -217,8 +217,9 @@ def point_cloud_operators(
     are *Euclidean*: where two sheets of the surface are closer than a neighbourhood's radius
     (thin parts, touching legs), they short-cut the surface.
 
-    ``n_neighbors`` defaults to :data:`N_NEIGHBORS` (30), or ``n_points - 1`` for a cloud of at
-    most 30 points; an explicit value must lie between 3 and ``n_points - 1``.
+    ``n_neighbors``: the default :data:`N_NEIGHBORS` (30) means ``n_points - 1`` on a cloud of at
+    most 30 points (every cloud :class:`~lbo_notebooks.PointCloud` accepts has a default); any
+    other value must lie between 3 and ``n_points - 1``.
 
     Examples
     --------
@@ -229,12 +230,12 @@ def point_cloud_operators(
     """
     if not isinstance(cloud, PointCloud):
         raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
-    if n_neighbors is None:
+    if not isinstance(n_neighbors, bool) and isinstance(n_neighbors, (int, np.integer)) and n_neighbors == N_NEIGHBORS:
         n_neighbors = min(N_NEIGHBORS, cloud.n_points - 1)
     if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, (int, np.integer)) or not 3 <= n_neighbors < cloud.n_points:
         raise ValueError(
             f"n_neighbors must be an integer between 3 and the number of points - 1 ({cloud.n_points - 1}), "
-            f"got {n_neighbors!r}; leave it out for the default (30, or n_points - 1 for small clouds)."
+            f"got {n_neighbors!r}; the default 30 (n_points - 1 on small clouds) suits most clouds."
         )
     _check_mollify(mollify_factor)
 
@@ -304,7 +305,7 @@ def select_operators(
     *,
     mass_kind: str,
     alpha: float,
-    n_neighbors: int | None = None,
+    n_neighbors: int = N_NEIGHBORS,
 ) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
     """The robust ``(stiffness, mass)`` for ``shape``, or None when the cotangent path applies.
 

@@ -134,7 +134,7 @@ def eigenbasis(
     shift: float | None = None,
     curvature_floor: float | None = None,
     laplacian: str = "auto",
-    n_neighbors: int | None = None,
+    n_neighbors: int = 30,
     solver: str = "auto",
     tol: float | None = None,
 ) -> Spectrum:
@@ -172,9 +172,11 @@ def eigenbasis(
         reasons. ``"cotan"`` refuses such a mesh with :class:`MeshError`; ``"robust"`` always takes
         the tufted Laplacian (with its own lumped mass). Point clouds always get the robust
         point-cloud Laplacian.
-    n_neighbors : int, optional
-        Point clouds only: neighbours in each point's local triangulation. Default 30, or
-        ``n_points - 1`` for a cloud of at most 30 points (so every cloud gets a default).
+    n_neighbors : int
+        Point clouds only: neighbours in each point's local triangulation. The default 30 means
+        ``n_points - 1`` on a cloud of at most 30 points, so every cloud that
+        :class:`~lbo_notebooks.PointCloud` accepts (5 points or more) works with the defaults;
+        any other value must lie between 3 and ``n_points - 1``.
     solver : {"auto", "slicing", "arpack"}
         Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs a few block shift-invert Lanczos solves,
         in parallel threads, whose inertia counts prove that no eigenvalue is missed
