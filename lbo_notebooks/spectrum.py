@@ -306,7 +306,7 @@ def _solve_in_unit_area(
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n), tol=tol or 0.0)
             ascending = np.argsort(values)
             values, vectors = values[ascending], vectors[:, ascending]
-            if solver == "auto" and k < SLICE_SIZE and not _arpack_is_complete(W, A, values, shift, order()):
+            if solver == "auto" and k < SLICE_SIZE and not _arpack_is_complete(W, A, values, shift, order):
                 pairs = sliced()  # certified by inertia counts
         if pairs is not None:
             values, vectors = pairs
@@ -322,7 +322,7 @@ def _solve_in_unit_area(
 
 
 def _arpack_is_complete(
-    W: sp.csr_matrix, A: sp.csr_matrix, values: NDArray[np.float64], shift: float, order: NDArray[np.intp] | None
+    W: sp.csr_matrix, A: sp.csr_matrix, values: NDArray[np.float64], shift: float, order: Callable[[], NDArray[np.intp] | None]
 ) -> bool:
     """True when no eigenvalue below the cluster of ``values[-1]`` is missing from ``values`` (an inertia count).
 
@@ -334,11 +334,13 @@ def _arpack_is_complete(
     set complete, or sends the problem to spectrum slicing, which completes it.
     """
     from .eigensolver import SliceFactor
+    from .sparse_factor import NESTED_DISSECTION_MIN
 
     top = float(values[-1])
     point = top - max(1e-9 * abs(top), 1e-3 * shift)
+    # One factorisation: the METIS order pays only on large meshes (sparse_factor).
     try:
-        count = SliceFactor.of(W, A, point, order).n_below
+        count = SliceFactor.of(W, A, point, order() if W.shape[0] >= NESTED_DISSECTION_MIN else None).n_below
     except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
         return False
     return count == int(np.count_nonzero(values < point))
