@@ -35,10 +35,10 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
 
     ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
-    steadier than wall time. The call runs with one BLAS thread (:func:`~lbo_notebooks.blas_threads.one_blas_thread`,
-    unless you set the count yourself): otherwise
-    idle BLAS threads spinning for work are counted as CPU time too, and on a busy machine they
-    can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
+    steadier than wall time. The call runs with one BLAS thread
+    (:func:`~lbo_notebooks.blas_threads.one_blas_thread`, unless you set the count yourself):
+    otherwise idle BLAS threads spinning for work are counted as CPU time too, and on a busy
+    machine they can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
     call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
     factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
 
