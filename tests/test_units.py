@@ -73,6 +73,24 @@ def test_eigenvalues_times_s_squared_do_not_depend_on_the_scale(name, s):
     assert np.abs(gram - np.eye(spectrum.k)).max() < 1e-10
 
 
+@pytest.mark.parametrize("s", (1e-69, 1e69))
+@pytest.mark.parametrize("name", ["arpack", "slicing", "robust", "point-cloud", "metric-alpha-0.5"])
+def test_the_ends_of_the_usable_range_give_the_same_spectrum(name, s):
+    """The icosphere's bounding-box diagonal is 3.5 s: inside lbo.units.USABLE_DIAGONAL (1e-70, 1e70)."""
+    compute, power = PATHS[name]
+    ref = reference(name)
+    values = compute(s).values * s**power
+    assert np.abs(values - ref.values).max() <= 1e-10 * np.abs(ref.values).max()
+
+
+@pytest.mark.parametrize("s", (2e-71, 3e69))  # diagonals 6.9e-71 and 1.04e70
+def test_just_outside_the_usable_range_is_a_clear_error(s):
+    with pytest.raises(MeshError, match="usable range"):
+        lbo.eigenbasis(scaled(ICO2, s), 5)
+    with pytest.raises(MeshError, match="usable range"):
+        PointCloud(POINTS * s)
+
+
 @pytest.mark.parametrize("s", (1e-12, 1e12))
 def test_eigenvectors_scale_as_one_over_s(s):
     """Simple eigenvalues (a bumpy sphere): the same eigenfunctions, divided by s (A-normalised)."""
