@@ -47,6 +47,8 @@ def _diagonal(points: np.ndarray) -> float:
     """Bounding-box diagonal, computed without overflow (the box is scaled by its largest side first)."""
     sides = points.max(axis=0) - points.min(axis=0)
     largest = float(np.max(sides)) if sides.size else 0.0
+    if np.isnan(largest):
+        return largest
     if not np.isfinite(largest):  # the sides themselves overflow (coordinates near +-1.8e308)
         return float("inf")
     if largest == 0.0:
@@ -81,8 +83,8 @@ def check_coordinate_range(points: ArrayLike, what: str = "mesh") -> None:
     low, high = USABLE_DIAGONAL
     if low <= diagonal <= high:
         return
-    if diagonal == 0.0:
-        return  # all points coincide: the callers' own checks name that problem
+    if diagonal == 0.0 or np.isnan(diagonal):
+        return  # all points coincide, or NaN coordinates: the callers' own checks name those problems
     size = "too large" if diagonal > high else "too small"
     direction = "overflow" if diagonal > high else "underflow"
     fix = (
