@@ -45,7 +45,8 @@ USABLE_DIAGONAL = (1e-70, 1e70)
 
 def _diagonal(points: np.ndarray) -> float:
     """Bounding-box diagonal, computed without overflow (the box is scaled by its largest side first)."""
-    sides = points.max(axis=0) - points.min(axis=0)
+    with np.errstate(over="ignore"):  # coordinates near +-1.8e308: an infinite side, handled below
+        sides = points.max(axis=0) - points.min(axis=0)
     largest = float(np.max(sides)) if sides.size else 0.0
     if np.isnan(largest):
         return largest
