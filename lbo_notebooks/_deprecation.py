@@ -7,12 +7,19 @@ Two tools, used by every module that renamed something:
 * :func:`moved` — a module ``__getattr__`` for public names that moved to another module.
 
 Each emits a ``DeprecationWarning`` whose message names the new spelling.
+
+Every warning the package emits goes through :func:`warn`, which points it at the user's line:
+the first frame outside the package, however many of the package's own frames (a deprecation
+wrapper, a dispatcher) lie in between. A fixed ``stacklevel`` counts frames by hand and goes
+stale as soon as a decorator is added (the robust-Laplacian warning pointed at this module).
 """
 
 from __future__ import annotations
 
 import functools
 import importlib
+import os
+import sys
 import warnings
 from typing import Any, Callable, Mapping, Sequence, TypeVar
 
@@ -21,9 +28,31 @@ F = TypeVar("F", bound=Callable[..., Any])
 __all__ = ["renamed", "moved", "warn"]
 
 
-def warn(message: str, stacklevel: int = 3) -> None:
-    """Emit a ``DeprecationWarning`` pointing at the caller's caller (the user's line)."""
-    warnings.warn(message, DeprecationWarning, stacklevel=stacklevel)
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def _in_package(filename: str) -> bool:
+    return os.path.abspath(filename).startswith(_PACKAGE)
+
+
+def warn(message: str, category: type[Warning] = DeprecationWarning) -> None:
+    """Emit a warning attributed to the first caller outside the package (the user's line).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn("careful", UserWarning)
+    >>> caught[0].filename.endswith(".py"), caught[0].category.__name__
+    (False, 'UserWarning')
+    """
+    frame = sys._getframe(1)  # the package function that called warn
+    level = 2  # warnings.warn's stacklevel of that frame
+    while frame.f_back is not None and _in_package(frame.f_code.co_filename):
+        frame = frame.f_back
+        level += 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 def renamed(

@@ -35,9 +35,10 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
 
     ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
-    steadier than wall time. The call runs with one BLAS thread (``threadpoolctl``): otherwise
-    idle BLAS threads spinning for work are counted as CPU time too, and on a busy machine they
-    can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
+    steadier than wall time. The call runs with one BLAS thread
+    (:func:`~lbo_notebooks.blas_threads.one_blas_thread`, unless you set the count yourself):
+    otherwise idle BLAS threads spinning for work are counted as CPU time too, and on a busy
+    machine they can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
     call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
     factorisation, is not counted): a lower bound that tracks the dense arrays, which dominate MDS.
 
@@ -49,7 +50,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """
     import tracemalloc
 
-    from threadpoolctl import threadpool_limits
+    from .blas_threads import one_blas_thread
 
     started = tracemalloc.is_tracing()
     if not started:
@@ -58,7 +59,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     base = tracemalloc.get_traced_memory()[0]
     cpu = time.process_time()
     try:
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             result = function(*args, **kwargs)
         cpu = time.process_time() - cpu
         peak = tracemalloc.get_traced_memory()[1] - base

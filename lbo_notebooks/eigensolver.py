@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
-from threadpoolctl import threadpool_limits
 
+from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
@@ -270,8 +270,9 @@ def slice_eigsh(
     n_sets = plan_sets(k, slice_size, int(workers))
     if order is None:
         order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
-    # One BLAS thread per worker: no oversubscription, and the same round-off for any `workers`.
-    with threadpool_limits(1), ThreadPoolExecutor(max_workers=int(workers)) as pool:
+    # One BLAS thread per worker (unless the user chose the count): no oversubscription, and the
+    # same round-off for any `workers`. The count is process-wide: blas_threads owns it.
+    with one_blas_thread(), ThreadPoolExecutor(max_workers=int(workers)) as pool:
         shifts, counts, plans, sets, top_count = _submit_sets(pool, int(workers), W, A, order, float(shift), k, v0, tol, n_sets)
         return _stitch(W, A, order, k, v0, tol, shifts, counts, plans, sets, top_count)
 

@@ -32,8 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from threadpoolctl import threadpool_limits
-
+from .blas_threads import one_blas_thread
 from .eigensolver import default_workers
 from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
 from .mesh import Mesh, MeshError, per_mesh
@@ -101,7 +100,7 @@ def _in_blocks(work: Callable[[slice], None], total: int, block: int) -> None:
     """
     blocks = [slice(start, min(start + block, total)) for start in range(0, total, block)]
     workers = min(default_workers(), len(blocks))
-    with threadpool_limits(1):
+    with one_blas_thread():
         if workers == 1:
             for columns in blocks:
                 work(columns)

@@ -403,7 +403,8 @@ def default_shift(mass: sp.spmatrix) -> float:
     ``4 pi / S`` is 1 on the unit sphere, whose first nonzero eigenvalue is 2 (``8 pi / S``).
     The shift scales like the eigenvalues, so ``s / lam[1]`` does not depend on the units; it
     depends on the shape (0.005 on a round sphere, about 0.02 on a procedural dog). It keeps
-    ``W + s A`` positive definite (``W`` alone is singular: constants are in its kernel).
+    ``W + s A`` positive definite (``W`` alone is singular: constants are in its kernel). A
+    ``ValueError`` when the total mass is not a positive number (zero, or overflowed).
 
     Examples
     --------
@@ -411,7 +412,15 @@ def default_shift(mass: sp.spmatrix) -> float:
     >>> bool(np.isclose(default_shift(sp.identity(4) * np.pi), 1e-2))
     True
     """
-    return 1e-2 * 4.0 * np.pi / float(mass.sum())
+    area = float(mass.sum())
+    shift = 1e-2 * 4.0 * np.pi / area if np.isfinite(area) and area > 0 else 0.0
+    if not (np.isfinite(shift) and shift > 0):
+        raise ValueError(
+            f"the mass matrix sums to {area:g}, so no default shift (1e-2 * 4 pi / area) exists: a mass matrix must "
+            "have a positive, finite total. If it comes from a mesh, its coordinates are out of double precision's "
+            "usable range (see lbo_notebooks.units): rescale it to ordinary units."
+        )
+    return shift
 
 
 def start_vector(n: int) -> NDArray[np.float64]:

@@ -14,11 +14,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .mesh import MeshError, real_coordinates
+from .units import check_coordinate_range
 
-__all__ = ["PointCloud", "MIN_POINTS"]
+__all__ = ["PointCloud", "MIN_POINTS", "LINE_TOLERANCE"]
 
 #: A local triangulation of each point's neighbours needs a handful of points at least.
 MIN_POINTS = 5
+
+#: Points whose spread across their best-fitting line is below this fraction of their spread along
+#: it lie on a line: no surface, and robust-laplacian crashes on them (measured: a cloud 1e-10 of
+#: its length thick did, 1e-6 did not).
+LINE_TOLERANCE = 1e-8
 
 
 class PointCloud:
@@ -33,8 +39,10 @@ class PointCloud:
     Raises
     ------
     MeshError
-        For NaN/inf coordinates, repeated points, fewer than :data:`MIN_POINTS` points or a wrong
-        shape; the message names the rows and the fix.
+        For NaN/inf coordinates, repeated points, fewer than :data:`MIN_POINTS` points, a wrong
+        shape, points that all lie on one line (within :data:`LINE_TOLERANCE`), or coordinates
+        out of the usable range (:func:`~lbo_notebooks.units.check_coordinate_range`); the
+        message names the problem and the fix.
 
     Examples
     --------
@@ -68,6 +76,8 @@ class PointCloud:
                 "coincident points have no local surface. Drop them, e.g. np.unique(points, axis=0), "
                 "or load with load_points(path, clean=True)."
             )
+        check_coordinate_range(p, "point cloud")
+        _check_not_on_a_line(p)
         p.setflags(write=False)
         object.__setattr__(self, "_points", p)
         object.__setattr__(self, "_cache", {})
@@ -114,3 +124,16 @@ class PointCloud:
 
     def __repr__(self) -> str:
         return f"PointCloud(n_points={self.n_points}, diagonal={self.diagonal:.4g})"
+
+
+def _check_not_on_a_line(p: NDArray[np.float64]) -> None:
+    """Raise :class:`MeshError` when all points lie on one straight line (within :data:`LINE_TOLERANCE`)."""
+    centred = p - p.mean(axis=0)
+    centred /= np.abs(centred).max()  # finite and > 0: the coordinates are in range and not all equal
+    spread = np.linalg.svd(np.linalg.qr(centred, mode="r"), compute_uv=False)  # descending, from a 3 x 3 R
+    if spread[1] <= LINE_TOLERANCE * spread[0]:
+        raise MeshError(
+            f"all {p.shape[0]} points lie on one straight line (their spread across it is "
+            f"{spread[1] / spread[0]:.1e} of their spread along it): a point cloud must sample a surface for a "
+            "Laplace-Beltrami operator. Check that the x, y, z columns are the right ones."
+        )

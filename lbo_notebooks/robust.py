@@ -27,21 +27,23 @@ True
 
 from __future__ import annotations
 
-import warnings
 from typing import Any, Literal
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._deprecation import warn
 from .mesh import Mesh, MeshError
 from .pointcloud import PointCloud
+from .units import length_exponent
 
 __all__ = [
     "LAPLACIANS",
     "Laplacian",
     "LaplacianWarning",
     "NEEDLE_ANGLE",
+    "N_NEIGHBORS",
     "cotan_defects",
     "non_manifold_vertices",
     "robust_operators",
@@ -56,6 +58,10 @@ LAPLACIANS: tuple[str, ...] = ("auto", "cotan", "robust")
 #: 1e4, so the stiffness matrix mixes entries of wildly different size (badly conditioned);
 #: intrinsic Delaunay flips remove such weights.
 NEEDLE_ANGLE = 1e-4
+
+#: Neighbours of each point in its local triangulation, by default; on a cloud of at most this many
+#: points the default means all the others (``n_points - 1``), so every cloud PointCloud accepts has one.
+N_NEIGHBORS = 30
 
 #: robust-laplacian's default: edge lengths are padded by this fraction of the mean edge length
 #: wherever a triangle is (nearly) degenerate, so that every intrinsic triangle is valid.
@@ -191,17 +197,18 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
     def compute(m: Mesh) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         import robust_laplacian
 
-        L, M = robust_laplacian.mesh_laplacian(
-            np.ascontiguousarray(m.vertices), np.ascontiguousarray(m.faces), mollify_factor=float(mollify_factor)
+        return _in_unit_size(
+            lambda unit: robust_laplacian.mesh_laplacian(unit, np.ascontiguousarray(m.faces), mollify_factor=float(mollify_factor)),
+            m.vertices,
+            "tufted Laplacian",
         )
-        return _as_pair(L, M)
 
     W, A = mesh.cached(f"robust_operators:{float(mollify_factor)!r}", compute)
     return W.copy(), A.copy()
 
 
 def point_cloud_operators(
-    cloud: PointCloud, *, n_neighbors: int = 30, mollify_factor: float = MOLLIFY_FACTOR
+    cloud: PointCloud, *, n_neighbors: int = N_NEIGHBORS, mollify_factor: float = MOLLIFY_FACTOR
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """The point-cloud Laplacian of Sharp & Crane (2020): ``(stiffness, mass)``, CSR float64.
 
@@ -209,6 +216,10 @@ def point_cloud_operators(
     small triangulations is a non-manifold mesh whose tufted Laplacian is returned. Neighbourhoods
     are *Euclidean*: where two sheets of the surface are closer than a neighbourhood's radius
     (thin parts, touching legs), they short-cut the surface.
+
+    ``n_neighbors``: the default :data:`N_NEIGHBORS` (30) means ``n_points - 1`` on a cloud of at
+    most 30 points (every cloud :class:`~lbo_notebooks.PointCloud` accepts has a default); any
+    other value must lie between 3 and ``n_points - 1``.
 
     Examples
     --------
@@ -219,23 +230,46 @@ def point_cloud_operators(
     """
     if not isinstance(cloud, PointCloud):
         raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
+    if not isinstance(n_neighbors, bool) and isinstance(n_neighbors, (int, np.integer)) and n_neighbors == N_NEIGHBORS:
+        n_neighbors = min(N_NEIGHBORS, cloud.n_points - 1)
     if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, (int, np.integer)) or not 3 <= n_neighbors < cloud.n_points:
         raise ValueError(
             f"n_neighbors must be an integer between 3 and the number of points - 1 ({cloud.n_points - 1}), "
-            f"got {n_neighbors!r}; 30 (the default) suits most clouds."
+            f"got {n_neighbors!r}; the default 30 (n_points - 1 on small clouds) suits most clouds."
         )
     _check_mollify(mollify_factor)
 
     def compute(c: Any) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         import robust_laplacian
 
-        L, M = robust_laplacian.point_cloud_laplacian(
-            np.ascontiguousarray(c.points), mollify_factor=float(mollify_factor), n_neighbors=int(n_neighbors)
+        return _in_unit_size(
+            lambda unit: robust_laplacian.point_cloud_laplacian(unit, mollify_factor=float(mollify_factor), n_neighbors=int(n_neighbors)),
+            c.points,
+            "point-cloud Laplacian",
         )
-        return _as_pair(L, M)
 
     W, A = cloud.cached(f"point_cloud_operators:{int(n_neighbors)}:{float(mollify_factor)!r}", compute)
     return W.copy(), A.copy()
+
+
+def _in_unit_size(build: Any, points: NDArray[np.float64], name: str) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """``build(points / 2**e)``, ``2**e`` the power of two nearest their size, as ``(stiffness, mass * 4**e)``.
+
+    robust-laplacian then always sees a shape of about unit size, whatever the units: the stiffness
+    does not depend on them (cotangents are ratios), the mass goes back exactly (a power of two). A
+    crash of the library on points it cannot triangulate becomes a :class:`MeshError`.
+    """
+    e = length_exponent(points)
+    try:
+        L, M = build(np.ascontiguousarray(np.ldexp(points, -e)))
+    except RuntimeError as error:  # geometry-central's GC_SAFETY_ASSERT ("unreferenced vertex ...")
+        raise MeshError(
+            f"the {name} (robust-laplacian) could not triangulate these points ({error}). Some point's neighbours "
+            "lie on a line or coincide with it; a Laplace-Beltrami operator needs points that sample a surface. "
+            "Remove such points, or pass a larger n_neighbors for a point cloud."
+        ) from None
+    W, A = _as_pair(L, M)
+    return W, A * np.ldexp(1.0, 2 * e)
 
 
 def _check_mollify(mollify_factor: float) -> None:
@@ -271,7 +305,7 @@ def select_operators(
     *,
     mass_kind: str,
     alpha: float,
-    n_neighbors: int,
+    n_neighbors: int = N_NEIGHBORS,
 ) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
     """The robust ``(stiffness, mass)`` for ``shape``, or None when the cotangent path applies.
 
@@ -313,12 +347,11 @@ def select_operators(
             "(or the default laplacian='auto'), which builds the intrinsic tufted Laplacian of Sharp & Crane 2020."
         )
     _check_robust_options(mass_kind, alpha)
-    warnings.warn(
+    warn(
         f"eigenbasis used the robust (intrinsic tufted) Laplacian of Sharp & Crane 2020 instead of the cotangent "
         f"one, because the mesh has {why}. Pass laplacian='robust' to choose it explicitly."
         + _component_note(shape.n_components),
         LaplacianWarning,
-        stacklevel=3,
     )
     return robust_operators(shape)
 

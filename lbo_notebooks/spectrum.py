@@ -8,9 +8,8 @@ product.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
-from typing import Union
+from typing import Callable, Union
 
 import numpy as np
 import scipy.linalg
@@ -29,9 +28,11 @@ from .inner_product import (
     start_vector,
     use_dense,
 )
-from ._deprecation import renamed
+from ._deprecation import renamed, warn
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .sparse_factor import mesh_order
+from .units import check_coordinate_range, unit_area_exponent
 
 __all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
 
@@ -153,10 +154,12 @@ def eigenbasis(
         otherwise ``W`` is unchanged and the mass is
         :func:`~lbo_notebooks.curvature.metric_mass_matrix` (``1``: scale-invariant spectrum).
     shift : float, optional
-        Positive number ``s``; shift-invert Lanczos runs at ``sigma = -s``. The shift is
-        *negative* because ``W`` is singular (constants are in its kernel), so ``sigma = 0`` would
-        factorise a singular matrix, while ``W + s A`` is positive definite. The default scales
-        with the surface area, so results do not depend on the mesh's units.
+        Positive number ``s`` (in the units of the eigenvalues); shift-invert Lanczos runs at
+        ``sigma = -s``. The shift is *negative* because ``W`` is singular (constants are in its
+        kernel), so ``sigma = 0`` would factorise a singular matrix, while ``W + s A`` is positive
+        definite. The default scales with the surface area. Results do not depend on the units of
+        the data: every path solves the problem scaled to about unit area
+        (:mod:`lbo_notebooks.units`), so a shape scaled by ``s`` gets eigenvalues divided by ``s^2``.
     curvature_floor : float > 0, optional
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
@@ -170,7 +173,10 @@ def eigenbasis(
         the tufted Laplacian (with its own lumped mass). Point clouds always get the robust
         point-cloud Laplacian.
     n_neighbors : int
-        Point clouds only: neighbours in each point's local triangulation.
+        Point clouds only: neighbours in each point's local triangulation. The default 30 means
+        ``n_points - 1`` on a cloud of at most 30 points, so every cloud that
+        :class:`~lbo_notebooks.PointCloud` accepts (5 points or more) works with the defaults;
+        any other value must lie between 3 and ``n_points - 1``.
     solver : {"auto", "slicing", "arpack"}
         Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs a few block shift-invert Lanczos solves,
         in parallel threads, whose inertia counts prove that no eigenvalue is missed
@@ -178,7 +184,9 @@ def eigenbasis(
         ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices from
         ``k = eigensolver.SLICE_SIZE`` (100) on, where it is faster (below, one ARPACK run is as
         fast or faster: ``benchmarks/eigen.py``), and falls back to ARPACK with a
-        ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result.
+        ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result. Below
+        100, ARPACK's set is checked by one inertia count (it can miss copies of a repeated
+        eigenvalue) and completed by slicing when it is short.
     tol : float, optional
         Convergence tolerance of the Lanczos runs: each pair's residual in the shift-inverted
         problem, relative to its eigenvalue there. Default: slicing's ``1e-10``, ARPACK's machine
@@ -198,6 +206,8 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
+    if isinstance(mesh, Mesh):
+        check_coordinate_range(mesh.vertices, "mesh")
     if not isinstance(mesh, tuple):
         from .robust import select_operators
 
@@ -229,46 +239,108 @@ def eigenbasis(
     n = W.shape[0]
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
         raise ValueError(f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}.")
-    k = int(k)
-    if shift is None:
-        shift = default_shift(A)
-    elif not (np.isfinite(shift) and shift > 0):
+    if shift is not None and (isinstance(shift, bool) or not (np.isscalar(shift) and np.isfinite(shift) and shift > 0)):
         raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
-
     if solver not in ("auto", "slicing", "arpack"):
         raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
     if tol is not None and (isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating)) or not 0 < tol < 1):
         raise ValueError(f"tol must be a number between 0 and 1 (e.g. 1e-8), or None for the solver's default; got {tol!r}.")
+    # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
+    # with the heat method's factorisations.
+    order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) else (lambda: None)
+    values, vectors = _solve_in_unit_area(W, A, int(k), shift=shift, solver=solver, tol=tol, order=order)
+    return Spectrum(values=values, vectors=vectors, stiffness=W, mass=A)
+
+
+def _solve_in_unit_area(
+    W: sp.csr_matrix,
+    A: sp.csr_matrix,
+    k: int,
+    *,
+    shift: float | None,
+    solver: str,
+    tol: float | None,
+    order: Callable[[], NDArray[np.intp] | None],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ``k`` smallest eigenpairs of ``W phi = lam A phi``, independent of the units of ``A``.
+
+    The one place where every solver path (dense, ARPACK, slicing) is made unit-free: the
+    problem is solved with ``A / 4**q``, ``4**q`` the power of four nearest the area
+    (:func:`~lbo_notebooks.units.unit_area_exponent`), and the eigenvalues are multiplied by
+    ``4**-q``, the eigenvectors by ``2**-q`` (A-orthonormal for the caller's ``A``). Powers of two
+    make both steps exact, so the caller's ``shift`` (in the caller's units) and every tolerance
+    act on a surface of about unit area, whatever its units: ARPACK's convergence test, relative in
+    name, lost copies of repeated eigenvalues on a mesh scaled by 1e-8 before this.
+    """
+    n = W.shape[0]
+    q = unit_area_exponent(A.data)
+    if abs(q) > 500:  # 4**q would leave the eigenvalues or the eigenvectors out of double precision
+        raise ValueError(
+            f"the mass matrix's total (the area) is about 4**{q}: out of double precision's usable range for the "
+            "eigenvalues (1 / area) and eigenvectors (1 / sqrt(area)). Rescale the shape or the mass matrix."
+        )
+    A = A * np.ldexp(1.0, -2 * q)
+    if shift is None:
+        shift = default_shift(A)
+    else:
+        shift = float(np.ldexp(float(shift), 2 * q))
+        if not (np.isfinite(shift) and shift > 0):
+            raise ValueError("shift is out of range for this mesh's units; leave it at its default.")
 
     if use_dense(n) or 2 * k + 1 > n:
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
         from .eigensolver import SLICE_SIZE, TOL, slice_eigsh
-        from .sparse_factor import mesh_order
 
-        sliced = None
-        if solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE):
+        def sliced() -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
             try:
-                # A Mesh's operators have its edge pattern: the METIS order is made once per mesh
-                # and shared with the heat method's factorisations.
-                metis_order = mesh_order(mesh) if isinstance(mesh, Mesh) else None
-                sliced = slice_eigsh(
-                    W, A, k, v0=start_vector(n), shift=shift, order=metis_order, tol=TOL if tol is None else float(tol)
-                )
+                return slice_eigsh(W, A, k, v0=start_vector(n), shift=shift, order=order(), tol=TOL if tol is None else float(tol))[:2]
             except RuntimeError as error:
                 if solver == "slicing":
                     raise
-                warnings.warn(f"{error} Falling back to one ARPACK run for k={k}.", RuntimeWarning, stacklevel=2)
-        if sliced is not None:
-            values, vectors, _ = sliced
-        else:
+                warn(f"{error} Falling back to one ARPACK run for k={k}.", RuntimeWarning)
+                return None
+
+        pairs = sliced() if solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE) else None
+        if pairs is None:
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n), tol=tol or 0.0)
-            order = np.argsort(values)
-            values, vectors = values[order], vectors[:, order]
+            ascending = np.argsort(values)
+            values, vectors = values[ascending], vectors[:, ascending]
+            if solver == "auto" and k < SLICE_SIZE and not _arpack_is_complete(W, A, values, shift, order):
+                pairs = sliced()  # certified by inertia counts
+        if pairs is not None:
+            values, vectors = pairs
         # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
         # in order (no mixing) keeps Phi.T A Phi = I to machine precision. The arrays are the
         # solver's own: refined and sign-fixed in place (no second and third n x k copy).
         if cholesky_qr(vectors, A, out=vectors) is None:  # not nearly orthonormal: Gram-Schmidt
             vectors = a_orthonormalize(vectors, A)
     vectors = fix_signs_in_place(np.ascontiguousarray(vectors, dtype=np.float64), A)
-    return Spectrum(values=np.ascontiguousarray(values), vectors=vectors, stiffness=W, mass=A)
+    # Back to the caller's units, exactly: Phi.T (4**q A_unit) Phi = I.
+    vectors *= np.ldexp(1.0, -q)
+    return np.ascontiguousarray(np.ldexp(values, -2 * q)), vectors
+
+
+def _arpack_is_complete(
+    W: sp.csr_matrix, A: sp.csr_matrix, values: NDArray[np.float64], shift: float, order: Callable[[], NDArray[np.intp] | None]
+) -> bool:
+    """True when no eigenvalue below the cluster of ``values[-1]`` is missing from ``values`` (an inertia count).
+
+    Lanczos with one start vector finds one copy of an exactly repeated eigenvalue in exact
+    arithmetic, the others only through round-off: on an icosphere ARPACK returned, depending on
+    the last bits of the mass matrix, the 20 smallest eigenvalues or 19 of them and a larger one
+    (error 2e-3 at k = 20; 50% at k = 25 when it missed most of a cluster). Sylvester's law counts the
+    eigenvalues below a point exactly, so a count just below the last value's cluster proves the
+    set complete, or sends the problem to spectrum slicing, which completes it.
+    """
+    from .eigensolver import SliceFactor
+    from .sparse_factor import NESTED_DISSECTION_MIN
+
+    top = float(values[-1])
+    point = top - max(1e-9 * abs(top), 1e-3 * shift)
+    # One factorisation: the METIS order pays only on large meshes (sparse_factor).
+    try:
+        count = SliceFactor.of(W, A, point, order() if W.shape[0] >= NESTED_DISSECTION_MIN else None).n_below
+    except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
+        return False
+    return count == int(np.count_nonzero(values < point))

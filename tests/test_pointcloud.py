@@ -209,3 +209,51 @@ def test_randomly_corrupted_point_files_load_or_raise_mesh_error(tmp_path, ext, 
             assert path.name in str(exc)
             continue
         assert np.all(np.isfinite(cloud.points)) and cloud.n_points >= 5
+
+
+# --- every cloud the constructor accepts gets a spectrum, or a clear error up front ------------------
+@pytest.mark.parametrize("n", [5, 6, 10, 30, 31])
+def test_small_clouds_work_with_the_default_arguments(n):
+    """PointCloud accepts 5 points; the default n_neighbors (30) means n_points - 1 on small clouds."""
+    cloud = PointCloud(sphere_points(n, seed=n))
+    s = lbo.eigenbasis(cloud, min(n, 4))
+    assert np.all(np.isfinite(s.values)) and abs(s.values[0]) < 1e-8 * max(s.values[-1], 1.0)
+    np.testing.assert_allclose(s.vectors.T @ (s.mass @ s.vectors), np.eye(s.k), atol=1e-10)
+    W, _ = lbo.robust.point_cloud_operators(cloud)  # the same default there
+    assert W.shape == (n, n)
+    with pytest.raises(ValueError, match="n_neighbors"):  # any other value is still checked
+        lbo.eigenbasis(cloud, 3, n_neighbors=n + 1)
+
+
+@pytest.mark.parametrize(
+    "points",
+    [
+        np.c_[np.linspace(0, 1, 50), np.zeros(50), np.zeros(50)],
+        np.outer(np.linspace(-1, 1, 40), [1.0, 2.0, 3.0]) + 5.0,
+        np.c_[np.linspace(0, 1, 50), 1e-12 * np.random.default_rng(1).normal(size=(50, 2))],  # a hair's width
+    ],
+    ids=["x-axis", "diagonal", "nearly"],
+)
+def test_collinear_points_are_a_mesh_error_not_a_library_crash(points):
+    with pytest.raises(MeshError, match="line") as info:
+        lbo.eigenbasis(PointCloud(points), 5)
+    assert "surface" in str(info.value)
+
+
+@pytest.mark.parametrize("s", [1e-300, 1e-100, 1e100, 1e160])
+def test_coordinates_out_of_range_are_named_as_such(s):
+    """Not "coincident points", not a GC_SAFETY_ASSERT: the scale, and how to rescale."""
+    with pytest.raises(MeshError) as info:
+        lbo.eigenbasis(PointCloud(sphere_points(100) * s), 5)
+    message = str(info.value)
+    assert "usable range" in message and "Rescale" in message and "coincide" not in message
+
+
+@pytest.mark.parametrize("s", [1e-60, 1e60])
+def test_the_whole_usable_range_gives_the_same_spectrum(s):
+    """robust-laplacian sees the points divided by a power of two near their size, so the far ends of
+    the usable range (lbo.units.USABLE_DIAGONAL) give lam * s^2 of a unit-size cloud."""
+    p = sphere_points(300)
+    ref = lbo.eigenbasis(PointCloud(p), 10).values
+    values = lbo.eigenbasis(PointCloud(p * s), 10).values * s**2
+    assert np.abs(values - ref).max() <= 1e-10 * ref.max()

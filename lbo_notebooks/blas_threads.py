@@ -1,0 +1,101 @@
+"""One BLAS thread while the package's own worker threads run: one owner of a process-wide setting.
+
+The eigensolver's slices and the heat method's blocks run in two threads, each calling BLAS;
+two threads each running a multi-threaded BLAS compete for the same cores and were no faster
+than one (``benchmarks/geodesics.py``). So while they run, BLAS gets one thread.
+
+That count is *process-wide* (OpenBLAS with pthreads keeps one pool for the whole process), so a
+``threadpool_limits`` per call is wrong as soon as calls overlap: each call records the count it
+finds on entry and restores it on exit, and a call that entered while another held the limit
+records the limit and restores it for good (after four threads called ``eigenbasis`` at once,
+OpenBLAS stayed at one thread). Here one owner does it for the whole process:
+
+* :func:`one_blas_thread` counts the regions that are open. The first one in records the
+  caller's count and sets one thread; the last one out restores what the first one recorded.
+  A lock makes the count and the switch atomic, so overlapping calls from any threads are safe.
+* The switch and the restore both run in one dedicated thread: threadpoolctl (3.8) lets only
+  the thread that set an OpenBLAS limit change it again, and silently ignores the others.
+* A count the user chose is respected: when one of the thread environment variables
+  (:data:`ENVIRONMENT`) is set, or the user holds their own ``threadpool_limits`` in another
+  thread (threadpoolctl then ignores ours), the count is left as it is.
+
+While a region is open, the whole process runs BLAS on one thread (there is nothing per-thread
+to set); the caller's own count is back as soon as the last region closes. To keep the package
+from touching it at all, set the count yourself, e.g. ``OPENBLAS_NUM_THREADS=2``.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from typing import Any, Iterator
+
+__all__ = ["ENVIRONMENT", "one_blas_thread", "user_chose_threads"]
+
+#: Environment variables by which a user sets the BLAS thread count of a process.
+ENVIRONMENT = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+
+_lock = threading.Lock()
+_open = 0  # regions open
+_limiter: Any = None  # the threadpoolctl limiter of the first region in, or None if nothing was set
+_owner: tuple[int, ThreadPoolExecutor] | None = None  # (process id, the one thread that sets and restores)
+
+
+def user_chose_threads() -> bool:
+    """True when one of the :data:`ENVIRONMENT` variables sets the BLAS thread count.
+
+    Examples
+    --------
+    >>> import os
+    >>> user_chose_threads() == any(os.environ.get(name, "").strip() for name in ENVIRONMENT)
+    True
+    """
+    return any(os.environ.get(name, "").strip() for name in ENVIRONMENT)
+
+
+def _in_owner_thread(function: Any) -> Any:
+    global _owner
+    if _owner is None or _owner[0] != os.getpid():  # a forked child has the executor but not its thread
+        _owner = (os.getpid(), ThreadPoolExecutor(max_workers=1, thread_name_prefix="lbo-blas-threads"))
+    return _owner[1].submit(function).result()
+
+
+def _limit() -> Any:
+    from threadpoolctl import threadpool_limits
+
+    limiter = threadpool_limits(limits=1, user_api="blas")
+    limiter.__enter__()  # threadpoolctl's bookkeeping of which thread controls OpenBLAS
+    return limiter
+
+
+@contextmanager
+def one_blas_thread() -> Iterator[None]:
+    """Context manager: BLAS runs on one thread inside, the caller's count is restored after the last one.
+
+    Reentrant and thread-safe (see the module docstring); does nothing when the user chose the
+    count (:func:`user_chose_threads`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> with one_blas_thread():
+    ...     with one_blas_thread():  # nested and overlapping regions share one limit
+    ...         product = np.ones((2, 2)) @ np.ones(2)
+    >>> product.tolist()
+    [2.0, 2.0]
+    """
+    global _open, _limiter
+    with _lock:
+        if _open == 0 and not user_chose_threads():
+            _limiter = _in_owner_thread(_limit)
+        _open += 1
+    try:
+        yield
+    finally:
+        with _lock:
+            _open -= 1
+            if _open == 0 and _limiter is not None:
+                limiter, _limiter = _limiter, None
+                _in_owner_thread(lambda: limiter.__exit__(None, None, None))

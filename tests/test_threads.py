@@ -1,0 +1,160 @@
+"""eigenbasis is safe to call from threads and leaves the caller's BLAS thread count alone.
+
+The BLAS thread count is process-wide. The tests set the caller's count the way a program that
+set it once would leave it: from a thread that has ended (so threadpoolctl holds no limit), with
+the environment variables of :mod:`lbo_notebooks.blas_threads` unset, so that the library
+limits BLAS while its worker threads run and must restore the caller's count afterwards.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import numpy as np
+import pytest
+from threadpoolctl import threadpool_info, threadpool_limits
+
+import lbo_notebooks as lbo
+from lbo_notebooks import eigensolver, shapes
+from lbo_notebooks.blas_threads import ENVIRONMENT
+
+K = 120  # with 642 vertices: the slicing path, whose worker threads run with one BLAS thread
+
+
+def blas_threads() -> list[int]:
+    return [pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas"]
+
+
+def set_blas_threads(n: int) -> None:
+    """Set the process's BLAS thread count, leaving no threadpoolctl limit held."""
+    setter = threading.Thread(target=lambda: threadpool_limits(limits=n, user_api="blas"))
+    setter.start()
+    setter.join()
+
+
+@pytest.fixture(scope="module")
+def mesh():
+    return shapes.bumpy_sphere(3)
+
+
+@pytest.fixture
+def caller_threads(monkeypatch):
+    """The caller runs BLAS on 2 threads, set by no environment variable."""
+    for name in ENVIRONMENT:
+        monkeypatch.delenv(name, raising=False)
+    before = blas_threads()
+    set_blas_threads(2)
+    caller = blas_threads()  # a BLAS built without threads (loaded by another test's library) stays at 1
+    assert 2 in caller, caller
+    yield caller
+    set_blas_threads(max(before))
+
+
+def concurrently(function, n_threads: int = 4) -> list:
+    out: list = [None] * n_threads
+    errors: list = []
+
+    def run(i: int) -> None:
+        try:
+            out[i] = function()
+        except BaseException as error:  # reported below
+            errors.append(error)
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(n_threads)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    return out
+
+
+def hold_inside_stitch(monkeypatch, n_threads: int, seen: list) -> None:
+    """Make the calls meet inside their BLAS-limited regions and leave in the order they came in.
+
+    That order broke a per-call ``threadpool_limits``: the first call recorded the caller's count,
+    the others the limit it had set, and the last one out restored the limit for good.
+    """
+    stitch = eigensolver._stitch
+    lock, arrived = threading.Lock(), []
+    all_in = threading.Barrier(n_threads)
+
+    def held(*args, **kwargs):
+        with lock:
+            rank = len(arrived)
+            arrived.append(rank)
+        all_in.wait(timeout=120)
+        seen.append(blas_threads())
+        time.sleep(0.05 * rank)
+        return stitch(*args, **kwargs)
+
+    monkeypatch.setattr(eigensolver, "_stitch", held)
+
+
+def test_four_threads_give_the_serial_result_and_keep_the_callers_blas_threads(mesh, caller_threads, monkeypatch):
+    serial = lbo.eigenbasis(mesh, K)
+    assert blas_threads() == caller_threads
+    for repetition in range(3):
+        seen: list = []
+        if repetition == 0:
+            hold_inside_stitch(monkeypatch, 4, seen)
+        else:
+            monkeypatch.undo()
+            for name in ENVIRONMENT:
+                monkeypatch.delenv(name, raising=False)
+        for spectrum in concurrently(lambda: lbo.eigenbasis(mesh, K)):
+            np.testing.assert_allclose(spectrum.values, serial.values, rtol=1e-12, atol=1e-12 * serial.values[-1])
+            np.testing.assert_allclose(spectrum.vectors, serial.vectors, rtol=0, atol=1e-8 * np.abs(serial.vectors).max())
+        assert blas_threads() == caller_threads, repetition
+        # Inside the worker threads' regions BLAS ran on one thread.
+        assert all(counts == [1] * len(counts) for counts in seen), seen
+
+
+def test_a_thread_count_set_by_an_environment_variable_is_not_touched(caller_threads, monkeypatch):
+    from lbo_notebooks.blas_threads import one_blas_thread
+
+    with one_blas_thread():  # nobody chose the count: one thread inside
+        assert blas_threads() == [1] * len(caller_threads)
+    assert blas_threads() == caller_threads
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")
+    with one_blas_thread():
+        assert blas_threads() == caller_threads
+    assert blas_threads() == caller_threads
+
+
+def test_a_threadpoolctl_limit_the_user_holds_is_kept(mesh, caller_threads):
+    with threadpool_limits(limits=1, user_api="blas"):
+        concurrently(lambda: lbo.eigenbasis(mesh, K), n_threads=2)
+        assert blas_threads() == [1] * len(caller_threads)
+    assert blas_threads() == caller_threads
+
+
+def test_measure_cost_and_the_heat_method_restore_the_blas_threads(caller_threads):
+    sphere = shapes.icosphere(2)
+    concurrently(lambda: lbo.cost.measure_cost(np.linalg.eigh, np.eye(50)), n_threads=4)
+    assert blas_threads() == caller_threads
+    concurrently(lambda: lbo.geodesics.geodesic_distances(sphere, np.arange(20)), n_threads=3)
+    assert blas_threads() == caller_threads
+
+
+def test_a_forked_child_can_still_limit_its_blas_threads(caller_threads):
+    """The owner thread does not survive os.fork: the child must start its own, not wait forever."""
+    import multiprocessing
+
+    from lbo_notebooks.blas_threads import one_blas_thread
+
+    with one_blas_thread():  # the parent's owner thread exists now
+        pass
+    context = multiprocessing.get_context("fork")
+    with context.Pool(1) as pool:
+        result = pool.apply_async(_limited_in_child)
+        assert result.get(timeout=60) == "done"
+
+
+def _limited_in_child() -> str:
+    from lbo_notebooks.blas_threads import one_blas_thread
+
+    with one_blas_thread():
+        pass
+    return "done"
