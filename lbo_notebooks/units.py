@@ -32,15 +32,16 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .mesh import MeshError
+from .mesh import USABLE_SIZE_RANGE, MeshError
 
 __all__ = ["USABLE_DIAGONAL", "check_coordinate_range", "length_exponent", "unit_area_exponent"]
 
-#: Bounding-box diagonals (in the data's own units) the package computes with. The cotangent
-#: operators square cross products of edge vectors, i.e. fourth powers of lengths; at 1e70 those
-#: are 1e280 and at 1e-70, for an edge a thousandth of the diagonal, 1e-292: beyond either end
-#: they overflow or underflow double precision (about 1.8e308 and 2.2e-308).
-USABLE_DIAGONAL = (1e-70, 1e70)
+#: Bounding-box diagonals (in the data's own units) the package computes with: the one range that
+#: :data:`lbo_notebooks.mesh.USABLE_SIZE_RANGE` sets for meshes, applied here to point clouds and
+#: to the operators (a diagonal is at most sqrt(3) times the largest side, far inside the margin).
+#: The cotangent operators square cross products of edge vectors, fourth powers of lengths, which
+#: overflow or underflow double precision (about 1.8e308 and 2.2e-308) beyond about 1e+-77.
+USABLE_DIAGONAL = USABLE_SIZE_RANGE
 
 
 def _diagonal(points: np.ndarray) -> float:
