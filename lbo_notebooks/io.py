@@ -33,6 +33,7 @@ from typing import Any, Union
 import numpy as np
 from numpy.typing import NDArray
 
+from ._deprecation import warn
 from .formats import BINARY_FORMATS, FORMATS, POINT_FORMATS, mesh_text, read_point_text, read_raw
 from .mesh import Mesh, MeshError, unique_rows
 from .pointcloud import PointCloud
@@ -178,7 +179,7 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
         except MeshError as exc:
             raise MeshError(f"{str(p)!r}: cannot be repaired: {exc}") from None
         if report.noteworthy:
-            warnings.warn(f"{str(p)!r} loaded with clean=True: {report}", MeshRepairWarning, stacklevel=2)
+            warn(f"{str(p)!r} loaded with clean=True: {report}", MeshRepairWarning)
         return mesh
     if raw.n_polygons:
         raise MeshError(
@@ -308,9 +309,9 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
         keep = np.flatnonzero(finite)[np.sort(first)]
         dropped = len(points) - len(keep)
         if dropped:
-            warnings.warn(
+            warn(
                 f"{str(p)!r}: {int((~finite).sum())} non-finite and {dropped - int((~finite).sum())} repeated points "
-                f"dropped ({len(points)} -> {len(keep)} points)", MeshRepairWarning, stacklevel=2,
+                f"dropped ({len(points)} -> {len(keep)} points)", MeshRepairWarning,
             )
         points = points[keep]
     try:

@@ -196,6 +196,4 @@ def test_every_warning_in_the_package_goes_through_the_one_helper():
         for path in root.rglob("*.py")
         if path.name != "_deprecation.py" and re.search(r"warnings\.warn\(", path.read_text())
     }
-    # io.py belongs to another change (issue 26, the loaders): its two warnings come straight from
-    # load_mesh and load_points, so they point at the caller today.
-    assert direct <= {"io.py"}, direct
+    assert not direct, direct
