@@ -357,6 +357,10 @@ def test_every_pose_of_every_creature_is_drawn_upright(species):
             assert d[1] > 0.99, (name, axis, d)
             eye = np.array([cam.eye.x, cam.eye.y, cam.eye.z])
             assert np.degrees(np.arcsin(eye[axis] / np.linalg.norm(eye))) < 30, (name, axis)
+            # Lit from above, whichever the file's convention.
+            light = fig.data[0].lightposition
+            light = np.array([light.x, light.y, light.z])
+            assert light[axis] / np.linalg.norm(light) > 0.75, (name, axis)
 
 
 def test_auto_up_for_the_other_built_in_shapes_and_a_flat_scan():

@@ -241,6 +241,9 @@ class _View:
         self.right = np.cross(self.up, self.front)                           # screen right
         horizontal = np.cos(_AZIMUTH) * self.front + np.sin(_AZIMUTH) * self.right
         self.toward = np.cos(_ELEVATION) * horizontal + np.sin(_ELEVATION) * self.up
+        # The light: from above, a little to the right and behind the shape, in the view's frame,
+        # so that a y-up and a z-up file are shaded alike.
+        self.light = 100 * self.right - 200 * self.front + 300 * self.up
 
     def ranges(self, radius: float) -> list[list[float]]:
         """Axis ranges: a cube of half-side ``radius`` around the centre (equal aspect ratio)."""
@@ -285,7 +288,7 @@ def _wrap(text: str, width_chars: int) -> str:
 
 
 def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin: float | None, cmax: float | None,
-           showscale: bool, name: str | None = None, scene: str = "scene",
+           showscale: bool, view: _View, name: str | None = None, scene: str = "scene",
            colorbar: dict[str, Any] | None = None) -> Any:
     import plotly.graph_objects as go
 
@@ -301,7 +304,7 @@ def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin:
     kwargs: dict[str, Any] = dict(
         x=v[:, 0], y=v[:, 1], z=v[:, 2], i=f[:, 0], j=f[:, 1], k=f[:, 2], name=name, scene=scene,
         flatshading=False, lighting=dict(ambient=0.45, diffuse=0.8, specular=0.15, roughness=0.6),
-        lightposition=dict(x=100, y=200, z=300), hoverinfo="skip",
+        lightposition=dict(zip("xyz", map(float, view.light))), hoverinfo="skip",
     )
     if s is None:
         kwargs["color"] = "#b9c7d6"
@@ -386,7 +389,7 @@ def plot_mesh(
     view = _View(_positions(mesh), up)
     radius = view.radius * (1 + _MARGIN)
     top = 40 if title else 10
-    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi,
+    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi, view=view,
                            showscale=s is not None, colorbar=dict(len=0.8, thickness=12)))
     scene_width = _NOMINAL_WIDTH - (_COLORBAR_PX if s is not None else 0)
     fig.update_layout(title=tidy_label(title), height=height, margin=dict(l=0, r=0, t=top, b=0),
@@ -522,7 +525,7 @@ def plot_meshes(
                         len=0.8 * (scene_top - y0), lenmode="fraction", thickness=10,
                         tickfont=dict(size=10)) if show else None
         fig.add_trace(_trace(_Display(mesh, max_faces), v, colorscale=colorscale, cmin=lo, cmax=hi, showscale=show,
-                             scene=name, colorbar=colorbar))
+                             view=view, scene=name, colorbar=colorbar))
         if wrapped:
             annotations.append(dict(text=wrapped[p], x=(x0 + x1) / 2, y=y1, xref="paper", yref="paper",
                                     xanchor="center", yanchor="top", showarrow=False,
