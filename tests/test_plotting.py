@@ -408,7 +408,7 @@ def test_lesson_figures_label_in_unicode():
     w = plotting.plane_slider(np.diag([1.0, 2.0, 4.0]))
     w.slider.value = 90
     title = w.figure.layout.title.text
-    assert "≤ λ₂ = 2.000" in title and "<=" not in title and "lam" not in title and "°" in title
+    assert "≤ λ₁ = 2.000" in title and "<=" not in title and "lam" not in title and "°" in title
     assert w.minimum <= 2.0 + 1e-12 and f"{w.minimum:.3f}" in title
     fig = plotting.rayleigh_sphere_figure(np.diag([1.0, 2.0, 4.0]))
     assert fig.data[0].colorbar.title.text == "xᵀMx"

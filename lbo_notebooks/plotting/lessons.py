@@ -84,7 +84,7 @@ class PlaneSlider:
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
             marker.x, marker.y, marker.z = [point[0]], [point[1]], [point[2]]
             marker.name = f"min on plane = {value:.3f}"
-            self.figure.layout.title = f"angle {angle:.0f}°: min on the plane {value:.3f} ≤ λ₂ = {self.lam[1]:.3f}"
+            self.figure.layout.title = f"angle {angle:.0f}°: min on the plane {value:.3f} ≤ λ₁ = {self.lam[1]:.3f}"
         self.minimum = float(value)
 
     def _ipython_display_(self) -> None:
