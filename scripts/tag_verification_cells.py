@@ -14,7 +14,8 @@ click it open). Its outputs stay visible. This script
    keeps its outputs shown.
 
 A cell that prints, plots, defines a function or changes an object's state is left as it is
-(tag it by hand if it should be hidden too). Standard library only; a notebook that needs no
+(tag it by hand if it should be hidden too), and so are the cells of an exercise marked for
+nbgrader (answer cells and their autograded check cells: the reader works with them). Standard library only; a notebook that needs no
 change is not rewritten, and a rewritten one keeps the committed layout (sorted keys, one-space
 indent, as ``scripts/strip_notebook.py`` writes it).
 
@@ -87,9 +88,15 @@ def is_verification(cell: dict) -> bool:
     False
     >>> is_verification(code("x = 1"))                            # no assert: nothing is verified
     False
+    >>> check = dict(code("assert answer == 42"), metadata={"nbgrader": {"grade": True, "locked": True}})
+    >>> is_verification(check)                                    # an exercise's check stays in view
+    False
     """
     if cell.get("cell_type") != "code":
         return False
+    nbgrader = cell.get("metadata", {}).get("nbgrader", {})
+    if nbgrader.get("grade") or nbgrader.get("solution"):
+        return False  # an exercise's answer or its autograded check: part of the exercise, not of the proof
     text = _source(cell)
     if any(line.lstrip().startswith(("%", "!")) for line in text.splitlines()):
         return False  # IPython magics and shell escapes are not plain Python
