@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One entry point for set-up, JupyterLab and the test suite (see README.md).
 #
-#   ./make.sh lab     install everything into .venv and open JupyterLab on notebooks/
+#   ./make.sh lab     install everything into .venv and open JupyterLab on notebooks/00_start_here.ipynb
 #   ./make.sh test    install everything (with test extras) and run unit tests + every notebook
 #   ./make.sh browser real-browser test: JupyterLab driven by Debian's chromium (Playwright)
 #   ./make.sh binder  rebuild a fresh environment from binder/ only and run the notebooks in it
@@ -82,8 +82,11 @@ case "${1:-}" in
     system_packages; python_env ""
     one_blas_thread
     root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)  # containers run as root; JupyterLab refuses it otherwise
-    log "starting JupyterLab on notebooks/ (Ctrl-C to stop)"
-    exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks "${root[@]}" "${@:2}" ;;
+    log "starting JupyterLab on notebooks/00_start_here.ipynb (Ctrl-C to stop)"
+    # Open the series' first notebook rather than the Launcher (also the link JupyterLab prints);
+    # on Binder the badge's urlpath does the same.
+    exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
+      "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"
     log "running unit tests and every notebook (nbval)"

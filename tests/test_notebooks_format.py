@@ -7,11 +7,14 @@ after it in code cells hidden with ``{"jupyter": {"source_hidden": true}}``, or,
 for nbgrader (docs/exercises.md), every exercise is an answer cell whose solution lies between
 ``### BEGIN SOLUTION`` and ``### END SOLUTION`` followed by its locked check cell, with at least
 two exercises inside the body and at least one in the Exercises section; cells that display a
-slider widget start with ``# NBVAL_IGNORE_OUTPUT`` (a widget's repr changes from run to run).
+slider widget start with ``# NBVAL_IGNORE_OUTPUT`` (a widget's repr changes from run to run);
+verification cells (only ``assert``s and what they need) are tagged ``hide-input`` and every cell so
+tagged is collapsed (``scripts/tag_verification_cells.py`` does both).
 """
 
 from __future__ import annotations
 
+import importlib.util
 import re
 from pathlib import Path
 
@@ -21,6 +24,17 @@ import pytest
 NOTEBOOKS = sorted((Path(__file__).resolve().parent.parent / "notebooks").glob("*.ipynb"))
 HEADING = re.compile(r"^(#{1,2})\s+(.*)$", re.MULTILINE)
 WIDGET_FACTORIES = ("mesh_slider(", "widgets.", "interactive(", "interact(")
+
+
+def _load_script(name: str):
+    path = Path(__file__).resolve().parent.parent / "scripts" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+tagging = _load_script("tag_verification_cells")
 
 
 def _source(cell) -> str:
@@ -116,3 +130,39 @@ def test_widget_cells_ignore_their_output(notebook):
         if displays_a_widget and not text.lstrip().startswith("# NBVAL_IGNORE_OUTPUT"):
             bad.append(i)
     assert not bad, f"{path.name}: cells {bad} display a widget; start them with '# NBVAL_IGNORE_OUTPUT'"
+
+
+def test_verification_cells_are_tagged_and_collapsed(notebook):
+    """Cells that only check the text's claims are out of the reader's way: tagged ``hide-input``
+    (Jupyter Book, myst-nb) and collapsed in JupyterLab, with their outputs shown."""
+    path, nb = notebook
+    cells = [dict(c) for c in nb.cells]
+    untagged = [i for i, c in enumerate(cells) if tagging.is_verification(c) and not tagging.is_tagged(c)]
+    open_ = [i for i, c in enumerate(cells) if c["cell_type"] == "code" and tagging.is_tagged(c)
+             and not tagging.is_collapsed(c)]
+    fix = f"run: python3 scripts/tag_verification_cells.py notebooks/{path.name}"
+    assert not untagged, f"{path.name}: cells {untagged} only verify claims but are not tagged 'hide-input'; {fix}"
+    assert not open_, f"{path.name}: cells {open_} are tagged 'hide-input' but not collapsed; {fix}"
+
+
+def test_the_tagging_script_is_idempotent_and_keeps_outputs_visible():
+    import copy
+
+    verification = {"cell_type": "code", "metadata": {"jupyter": {"outputs_hidden": True}}, "outputs": [],
+                    "execution_count": None, "source": ["x = 2\n", "assert x > 1  # the claim\n"]}
+    lesson = {"cell_type": "code", "metadata": {}, "outputs": [], "execution_count": None,
+              "source": "print(x)\nassert x > 1"}
+    tagged = {"cell_type": "code", "metadata": {"tags": ["hide-input"]}, "outputs": [], "execution_count": None,
+              "source": "plot(x)"}
+    nb = {"cells": [verification, lesson, tagged, {"cell_type": "markdown", "metadata": {}, "source": "assert"}]}
+    before = copy.deepcopy(nb)
+    changes = tagging.tag_and_collapse(nb)
+    assert changes == ["cell 0: tagged hide-input", "cell 0: input collapsed", "cell 2: input collapsed"]
+    assert nb["cells"][0]["metadata"] == {"tags": ["hide-input"], "jupyter": {"source_hidden": True}}
+    assert nb["cells"][1] == before["cells"][1] and nb["cells"][3] == before["cells"][3]
+    assert nb["cells"][2]["metadata"]["jupyter"] == {"source_hidden": True}
+    again = copy.deepcopy(nb)
+    assert tagging.tag_and_collapse(again) == [] and again == nb
+    # The git clean filter keeps the collapsed state (it is part of the course, not of a run).
+    strip = _load_script("strip_notebook")
+    assert strip.strip(nb)["cells"][0]["metadata"] == {"tags": ["hide-input"], "jupyter": {"source_hidden": True}}

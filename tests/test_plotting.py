@@ -79,7 +79,7 @@ def _overlap(a, b):
 
 def test_panels_do_not_overlap_and_colour_bars_sit_in_their_own_panel(dog):
     meshes = [dog, dog.with_vertices(1.6 * dog.vertices), dog, dog, dog]
-    values = [m.vertices[:, 0] for m in meshes]
+    values = [(p + 1) * m.vertices[:, 0] for p, m in enumerate(meshes)]     # five colour ranges
     fig = plotting.plot_meshes(meshes, values, titles=[f"panel {p}" for p in range(5)], cols=3)
     scenes = _scenes(fig)
     boxes = [(s.domain.x, s.domain.y) for s in scenes]
@@ -89,10 +89,11 @@ def test_panels_do_not_overlap_and_colour_bars_sit_in_their_own_panel(dog):
     for p, (trace, scene) in enumerate(zip(fig.data, scenes)):
         c = p % 3
         cb = trace.colorbar
-        # Right of its own scene, left of the next panel's scene, in its own column.
-        assert scene.domain.x[1] <= cb.x < (c + 1) / 3 and cb.xanchor == "left"
+        # Right of its own scene, left of the next column's scene, with room for its tick labels.
+        next_left = scenes[c + 1].domain.x[0] if c < 2 else 1.0
+        assert trace.showscale and scene.domain.x[1] <= cb.x and cb.xanchor == "left"
+        assert next_left - cb.x >= 0.8 * 70 / _NOMINAL_WIDTH
         assert scene.domain.y[0] <= cb.y - cb.len / 2 and cb.y + cb.len / 2 <= scene.domain.y[1]
-        assert (c + 1) / 3 - cb.x >= 0.8 * 70 / _NOMINAL_WIDTH   # room for the bar and its tick labels
 
 
 def test_shared_colour_range_has_one_colour_bar_in_the_last_panel(dog, sphere):
@@ -100,6 +101,27 @@ def test_shared_colour_range_has_one_colour_bar_in_the_last_panel(dog, sphere):
     assert [t.showscale for t in fig.data] == [False, True]
     assert fig.data[0].cmin == fig.data[1].cmin and fig.data[0].cmax == fig.data[1].cmax
     assert fig.layout.scene2.domain.x[1] <= fig.data[1].colorbar.x < 1
+
+
+def test_panels_with_one_colour_scale_share_one_colour_bar_and_no_scene_is_narrowed(dog):
+    x = dog.vertices[:, 0]
+    width = lambda s: s.domain.x[1] - s.domain.x[0]
+    # Groups: the first two panels share a range, the last two another (notebook 09's HKS and phi_8).
+    fig = plotting.plot_meshes([dog] * 4, [x, 2 * x, x**2, 3 * x**2], shared_colour_range=["a", "a", "b", "b"])
+    assert [t.showscale for t in fig.data] == [False, True, False, True]
+    assert (fig.data[0].cmin, fig.data[0].cmax) == (fig.data[1].cmin, fig.data[1].cmax) == (2 * x.min(), 2 * x.max())
+    assert (fig.data[2].cmin, fig.data[2].cmax) == ((x**2).min(), 3 * (x**2).max())
+    np.testing.assert_allclose([width(s) for s in _scenes(fig)], width(fig.layout.scene), rtol=1e-12)
+    # The same cmin and cmax given for every panel: one scale, so one bar (notebook 08).
+    fig = plotting.plot_meshes([dog] * 3, [x, 2 * x, 3 * x], cmin=0.0, cmax=1.0)
+    assert [t.showscale for t in fig.data] == [False, False, True]
+    # Separate ranges: a bar each, and still equal scenes.
+    fig = plotting.plot_meshes([dog] * 3, [x, 2 * x, None])
+    assert [bool(t.showscale) for t in fig.data] == [True, True, False]
+    np.testing.assert_allclose([width(s) for s in _scenes(fig)], width(fig.layout.scene), rtol=1e-12)
+    for bad in (["a"], "ab", 3):
+        with pytest.raises(ValueError, match="shared_colour_range"):
+            plotting.plot_meshes([dog, dog], [x, x], shared_colour_range=bad)
 
 
 def test_titles_are_wrapped_to_their_panel_and_leave_room_above_the_scene(dog):
@@ -206,7 +228,7 @@ def test_no_negative_zero_in_titles(sphere):
     assert plotting.tidy_label("-0.0 and x-0.0 and -0.05 and 10-0") == "0.0 and x-0.0 and -0.05 and 10-0"
     basis = eigenbasis(sphere, 4)
     assert abs(basis.values[0]) < 1e-10 * basis.values[-1]                         # the constant's eigenvalue: zero up to round-off
-    w = plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", symmetric=True,
+    w = plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", symmetric=True, start=0,
                              title=lambda i: f"λ = {-abs(basis.values[i]):.2f}")
     assert w.figure.layout.title.text == "λ = 0.00"
     fig = plotting.plot_meshes([sphere], titles=[f"{-1e-20:.3f}"])
@@ -246,13 +268,12 @@ def test_static_fallback_turns_the_mesh_upright(dog):
 
 
 def test_same_scale_draws_equal_sizes_equally_large_even_beside_a_colour_bar(dog):
-    fig = plotting.plot_meshes([dog, dog, dog], [dog.vertices[:, 0]] * 3, shared_colour_range=True)
+    fig = plotting.plot_meshes([dog, dog, dog], [dog.vertices[:, 0], dog.vertices[:, 1], None])
     scenes = _scenes(fig)
-    assert scenes[2].domain.x[1] - scenes[2].domain.x[0] < scenes[0].domain.x[1] - scenes[0].domain.x[0]
     eyes = [np.linalg.norm([s.camera.eye.x, s.camera.eye.y, s.camera.eye.z]) for s in scenes]
-    heights = [s.domain.y[1] - s.domain.y[0] for s in scenes]
-    np.testing.assert_allclose(eyes, eyes[0], rtol=1e-12)      # same distance and same height:
-    np.testing.assert_allclose(heights, heights[0], rtol=1e-12)  # the same size on screen
+    sizes = [(s.domain.x[1] - s.domain.x[0], s.domain.y[1] - s.domain.y[0]) for s in scenes]
+    np.testing.assert_allclose(eyes, eyes[0], rtol=1e-12)      # same distance and same scene size:
+    np.testing.assert_allclose(sizes, [sizes[0]] * 3, rtol=1e-12)  # the same size on screen
 
 
 # --- issue 26, item 11: point clouds are plotted like meshes -----------------------------------------
@@ -301,3 +322,115 @@ def test_plot_meshes_static_and_slider_accept_point_clouds(cloud, sphere):
     np.testing.assert_allclose(moving.figure.data[0].x, 2 * cloud.points[:, 0])
     vertices, faces, index = plotting.display_mesh(cloud)
     assert faces is None and index is None and len(vertices) == cloud.n_points
+
+
+# --- issue 29: figures that teach ------------------------------------------------------------------
+from lbo_notebooks.creatures import creature, creature_poses  # noqa: E402
+
+
+def _screen_up(scene, centre, up, width_px, height_px):
+    """The screen direction (x right, y up) of the segment from ``centre`` along ``up``."""
+    pts = np.array([centre, centre + 0.1 * up])
+    x, y = _project(pts, scene, width_px, height_px)
+    d = np.array([x[1] - x[0], y[1] - y[0]])
+    return d / np.linalg.norm(d)
+
+
+@pytest.mark.parametrize("species", ["dog", "horse"])
+def test_every_pose_of_every_creature_is_drawn_upright(species):
+    """The creatures are z-up in every pose (the sitting dog is taller than it is long, which the
+    old "axis of middle extent" rule turned into a dog lying on its side); as read from a y-up file
+    (centred or standing on y = 0) they are y-up."""
+    poses = creature_poses(species, n_vertices=1000)
+    scaled = creature(species, "sitting", parts={"head": 1.5, "legs": 0.85}, n_vertices=1000)
+    for name, mesh in {**poses, "big head, sitting": scaled}.items():
+        v = mesh.vertices
+        y_up = v[:, [0, 2, 1]] * [1, 1, -1]
+        centred = y_up - (y_up.min(axis=0) + y_up.max(axis=0)) / 2
+        for vertices, axis in ((v, 2), (y_up, 1), (centred, 1)):
+            fig = plotting.plot_mesh(mesh.with_vertices(vertices), height=400)
+            cam = fig.layout.scene.camera
+            np.testing.assert_allclose([cam.up.x, cam.up.y, cam.up.z], np.eye(3)[axis], err_msg=name)
+            # On screen: the shape's up axis points straight up, and the eye is not above it.
+            centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2
+            d = _screen_up(fig.layout.scene, centre, np.eye(3)[axis], _NOMINAL_WIDTH, 400 - fig.layout.margin.t)
+            assert d[1] > 0.99, (name, axis, d)
+            eye = np.array([cam.eye.x, cam.eye.y, cam.eye.z])
+            assert np.degrees(np.arcsin(eye[axis] / np.linalg.norm(eye))) < 30, (name, axis)
+            # Lit from above, whichever the file's convention.
+            light = fig.data[0].lightposition
+            light = np.array([light.x, light.y, light.z])
+            assert light[axis] / np.linalg.norm(light) > 0.75, (name, axis)
+
+
+def test_auto_up_for_the_other_built_in_shapes_and_a_flat_scan():
+    from lbo_notebooks.plotting.meshes import _auto_up
+
+    np.testing.assert_array_equal(_auto_up(shapes.icosphere(2).vertices), [0, 0, 1])     # a tie: z
+    np.testing.assert_array_equal(_auto_up(shapes.torus().vertices), [0, 1, 0])          # flat in xy: face on
+    np.testing.assert_array_equal(_auto_up(shapes.rectangle().vertices), [0, 1, 0])
+    # A wide, low object standing on its floor: the floor decides, not the extents.
+    box = np.array([[x, y, z] for x in (0, 4) for y in (0, 1.4) for z in (-0.9, 0.9)], dtype=float)
+    np.testing.assert_array_equal(_auto_up(box), [0, 1, 0])
+    np.testing.assert_array_equal(_auto_up(box[:, [0, 2, 1]]), [0, 0, 1])
+
+
+@pytest.mark.parametrize("n, bars", [(1, "none"), (2, "each"), (3, "shared"), (4, "each"), (4, "none"), (6, "each")])
+def test_every_shape_fills_at_least_half_of_its_panel(dog, n, bars):
+    """Projected through each scene's camera (for the nominal figure width), every shape spans at
+    least half of its scene's width or height (notebook 09 drew 100-pixel dogs in 450-pixel panels)."""
+    meshes = [dog, dog.with_vertices(dog.vertices[:, [0, 2, 1]] * [1, 1, -1]), creature_poses("dog", n_vertices=1000)["sitting"]]
+    meshes = (meshes * n)[:n]
+    values = None if bars == "none" else [m.vertices[:, 0] for m in meshes]
+    fig = plotting.plot_meshes(meshes, values, titles=[f"panel {p}" for p in range(n)],
+                               shared_colour_range=bars == "shared")
+    for mesh, scene in zip(meshes, _scenes(fig)):
+        width_px = (scene.domain.x[1] - scene.domain.x[0]) * _NOMINAL_WIDTH
+        height_px = (scene.domain.y[1] - scene.domain.y[0]) * fig.layout.height
+        x, y = _project(mesh.vertices, scene, width_px, height_px)
+        assert np.abs(x).max() < 1 and np.abs(y).max() < 1                    # inside the scene ...
+        assert max(np.ptp(x), np.ptp(y)) / 2 >= 0.5, (n, bars, np.ptp(x), np.ptp(y))   # ... and filling it
+        assert n == 1 or 0.6 <= width_px / height_px <= 1.7                    # panels: about square
+
+
+def test_greek_subscripts_are_typeset_in_labels(sphere):
+    tidy = plotting.tidy_label
+    assert tidy("dog: phi_6") == "dog: φ₆" and tidy("φ_8, walking") == "φ₈, walking"
+    assert tidy("lam_2 = 6, lambda_{i}, λ_n+1, mu_k") == "λ₂ = 6, λᵢ, λₙ₊₁, μₖ"
+    for kept in ("head_turned", "alpha_slider", "my_scan.ply", "phi_x1.6", "x_1", "graphi_2"):
+        assert tidy(kept) == kept
+    fig = plotting.plot_meshes([sphere, sphere], titles=["phi_6", "α = 1: φ_5"])
+    assert [a.text for a in fig.layout.annotations] == ["φ₆", "α = 1: φ₅"]
+    assert plotting.plot_mesh(sphere, title="lam_1 = -0.00").layout.title.text == "λ₁ = 0.00"
+
+
+def test_lesson_figures_label_in_unicode():
+    w = plotting.plane_slider(np.diag([1.0, 2.0, 4.0]))
+    w.slider.value = 90
+    title = w.figure.layout.title.text
+    assert "≤ λ₁ = 2.000" in title and "<=" not in title and "lam" not in title and "°" in title
+    assert w.minimum <= 2.0 + 1e-12 and f"{w.minimum:.3f}" in title
+    fig = plotting.rayleigh_sphere_figure(np.diag([1.0, 2.0, 4.0]))
+    assert fig.data[0].colorbar.title.text == "xᵀMx"
+
+
+def test_a_slider_starts_on_a_function_worth_looking_at(sphere):
+    """Eigenfunction 0 is the constant, a blank surface: by default the slider starts on 1. A frame
+    that moves the vertices, or an explicit start, is taken as it is."""
+    basis = eigenbasis(sphere, 6)
+    calls = []
+
+    def frame(i):
+        calls.append(i)
+        return basis.vectors[:, i]
+
+    w = plotting.mesh_slider(sphere, frame, range(6), "index", symmetric=True)
+    assert w.slider.value == 1 and calls[:2] == [0, 1]
+    np.testing.assert_allclose(w.figure.data[0].intensity, basis.vectors[:, 1])
+    assert plotting.mesh_slider(sphere, frame, range(6), "index", start=0).slider.value == 0
+    rebuild = plotting.mesh_slider(sphere, lambda n: basis.reconstruct(sphere.vertices[:, 2], n), [1, 2, 3], "n")
+    assert rebuild.slider.value == 2                   # from phi_0 alone: a constant
+    moving = plotting.mesh_slider(sphere, lambda t: sphere.vertices * t, [1.0, 2.0], "scale")
+    assert moving.slider.value == 1.0
+    flat = plotting.mesh_slider(sphere, lambda i: np.full(sphere.n_vertices, float(i)), range(5), "c")
+    assert flat.slider.value == 0                      # nothing better among the first values

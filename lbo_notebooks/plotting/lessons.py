@@ -39,7 +39,7 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
     R = np.einsum("...i,ij,...j->...", X, M, X)
     fig = go.Figure(
         go.Surface(x=X[..., 0], y=X[..., 1], z=X[..., 2], surfacecolor=R, colorscale="Viridis", opacity=0.9,
-                   colorbar=dict(title="x'Mx"))
+                   colorbar=dict(title="xᵀMx"))
     )
     if normal is not None:
         circle, point, value = minmax.plane_circle(M, normal)
@@ -55,7 +55,8 @@ class PlaneSlider:
     """A :func:`rayleigh_sphere_figure` whose plane is rotated by an ipywidgets slider (degrees).
 
     ``widget`` is what to display (the notebook displays the object itself); ``figure`` and
-    ``slider`` are exposed so that code and tests can drive it. Build it with :func:`plane_slider`.
+    ``slider`` are exposed so that code and tests can drive it, and ``minimum`` is the smallest
+    Rayleigh quotient on the plane shown. Build it with :func:`plane_slider`.
     """
 
     def __init__(self, matrix: ArrayLike, angles: Sequence[float]) -> None:
@@ -83,7 +84,8 @@ class PlaneSlider:
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
             marker.x, marker.y, marker.z = [point[0]], [point[1]], [point[2]]
             marker.name = f"min on plane = {value:.3f}"
-            self.figure.layout.title = f"angle {angle:.0f} deg: min on the plane {value:.3f} <= lam_1 = {self.lam[1]:.3f}"
+            self.figure.layout.title = f"angle {angle:.0f}°: min on the plane {value:.3f} ≤ λ₁ = {self.lam[1]:.3f}"
+        self.minimum = float(value)
 
     def _ipython_display_(self) -> None:
         from IPython.display import display
@@ -98,6 +100,8 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
     --------
     >>> w = plane_slider(np.diag([1.0, 2.0, 4.0]))
     >>> w.slider.value = 45
+    >>> round(w.minimum, 6) <= 2.0           # never above the middle eigenvalue
+    True
     """
     return PlaneSlider(matrix, angles)
 
@@ -143,7 +147,7 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     a1.set_xlabel("vertices"); a1.set_ylabel("seconds"); a1.legend(fontsize=8); a1.set_title("time (recorded)")
     a2.loglog(n, get("smds", "peak_mib"), "o-", label="spectral MDS")
     a2.loglog(n[has_c], get("classical", "peak_mib")[has_c], "s-", label="classical MDS")
-    a2.loglog(n[has_c], 2 * 8 * n[has_c] ** 2 / 2**20, "k--", label="two n x n float64 matrices")
+    a2.loglog(n[has_c], 2 * 8 * n[has_c] ** 2 / 2**20, "k--", label="two n × n float64 matrices")
     a2.set_xlabel("vertices"); a2.set_ylabel("peak MiB above baseline"); a2.legend(fontsize=8); a2.set_title("memory (recorded)")
     fig.tight_layout()
     return fig

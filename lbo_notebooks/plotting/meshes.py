@@ -12,7 +12,7 @@ original vertex; clouds above ``max_faces`` points show an evenly spaced subset 
 from __future__ import annotations
 
 import re
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Hashable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -119,20 +119,43 @@ def _colour_range(s: NDArray[np.float64] | None, cmin: float | None, cmax: float
 
 
 _NEGATIVE_ZERO = re.compile(r"(?<![\w.])-(0(?:\.0*)?)(?![\d.])")
+_GREEK = {"alpha": "α", "beta": "β", "lam": "λ", "lambda": "λ", "mu": "μ", "phi": "φ", "psi": "ψ", "rho": "ρ",
+          "sigma": "σ"}
+_SUBSCRIPT = dict(zip("0123456789+-aehijklmnoprstuvx", "₀₁₂₃₄₅₆₇₈₉₊₋ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ"))
+# A Greek letter (by name, or the letter itself) with an underscore subscript: phi_6, lam_n+1, λ_{i}.
+_GREEK_SUBSCRIPT = re.compile(r"(?<![A-Za-z])(" + "|".join(sorted(_GREEK, key=len, reverse=True))
+                              + r"|[" + "".join(sorted(set(_GREEK.values()))) + r"])"
+                              r"_(\{[0-9a-z+\-]+\}|[0-9]+|[a-z](?:[+\-][0-9]+)?)(?![A-Za-z0-9_])")
+
+
+def _subscript(match: re.Match[str]) -> str:
+    letter, index = match.group(1), match.group(2).strip("{}")
+    if not all(ch in _SUBSCRIPT for ch in index):
+        return match.group(0)
+    return _GREEK.get(letter, letter) + "".join(_SUBSCRIPT[ch] for ch in index)
 
 
 def tidy_label(text: str | None) -> str | None:
-    """``text`` with every number that was rounded to a negative zero ("-0.00") written as zero.
+    """``text`` as a figure shows it: Greek letters with subscripts in Unicode, and every number
+    that was rounded to a negative zero ("-0.00") written as zero.
 
-    A value like ``-3e-16`` formatted with ``:.2f`` prints "-0.00"; the sign is round-off, not
-    information.
+    ``phi_6``, ``φ_8``, ``lam_n+1`` and ``λ_{i}`` become φ₆, φ₈, λₙ₊₁ and λᵢ (the names alpha,
+    beta, lam, lambda, mu, phi, psi, rho, sigma, or the letters themselves, followed by ``_`` and
+    digits or one letter; other words with an underscore, such as ``head_turned``, stay as they
+    are). A value like ``-3e-16`` formatted with ``:.2f`` prints "-0.00"; the sign is round-off,
+    not information. Every title drawn by :func:`plot_mesh`, :func:`plot_meshes`,
+    :func:`plot_mesh_static` and :func:`mesh_slider` goes through this function.
 
     Examples
     --------
     >>> tidy_label("λ = -0.00, μ = -0.01, t = -0")
     'λ = 0.00, μ = -0.01, t = 0'
+    >>> tidy_label("dog: phi_6, λ_i, lam_n+1; head_turned")
+    'dog: φ₆, λᵢ, λₙ₊₁; head_turned'
     """
-    return None if text is None else _NEGATIVE_ZERO.sub(r"\1", text)
+    if text is None:
+        return None
+    return _NEGATIVE_ZERO.sub(r"\1", _GREEK_SUBSCRIPT.sub(_subscript, text))
 
 
 # --- the camera ------------------------------------------------------------------------------
@@ -144,16 +167,41 @@ _MARGIN = 0.06                 # empty border around the bounding sphere, as a f
 _ELEVATION, _AZIMUTH = np.radians(18.0), np.radians(28.0)
 
 
+_RESTING = 0.02                # a shape whose lowest point is this close to a coordinate plane stands on it
+_SAME_EXTENT = 1e-6            # relative difference below which two extents count as equal
+
+
+def _auto_up(vertices: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The axis drawn upwards when ``up="auto"``: +z or +y, the two conventions of mesh files.
+
+    Files are authored axis-aligned and upright, either z-up (CAD, scanners, our creatures) or
+    y-up (OBJ, glTF, most graphics tools); x is not used for up by either. Which of the two:
+
+    1. a shape that stands on the coordinate plane z = 0 but not on y = 0 is z-up, and
+       conversely (the built-in creatures stand on z = 0 in every pose; many scans stand on
+       their floor);
+    2. otherwise the taller of the two extents is up (an animal, a person, a bust or a bunny is
+       taller than it is deep or wide, whatever its pose; a flat shape is then seen face on);
+       equal extents (a sphere) give z.
+
+    Principal axes or the axis of middle extent are not robust: a sitting dog is taller than it is
+    long, and the mass of a head or of legs tilts principal axes.
+    """
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    extent = hi - lo
+    size = float(extent.max()) or 1.0
+    stands = [bool(abs(lo[a]) <= _RESTING * size < extent[a]) for a in (1, 2)]
+    if stands[0] != stands[1]:
+        return np.eye(3)[1 if stands[0] else 2]
+    y, z = extent[1], extent[2]
+    return np.eye(3)[1 if y > z * (1 + _SAME_EXTENT) else 2]
+
+
 def _up_vector(up: str | ArrayLike, vertices: NDArray[np.float64]) -> NDArray[np.float64]:
     if isinstance(up, str):
         key = up.strip().lower()
         if key == "auto":
-            # Meshes are authored axis-aligned, y-up (most file formats) or z-up (CAD, our creatures):
-            # the vertical axis is the one of middle extent (an animal is longer than tall, taller
-            # than wide). Principal axes would tilt an animal by the mass of its head and legs.
-            extent = np.ptp(vertices, axis=0)
-            axis = int(np.argsort(extent, kind="stable")[1])
-            return np.eye(3)[axis]
+            return _auto_up(vertices)
         sign = -1.0 if key.startswith("-") else 1.0
         if key.lstrip("+-") not in _AXES:
             raise ValueError(f'up={up!r}: use "auto", "x", "y", "z" (optionally with a sign, e.g. "-y") '
@@ -193,6 +241,9 @@ class _View:
         self.right = np.cross(self.up, self.front)                           # screen right
         horizontal = np.cos(_AZIMUTH) * self.front + np.sin(_AZIMUTH) * self.right
         self.toward = np.cos(_ELEVATION) * horizontal + np.sin(_ELEVATION) * self.up
+        # The light: from above, a little to the right and behind the shape, in the view's frame,
+        # so that a y-up and a z-up file are shaded alike.
+        self.light = 100 * self.right - 200 * self.front + 300 * self.up
 
     def ranges(self, radius: float) -> list[list[float]]:
         """Axis ranges: a cube of half-side ``radius`` around the centre (equal aspect ratio)."""
@@ -237,7 +288,7 @@ def _wrap(text: str, width_chars: int) -> str:
 
 
 def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin: float | None, cmax: float | None,
-           showscale: bool, name: str | None = None, scene: str = "scene",
+           showscale: bool, view: _View, name: str | None = None, scene: str = "scene",
            colorbar: dict[str, Any] | None = None) -> Any:
     import plotly.graph_objects as go
 
@@ -253,7 +304,7 @@ def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin:
     kwargs: dict[str, Any] = dict(
         x=v[:, 0], y=v[:, 1], z=v[:, 2], i=f[:, 0], j=f[:, 1], k=f[:, 2], name=name, scene=scene,
         flatshading=False, lighting=dict(ambient=0.45, diffuse=0.8, specular=0.15, roughness=0.6),
-        lightposition=dict(x=100, y=200, z=300), hoverinfo="skip",
+        lightposition=dict(zip("xyz", map(float, view.light))), hoverinfo="skip",
     )
     if s is None:
         kwargs["color"] = "#b9c7d6"
@@ -267,6 +318,7 @@ def _trace(d: _Display, s: NDArray[np.float64] | None, *, colorscale: str, cmin:
 
 _TITLE_FONT = 13               # px; about 7 px per character
 _COLORBAR_PX = 70              # room for a colour bar and its tick labels, in px
+_ROW_GAP_PX = 10               # between rows of panels
 
 
 def plot_mesh(
@@ -302,9 +354,14 @@ def plot_mesh(
     symmetric : bool
         Centre the colour range on zero (good for eigenfunctions).
     up : {"auto", "x", "y", "z", "-x", "-y", "-z"} or array_like, shape (3,)
-        The direction drawn upwards. ``"auto"`` takes the axis of middle extent (the height of
-        an animal, whether the file is y-up or z-up) and looks along the thinnest horizontal
-        axis, slightly from above.
+        The direction drawn upwards: an axis (``"y"`` for a file in the y-up convention of OBJ
+        and glTF, ``"z"`` for z-up), an axis with a sign (``"-y"`` for a shape stored upside
+        down) or any 3-vector. ``"auto"`` (the default) chooses between +z and +y, the two
+        conventions of mesh files: the axis whose coordinate plane the shape stands on (the
+        built-in creatures stand on z = 0 in every pose), else the taller of the two extents
+        (so an animal, sitting or standing, is upright either way). The camera looks along the
+        thinnest horizontal direction (a side view of an animal), slightly from above. Pass
+        ``up`` when "auto" guesses wrong, e.g. for a wide, low object in a y-up file.
     max_faces : int
         Meshes with more triangles are decimated for display (clouds with more points thinned).
     height : int
@@ -332,7 +389,7 @@ def plot_mesh(
     view = _View(_positions(mesh), up)
     radius = view.radius * (1 + _MARGIN)
     top = 40 if title else 10
-    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi,
+    fig = go.Figure(_trace(_Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi, view=view,
                            showscale=s is not None, colorbar=dict(len=0.8, thickness=12)))
     scene_width = _NOMINAL_WIDTH - (_COLORBAR_PX if s is not None else 0)
     fig.update_layout(title=tidy_label(title), height=height, margin=dict(l=0, r=0, t=top, b=0),
@@ -349,19 +406,21 @@ def plot_meshes(
     cmin: float | None = None,
     cmax: float | None = None,
     symmetric: bool = False,
-    shared_colour_range: bool = False,
+    shared_colour_range: bool | Sequence[Hashable] = False,
     up: str | ArrayLike = "auto",
     same_scale: bool = True,
     cols: int | None = None,
     max_faces: int = DEFAULT_MAX_FACES // 2,
-    height: int = 380,
+    height: int | None = None,
 ) -> Any:
     """Several meshes in one plotly figure, one 3D scene per panel, on a grid.
 
-    Each panel has its own domain; its colour bar (if any) sits inside that domain, right of the
-    scene, and its title is wrapped to the panel's width above it. With ``same_scale`` every
-    panel uses the same length scale (the largest bounding sphere), so sizes compare across
-    panels; each mesh is centred in its panel and never clipped.
+    All scenes have the same size, and by default they are square, so that every shape fills its
+    panel (its bounding sphere spans the scene's width). Panels drawn with the same colour range
+    share one colour bar, right of the last of them; its column of the grid gets the room for it,
+    so no scene is narrowed by a colour bar. Titles are wrapped to the panel's width above the
+    scene. With ``same_scale`` every panel uses the same length scale (the largest bounding
+    sphere), so sizes compare across panels; each mesh is centred in its panel and never clipped.
 
     Parameters
     ----------
@@ -372,9 +431,12 @@ def plot_meshes(
     titles : sequence of str, optional
     colorscale, cmin, cmax, symmetric :
         As in :func:`plot_mesh`.
-    shared_colour_range : bool
-        One colour range (and one colour bar, in the last panel) for all panels, so colours
-        compare across panels.
+    shared_colour_range : bool or sequence
+        ``True``: one colour range (and one colour bar) for all panels, so colours compare
+        across panels. A sequence of labels, one per mesh: one range per label, e.g.
+        ``["HKS", "HKS", "φ₈", "φ₈"]`` compares the first two panels with each other and the
+        last two with each other. (Panels given the same ``cmin`` and ``cmax`` share a colour
+        bar anyway.)
     up : str or array_like
         As in :func:`plot_mesh`; ``"auto"`` is decided per mesh.
     same_scale : bool
@@ -383,8 +445,10 @@ def plot_meshes(
         Panels per row; by default all in one row up to 4 meshes, else two rows.
     max_faces : int
         Meshes with more triangles are decimated for display.
-    height : int
-        Height of one row of panels, in pixels.
+    height : int, optional
+        Height of one row of panels, in pixels. By default the scenes are square (for a figure
+        800 pixels wide; wider figures only add room beside each shape), at least 180 and at
+        most 450 pixels high, plus room for the titles.
 
     Returns
     -------
@@ -394,9 +458,12 @@ def plot_meshes(
     --------
     >>> from lbo_notebooks import shapes
     >>> a, b = shapes.icosphere(1), shapes.torus(n_major=16, n_minor=8)
-    >>> fig = plot_meshes([a, b], titles=["sphere", "torus"])
+    >>> fig = plot_meshes([a, b], [a.vertices[:, 0], b.vertices[:, 0]], titles=["sphere", "torus"],
+    ...                   shared_colour_range=True)
     >>> len(fig.data), fig.layout.scene2.domain.x[0] >= fig.layout.scene.domain.x[1]
     (2, True)
+    >>> [trace.showscale for trace in fig.data]      # one colour bar for the shared range
+    [False, True]
     """
     import plotly.graph_objects as go
 
@@ -411,57 +478,87 @@ def plot_meshes(
         raise ValueError(f"got {len(titles)} titles for {len(meshes)} meshes.")
     if cols is not None and (int(cols) != cols or cols < 1):
         raise ValueError(f"cols must be a positive integer; got {cols!r}.")
+    if height is not None and (int(height) != height or height < 50):
+        raise ValueError(f"height must be a number of pixels (at least 50) or None; got {height!r}.")
     values = [_check_scalars(m, s) for m, s in zip(meshes, scalars)]
-    if shared_colour_range and any(v is not None for v in values):
-        allv = np.concatenate([v for v in values if v is not None])
-        cmin, cmax = _colour_range(allv, cmin, cmax, symmetric)
     n = len(meshes)
+    ranges = _panel_ranges(values, shared_colour_range, cmin, cmax, symmetric)
+    # One colour bar per distinct range, beside the last panel drawn with it.
+    last_of = {r: p for p, r in enumerate(ranges) if r is not None}
+    shows = [r is not None and last_of[r] == p for p, r in enumerate(ranges)]
     cols = int(cols) if cols is not None else (n if n <= 4 else -(-n // 2))
     cols = min(cols, n)
     rows = -(-n // cols)
     views = [_View(_positions(m), up) for m in meshes]
     shared_radius = max(v.radius for v in views) * (1 + _MARGIN)
 
-    panel_px = _NOMINAL_WIDTH / cols
-    chars = max(10, int(panel_px / (0.58 * _TITLE_FONT)))
+    # Columns: equal scenes; a column whose panels show a colour bar gets the bar's width more.
+    gap = 0.01
+    bar = _COLORBAR_PX / _NOMINAL_WIDTH
+    has_bar = [any(shows[p] for p in range(c, n, cols)) for c in range(cols)]
+    scene_w = (1 - cols * gap - bar * sum(has_bar)) / cols
+    left = np.concatenate([[0.0], np.cumsum([gap + scene_w + (bar if b else 0) for b in has_bar])])[:-1] + gap / 2
+    scene_px = scene_w * _NOMINAL_WIDTH
+
+    chars = max(10, int((scene_w + gap) * _NOMINAL_WIDTH / (0.58 * _TITLE_FONT)))
     wrapped = [_wrap(tidy_label(t) or "", chars) for t in titles] if titles else None
     lines = max((w.count("<br>") + 1 for w in wrapped), default=0) if wrapped else 0
     title_px = (_TITLE_FONT + 5) * lines + (6 if lines else 0)
-    total_h = height * rows
-    colorbar_frac = min(0.3, _COLORBAR_PX / panel_px) / cols    # as a fraction of the figure width
-    gap = 0.01
+    scene_h = float(height) - title_px if height is not None else float(np.clip(scene_px, 180, 450))
+    row_h = scene_h + title_px + (_ROW_GAP_PX if rows > 1 else 0)
+    total_h = row_h * rows
 
     fig = go.Figure()
     annotations = []
-    last_with_values = max((p for p, v in enumerate(values) if v is not None), default=-1)
-    shows = [v is not None and (not shared_colour_range or p == last_with_values) for p, v in enumerate(values)]
-    # With one length scale, one camera distance too (the narrowest scene's), so that equal sizes
-    # are drawn equally large in every panel.
-    narrowest_px = (1 / cols - gap - (colorbar_frac if any(shows) else 0)) * _NOMINAL_WIDTH
-    for p, (mesh, v, view, show) in enumerate(zip(meshes, values, views, shows)):
-        r, c = divmod(p, cols)
-        x0, x1 = c / cols + gap / 2, (c + 1) / cols - gap / 2
-        y1 = 1 - r / rows
-        y0 = 1 - (r + 1) / rows + (gap / 2 if rows > 1 else 0)
+    for p, (mesh, v, view, show, r) in enumerate(zip(meshes, values, views, shows, ranges)):
+        row, c = divmod(p, cols)
+        x0, x1 = float(left[c]), float(left[c] + scene_w)
+        y1 = 1 - row / rows
+        y0 = y1 - (scene_h + title_px) / total_h
         scene_top = y1 - title_px / total_h
-        scene_x1 = x1 - colorbar_frac if show else x1
         name = "scene" if p == 0 else f"scene{p + 1}"
         radius = shared_radius if same_scale else view.radius * (1 + _MARGIN)
-        width_px = narrowest_px if same_scale else (scene_x1 - x0) * _NOMINAL_WIDTH
-        height_px = (scene_top - y0) * total_h
-        fig.update_layout({name: _scene(view, radius, dict(x=[x0, scene_x1], y=[y0, scene_top]), width_px, height_px)})
-        lo, hi = (cmin, cmax) if shared_colour_range else _colour_range(v, cmin, cmax, symmetric)
-        colorbar = dict(x=scene_x1, xanchor="left", xref="paper", y=(y0 + scene_top) / 2, yanchor="middle",
+        fig.update_layout({name: _scene(view, radius, dict(x=[x0, x1], y=[y0, scene_top]), scene_px,
+                                        (scene_top - y0) * total_h)})
+        lo, hi = r if r is not None else (None, None)
+        colorbar = dict(x=x1, xanchor="left", xref="paper", y=(y0 + scene_top) / 2, yanchor="middle",
                         len=0.8 * (scene_top - y0), lenmode="fraction", thickness=10,
                         tickfont=dict(size=10)) if show else None
         fig.add_trace(_trace(_Display(mesh, max_faces), v, colorscale=colorscale, cmin=lo, cmax=hi, showscale=show,
-                             scene=name, colorbar=colorbar))
+                             view=view, scene=name, colorbar=colorbar))
         if wrapped:
             annotations.append(dict(text=wrapped[p], x=(x0 + x1) / 2, y=y1, xref="paper", yref="paper",
                                     xanchor="center", yanchor="top", showarrow=False,
                                     font=dict(size=_TITLE_FONT)))
-    fig.update_layout(height=total_h, margin=dict(l=0, r=0, t=4, b=0), showlegend=False, annotations=annotations)
+    fig.update_layout(height=round(total_h), margin=dict(l=0, r=0, t=4, b=0), showlegend=False,
+                      annotations=annotations)
     return fig
+
+
+def _panel_ranges(values: list[NDArray[np.float64] | None], shared: bool | Sequence[Hashable], cmin: float | None,
+                  cmax: float | None, symmetric: bool) -> list[tuple[float, float] | None]:
+    """The colour range of each panel (None for a panel without a function).
+
+    ``shared`` is False (a range per panel), True (one for all) or one group label per panel
+    (one range per group).
+    """
+    n = len(values)
+    if isinstance(shared, (bool, np.bool_)):
+        groups: list[Hashable] = [0] * n if shared else list(range(n))
+    elif isinstance(shared, str) or not isinstance(shared, Sequence) or len(shared) != n:
+        raise ValueError(f"shared_colour_range must be True, False or one group label per mesh ({n}); "
+                         f"got {shared!r}.")
+    else:
+        groups = list(shared)
+    out: list[tuple[float, float] | None] = [None] * n
+    for g in dict.fromkeys(groups):
+        members = [p for p in range(n) if groups[p] == g and values[p] is not None]
+        if not members:
+            continue
+        lo, hi = _colour_range(np.concatenate([values[p] for p in members]), cmin, cmax, symmetric)
+        for p in members:
+            out[p] = (float(lo), float(hi))
+    return out
 
 
 def _view_rotation(view: _View) -> NDArray[np.float64]:
@@ -547,6 +644,28 @@ def _finish_static(ax: Any, view: _View, elev: float | None, azim: float | None,
     return ax
 
 
+_LOOK_AHEAD = 3                # slider values tried for a first frame that is not blank
+
+
+def _first_informative(frame: Callable[[Any], Any], values: list[Any]) -> Any:
+    """The first of the first few ``values`` whose frame is not a constant function.
+
+    A constant function is drawn in one colour, a blank surface (e.g. the eigenfunction phi_0,
+    or a reconstruction from phi_0 alone); a frame that moves the vertices always counts.
+    """
+    for value in values[:_LOOK_AHEAD]:
+        out = frame(value)
+        vertices, scalars = (out if isinstance(out, tuple) else (None, out))
+        if vertices is not None or scalars is None:
+            return value
+        s = np.asarray(scalars, dtype=np.float64)
+        if s.ndim != 1 or not np.all(np.isfinite(s)):
+            return value          # positions, or bad values that update() reports
+        if np.ptp(s) > np.sqrt(np.finfo(float).eps) * np.abs(s).max():
+            return value
+    return values[0]
+
+
 class MeshSlider:
     """A plotly ``FigureWidget`` of a mesh (or point cloud) driven by an ipywidgets slider.
 
@@ -564,7 +683,7 @@ class MeshSlider:
         if not values:
             raise ValueError("mesh_slider needs at least one slider value.")
         if start is None:
-            start = values[0]
+            start = _first_informative(frame, values)
         elif start not in values:
             raise ValueError(f"start={start!r} is not one of the slider values {values[:3]}...; pick one of them.")
         self.mesh, self._frame, self._values, self._title = mesh, frame, values, title
@@ -664,8 +783,9 @@ def mesh_slider(
     up : str or array_like
         The direction drawn upwards, as in :func:`plot_mesh`.
     start : optional
-        The value shown first (default: the first value). E.g. ``start=1`` for eigenfunctions,
-        whose index 0 is the constant function.
+        The value shown first. By default the first value whose frame is not a constant
+        function (of the first three): an eigenfunction slider over ``range(k)`` starts on
+        index 1, because index 0 is the constant function, a blank surface.
 
     Returns
     -------

@@ -24,10 +24,21 @@ the menu bar, waits until every cell has run and the kernel is idle, and checks 
   ``page_config.json`` that switches the build check off);
 - figures are laid out as drawn: subplot titles and colour bars do not overlap each other or
   another panel's scene, and no 3D scene is clipped (the border of every scene is background);
+- every 3D shape fills its panel: the drawn (non-background) pixels of each scene span at least
+  half of the scene's width or height;
+- built-in shapes are upright: every scene whose shape stands on the plane z = 0 (the creatures,
+  in every pose) has the camera's up vector along +z and an eye less than 45 degrees above the
+  horizon (a side view, not a view from above);
+- verification cells are out of the reader's way: every code cell tagged ``hide-input``, and every
+  cell that only verifies claims (``scripts/tag_verification_cells.py`` decides which), shows its
+  input collapsed (a placeholder bar, no editor);
 - the browser console shows no error outside the short allow-list ``CONSOLE_ALLOWED`` below.
 
 The browser has no network: every request to a host other than 127.0.0.1 is aborted (and fails
 the test), and the browser's own resolver maps every other name to nowhere.
+
+``test_lab_opens_on_start_here``: JupyterLab started as ``./make.sh lab`` starts it (its
+``--LabApp.default_url`` is read from ``make.sh``) opens ``00_start_here.ipynb``, not the Launcher.
 
 ``test_static_site`` builds the static site (``scripts/build_site.py``) for ``SITE_NOTEBOOKS``
 (or opens an existing build named by ``LBO_BROWSER_SITE=/path/to/site``), serves it from
@@ -47,6 +58,7 @@ import functools
 import http.server
 import io
 import json
+import math
 import os
 import re
 import secrets
@@ -109,6 +121,8 @@ SITE_NOTEBOOKS = ["00_start_here", "02_laplace_beltrami"]
 ARTIFACTS = Path(os.environ.get("LBO_BROWSER_ARTIFACTS", REPO / "artifacts" / "browser"))
 RUN_TIMEOUT = float(os.environ.get("LBO_BROWSER_TIMEOUT", "900"))  # seconds for Run All Cells
 VIEWPORT = {"width": 1400, "height": 1000}
+MIN_FILL = 0.5        # a 3D shape spans at least this fraction of its scene's width or height
+DRAWN_BELOW = 250     # grey level under which a pixel is drawn on (the background is white)
 # Code that draws a 3D figure or a slider in our notebooks.
 PLOT_CALLS = ("plot_mesh", "plot_meshes", "mesh_slider", "go.Figure", "FigureWidget")
 SLIDER_CALLS = ("mesh_slider", "IntSlider", "FloatSlider", "SelectionSlider", "interact")
@@ -118,6 +132,22 @@ SLIDER_CALLS = ("mesh_slider", "IntSlider", "FloatSlider", "SelectionSlider", "i
 SETTINGS = {"@jupyterlab/apputils-extension/notification.jupyterlab-settings":
             {"checkForUpdates": False, "fetchNews": "false"},
             "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"}}
+
+
+def _start_url() -> str:
+    """The page ``./make.sh lab`` opens (its ``--LabApp.default_url``)."""
+    match = re.search(r"--LabApp\.default_url=(\S+)", (REPO / "make.sh").read_text())
+    assert match, "make.sh lab must open the first notebook: pass --LabApp.default_url=/lab/tree/00_start_here.ipynb"
+    return match.group(1)
+
+
+def _load_script(name: str):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, REPO / "scripts" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def _free_port() -> int:
@@ -147,7 +177,8 @@ class Lab:
             [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ServerApp.open_browser=False",
              "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
              f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
-             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent.parent / 'workspaces'}"],
+             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent.parent / 'workspaces'}",
+             f"--LabApp.default_url={_start_url()}"],
             stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
@@ -358,8 +389,25 @@ FIGURE_LAYOUT = """el => {
     const box = e => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
     const scenes = gd && gd._fullLayout ? Object.keys(gd._fullLayout).filter(k => /^scene\\d*$/.test(k))
         .map(k => gd._fullLayout[k]._scene).filter(s => s && s.container).map(s => box(s.container)) : [];
+    // Each scene's camera, and whether its shape stands on the plane z = 0 as the built-in
+    // creatures do (lowest point within 2% of the size from it, and not flat).
+    const keys = gd && gd._fullLayout ? Object.keys(gd._fullLayout).filter(k => /^scene\\d*$/.test(k))
+        .filter(k => gd._fullLayout[k]._scene && gd._fullLayout[k]._scene.container) : [];
+    const cameras = keys.map(k => {
+        const cam = gd._fullLayout[k].camera;
+        const traces = (gd._fullData || []).filter(t => (t.scene || 'scene') === k && t.x && t.x.length);
+        let stands = traces.length > 0;
+        for (const t of traces) {
+            const ext = a => { let lo = Infinity, hi = -Infinity; for (const v of a) { if (v < lo) lo = v; if (v > hi) hi = v; } return [lo, hi]; };
+            const [x, y, z] = [ext(t.x), ext(t.y), ext(t.z)];
+            const size = Math.max(x[1] - x[0], y[1] - y[0], z[1] - z[0]);
+            stands = stands && Math.abs(z[0]) <= 0.02 * size && z[1] - z[0] > 0.02 * size;
+        }
+        return {up: [cam.up.x, cam.up.y, cam.up.z], eye: [cam.eye.x, cam.eye.y, cam.eye.z], standsOnZ0: stands};
+    });
     return {
         scenes: scenes,
+        cameras: cameras,
         titles: Array.from(el.querySelectorAll('.infolayer g.annotation')).map(box),
         colorbars: Array.from(el.querySelectorAll('.infolayer g.colorbar')).map(box),
         figure: box(el),
@@ -423,6 +471,50 @@ def _check_figure_layout(page: Page, figure, name: str, out: Path) -> None:
         edge += [pixels[x, y] for y in range(h) for x in (*range(band), *range(w - band, w))]
         drawn = sum(v < 235 for v in edge) / len(edge)
         assert drawn < 0.01, f"{name}: scene {j} is clipped ({drawn:.1%} of its border is drawn on); see {name}_bare.png"
+        # The shape fills its panel: its drawn pixels span half the scene's width or height.
+        fill = _drawn_extent(crop)
+        assert max(fill) >= MIN_FILL, (f"{name}: the shape in scene {j} spans only {fill[0]:.0%} of its width and "
+                                       f"{fill[1]:.0%} of its height (at least {MIN_FILL:.0%} of one); see {name}_bare.png")
+    for j, camera in enumerate(layout["cameras"]):
+        if not camera["standsOnZ0"]:
+            continue
+        up, eye = camera["up"], camera["eye"]
+        up_z = up[2] / max(sum(u * u for u in up) ** 0.5, 1e-12)
+        elevation = math.degrees(math.asin(eye[2] / max(sum(e * e for e in eye) ** 0.5, 1e-12)))
+        assert up_z > 0.99, f"{name}: scene {j} shows a shape standing on z = 0 with camera up {up}: not upright"
+        assert elevation < 45, f"{name}: scene {j} looks at an upright shape from {elevation:.0f} degrees above"
+
+
+def _drawn_extent(crop) -> tuple[float, float]:
+    """The fractions of the width and of the height of ``crop`` (greyscale) that drawn pixels span."""
+    mask = crop.point(lambda v: 255 if v < DRAWN_BELOW else 0)
+    box = mask.getbbox()
+    if box is None:
+        return 0.0, 0.0
+    return (box[2] - box[0]) / crop.width, (box[3] - box[1]) / crop.height
+
+
+CELL_INPUTS = """() => {
+    const panel = Array.from(document.querySelectorAll('.jp-NotebookPanel')).find(p => p.offsetParent !== null);
+    const shown = e => !!e && e.offsetParent !== null && e.getBoundingClientRect().height > 0;
+    return panel ? Array.from(panel.querySelectorAll('.jp-Notebook .jp-Cell')).map(c => ({
+        code: c.classList.contains('jp-CodeCell'),
+        collapsed: shown(c.querySelector('.jp-InputPlaceholder')) && !shown(c.querySelector('.jp-InputArea-editor')),
+    })) : [];
+}"""
+
+
+def _check_verification_cells_collapsed(page: Page, notebook: Path) -> None:
+    """Every cell tagged hide-input, and every cell that only verifies claims, shows a collapsed input."""
+    tagging = _load_script("tag_verification_cells")
+    cells = json.loads(notebook.read_text())["cells"]
+    shown = page.evaluate(CELL_INPUTS)
+    assert len(shown) == len(cells), f"{notebook.name}: {len(shown)} cells on the page, {len(cells)} in the file"
+    hidden = [i for i, c in enumerate(cells) if c["cell_type"] == "code"
+              and (tagging.is_tagged(c) or tagging.is_verification(c))]
+    open_ = [i for i in hidden if not shown[i]["collapsed"]]
+    assert not open_, (f"{notebook.name}: verification cells {open_} show their code in the lesson; run "
+                       f"python3 scripts/tag_verification_cells.py notebooks/{notebook.name}")
 
 
 def _move_a_slider(page: Page, notebook: Path, out: Path) -> None:
@@ -526,6 +618,7 @@ def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, offline: Offline, not
         assert page.locator(".jp-OutputArea-output .widget-slider").count() > 0, f"{notebook.name}: no slider rendered"
         _move_a_slider(page, notebook, out)
 
+    _check_verification_cells_collapsed(page, notebook)
     assert _build_dialog(page) == 0, f"{notebook.name}: the 'Build Recommended' dialog appeared"
     dialogs = page.locator(".jp-Dialog").all_inner_texts()
     assert not dialogs, f"{notebook.name}: unexpected dialog(s): {dialogs}"
@@ -543,6 +636,25 @@ def test_no_build_recommended_dialog(page: Page, lab: Lab, offline: Offline) -> 
         "JupyterLab shows 'Build Recommended': write {\"buildCheck\": false, \"buildAvailable\": false} to "
         "<sys.prefix>/etc/jupyter/labconfig/page_config.json (./make.sh install does this)")
     offline.check("JupyterLab start page")
+
+
+def test_lab_opens_on_start_here(page: Page, lab: Lab, offline: Offline) -> None:
+    """The page JupyterLab opens (and the link it prints) is the first notebook, not the Launcher."""
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    # A first start: no saved workspace (JupyterLab otherwise reopens what the last session showed).
+    workspaces = lab.root.parent.parent / "workspaces"
+    shutil.rmtree(workspaces, ignore_errors=True)
+    workspaces.mkdir()
+    page.goto(f"{lab.url}/?token={lab.token}")
+    page.locator(".jp-NotebookPanel .jp-Notebook").first.wait_for(state="visible", timeout=120_000)
+    page.wait_for_timeout(3000)
+    page.screenshot(path=str(ARTIFACTS / "lab_opens.png"))
+    assert urllib.parse.urlsplit(page.url).path == "/lab/tree/00_start_here.ipynb", page.url
+    current = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.lm-mod-current").all_inner_texts()
+    assert any("00_start_here.ipynb" in t for t in current), f"the open tab is {current}, not 00_start_here.ipynb"
+    launchers = page.locator(".jp-Launcher").evaluate_all("els => els.filter(e => e.offsetParent !== null).length")
+    assert launchers == 0, "the Launcher is shown beside the first notebook"
+    offline.check("JupyterLab start page (00_start_here)")
 
 
 class _QuietHandler(http.server.SimpleHTTPRequestHandler):
