@@ -1111,6 +1111,8 @@ def check_floor_fraction(fraction: Any, mesh: Any, floor: float = 1.0, *, show: 
             raise _Stop(WRONG, "That is a percentage; give a fraction between 0 and 1.")
         if abs(got - (1 - ref)) <= 1e-9:
             raise _Stop(WRONG, "That is the fraction *above* the floor.")
+        if got == 0 and ref > 0:
+            raise _Stop(WRONG, "None at the floor? Compare with a tolerance (`np.isclose`, or `<=` the floor times 1 + 1e-12), not `==`: the floor is computed in floating point.")
         raise _Stop(WRONG, f"Compare `curvature.metric_curvature(mesh, floor={floor:g})` with the floor value {floor:g} · 4π / area (vertices at the floor equal it).")
     return _run("06-floor", show, body)
 

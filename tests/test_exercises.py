@@ -570,6 +570,7 @@ def test_floor_fraction():
     _status(ex.check_floor_fraction(100 * ref, mesh, show=False), WRONG, "percentage")
     _status(ex.check_floor_fraction(1 - ref, mesh, show=False), WRONG, "above")
     _status(ex.check_floor_fraction(ref + 0.01, mesh, show=False), WRONG, "metric_curvature")
+    _status(ex.check_floor_fraction(0, mesh, show=False), WRONG, "tolerance")
     _status(ex.check_floor_fraction(..., mesh, show=False), NOT_ATTEMPTED)
 
 
