@@ -1087,7 +1087,10 @@ def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
 
     def body() -> str:
         _attempt(answer)
-        key = f"{float(answer):g}" if isinstance(answer, (int, float)) else str(answer).strip()
+        try:
+            key = f"{float(answer):g}"
+        except (TypeError, ValueError):
+            key = str(answer).strip()
         if key not in options:
             raise _Stop(WRONG, "Answer with one of: 0, 0.4, 1.")
         if options[key] is not None:

@@ -490,6 +490,8 @@ def test_choices_04_to_06():
     _status(ex.check_best_alpha(1, show=False), CORRECT)
     _status(ex.check_best_alpha("1", show=False), CORRECT)
     _status(ex.check_best_alpha(1.0, show=False), CORRECT)
+    _status(ex.check_best_alpha(" 1.0 ", show=False), CORRECT)
+    _status(ex.check_best_alpha("one", show=False), WRONG, "one of")
     _status(ex.check_best_alpha(0, show=False), WRONG, "evenly")
     _status(ex.check_best_alpha(0.4, show=False), WRONG, "compromise")
     _status(ex.check_best_alpha(0.7, show=False), WRONG, "one of")
