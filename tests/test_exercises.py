@@ -371,3 +371,242 @@ def test_instructor_answers_are_put_back_by_grade_id(tmp_path):
     statuses = edition.feedback_statuses({"cells": [{"outputs": [{"data": {ex.MIME_TYPE: {"exercise": "9-x", "status": "wrong"}}}]}]})
     assert statuses == [("9-x", "wrong")]
     assert edition.MIME_TYPE == ex.MIME_TYPE                        # the script reads what the checks write
+
+
+# --- notebooks 04-06 ---
+
+@pytest.fixture(scope="module")
+def blob_spectrum():
+    from lbo_notebooks import eigenbasis
+
+    mesh = shapes.bumpy_sphere(2)
+    return mesh, eigenbasis(mesh, 12)
+
+
+def _proj(s, f, n, *, cols=None, weight=None):
+    phi = s.vectors[:, :n] if cols is None else s.vectors[:, cols]
+    g = s.mass @ f if weight is None else weight(f)
+    return phi @ (phi.T @ g)
+
+
+@pytest.mark.parametrize("attempt, hint", [
+    (lambda s, f, n: _proj(s, f, n, weight=lambda f: f), "Euclidean"),
+    (lambda s, f, n: s.vectors[:, :n].T @ (s.mass @ f), "coefficients"),
+    (lambda s, f, n: s.vectors[:, :n].T @ f, "Euclidean"),
+    (lambda s, f, n: s.vectors[:, :n].T @ s.mass @ s.vectors[:, :n].T @ f, "transposes"),
+    (lambda s, f, n: _proj(s, f, n + 1), "off by one"),
+    (lambda s, f, n: _proj(s, f, n - 1), "off by one"),
+    (lambda s, f, n: _proj(s, f, n, cols=slice(1, n + 1)), "φ_0"),
+    (lambda s, f, n: _proj(s, f, n, weight=lambda f: f / s.mass.diagonal()), "divided"),
+    (lambda s, f, n: s.mass @ _proj(s, f, n, weight=lambda f: f), "wrong place"),
+    (lambda s, f, n: _proj(s, f, s.vectors.shape[1]), "every eigenfunction"),
+    (lambda s, f, n: f - _proj(s, f, n), "error"),
+    (lambda s, f, n: 2 * _proj(s, f, n), "Φ_nᵀ A f"),
+    (lambda s, f, n: np.ones(3), "one value per vertex"),
+])
+def test_projection_hints(blob_spectrum, attempt, hint):
+    _, s = blob_spectrum
+    _status(ex.check_projection(attempt, s, show=False), WRONG, hint)
+
+
+def test_projection_reference_and_unanswered(blob_spectrum):
+    _, s = blob_spectrum
+    _status(ex.check_projection(_solution_function("04-projection", "my_project"), s, show=False), CORRECT)
+    _status(ex.check_projection(lambda s, f, n: s.reconstruct(f, n), s, show=False), CORRECT)
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_projection(placeholder, s, show=False), NOT_ATTEMPTED)
+    _status(ex.check_projection(lambda s, f, n: None, s, show=False), NOT_ATTEMPTED)
+    _status(ex.check_projection(lambda s, f, n: _stub(s), s, show=False), NOT_ATTEMPTED)
+    _status(ex.check_projection(ex.check_projection(..., s, show=False), s, show=False), WRONG, "function itself")
+
+
+def test_energy_bound(blob_spectrum):
+    mesh, s = blob_spectrum
+    f, n = mesh.vertices[:, 1], 5
+    energy, norm2, lam = f @ (s.stiffness @ f), f @ (s.mass @ f), s.values
+    _status(ex.check_energy_bound(energy / lam[n], s, f, n, show=False), CORRECT)
+    _status(ex.check_energy_bound(energy / lam[n - 1], s, f, n, show=False), WRONG, "off by one")
+    _status(ex.check_energy_bound(energy / lam[n + 1], s, f, n, show=False), WRONG, "off by one")
+    _status(ex.check_energy_bound(energy, s, f, n, show=False), WRONG, "divides")
+    _status(ex.check_energy_bound(energy * lam[n], s, f, n, show=False), WRONG, "do not multiply")
+    _status(ex.check_energy_bound(norm2 / lam[n], s, f, n, show=False), WRONG, "stiffness")
+    _status(ex.check_energy_bound(energy / lam[n] / norm2, s, f, n, show=False), WRONG, "relative")
+    _status(ex.check_energy_bound(np.sqrt(energy / lam[n]), s, f, n, show=False), WRONG, "squared")
+    _status(ex.check_energy_bound(123.0, s, f, n, show=False), WRONG, "Dirichlet energy")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_energy_bound(placeholder, s, f, n, show=False), NOT_ATTEMPTED)
+
+
+def test_worst_ratio():
+    from lbo_notebooks import bases, eigenbasis
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    mesh = shapes.bumpy_sphere(2)
+    s = eigenbasis(mesh, 2)
+    W, A = s.stiffness, s.mass
+    P = bases.polynomial_basis(mesh, 10)
+    c, worst = worst_case_ratio(P, W, A, return_vector=True)
+    energy = worst @ (W @ worst)
+    r = worst - P @ (P.T @ (A @ worst))
+    r_euclid = worst - P @ (P.T @ worst)
+    _status(ex.check_worst_ratio((r @ A @ r) / energy, P, W, A, show=False), CORRECT)
+    _status(ex.check_worst_ratio((r_euclid @ A @ r_euclid) / energy, P, W, A, show=False), WRONG, "A inner product")
+    _status(ex.check_worst_ratio((worst @ A @ worst) / energy, P, W, A, show=False), WRONG, "misses")
+    _status(ex.check_worst_ratio(1 / c, P, W, A, show=False), WRONG, "upside down")
+    _status(ex.check_worst_ratio(10 * c, P, W, A, show=False), WRONG, "supremum")
+    _status(ex.check_worst_ratio(c / 10, P, W, A, show=False), WRONG, "below")
+    _status(ex.check_worst_ratio(..., P, W, A, show=False), NOT_ATTEMPTED)
+
+
+def test_ratios_that_must_be_one():
+    for check in (ex.check_consistent_optimality, ex.check_consistent_minmax):
+        _status(check(1.0 + 1e-9, show=False), CORRECT)
+        _status(check(0.01, show=False), WRONG, "normalise")
+        _status(check(0.9, show=False), WRONG, "values[")
+        _status(check(1.2, show=False), WRONG, "values[")
+        _status(check("one", show=False), WRONG, "number")
+        for placeholder in PLACEHOLDERS:
+            _status(check(placeholder, show=False), NOT_ATTEMPTED)
+    _status(ex.check_consistent_optimality(1.2, show=False), WRONG, "own")
+    _status(ex.check_consistent_minmax(0.9, show=False), WRONG, "consistent spectrum")
+
+
+def test_choices_04_to_06():
+    cases = [
+        (ex.check_shifted_basis, "infinite", {"one": "zero energy", "above": "worst function", "below": "every n-dimensional"}),
+        (ex.check_extra_function, "between", {"beats": "n + 1", "worse": "contains"}),
+        (ex.check_lowest_family, "white", {"smooth": "rough", "near-optimal": "optimal ones"}),
+        (ex.check_interlacing, "lam_0", {"lam_1": "constant"}),
+        (ex.check_sphere_alpha, "equal", {"scaled": "|K|^α", "unrelated": "|K|^α"}),
+        (ex.check_consistent_invariance, "yes", {"no": "ρ_t"}),
+    ]
+    for check, right, hints in cases:
+        _status(check(right, show=False), CORRECT)
+        _status(check(right.upper(), show=False), CORRECT)
+        for wrong, hint in hints.items():
+            _status(check(wrong, show=False), WRONG, hint)
+        _status(check("perhaps", show=False), WRONG, "one of")
+        _status(check(..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_best_alpha(1, show=False), CORRECT)
+    _status(ex.check_best_alpha("1", show=False), CORRECT)
+    _status(ex.check_best_alpha(1.0, show=False), CORRECT)
+    _status(ex.check_best_alpha(" 1.0 ", show=False), CORRECT)
+    _status(ex.check_best_alpha("one", show=False), WRONG, "one of")
+    _status(ex.check_best_alpha(0, show=False), WRONG, "evenly")
+    _status(ex.check_best_alpha(0.4, show=False), WRONG, "compromise")
+    _status(ex.check_best_alpha(0.7, show=False), WRONG, "one of")
+    _status(ex.check_best_alpha(..., show=False), NOT_ATTEMPTED)
+
+
+def _three_by_three():
+    Q = np.linalg.qr(np.random.default_rng(0).normal(size=(3, 3)))[0]
+    return Q @ np.diag([1.0, 2.5, 4.0]) @ Q.T, Q.T
+
+
+def test_plane_minimum():
+    M, (v0, v1, v2) = _three_by_three()
+    u = v0 + 2 * v1
+    _status(ex.check_plane_minimum((4 * 1.0 + 2.5) / 5, M, u, show=False), CORRECT)
+    _status(ex.check_plane_minimum(2.5, M, u, show=False), WRONG, "optimal plane")
+    _status(ex.check_plane_minimum((1.0 + 4 * 2.5) / 5, M, u, show=False), WRONG, "at the normal")
+    _status(ex.check_plane_minimum(4.0, M, u, show=False), WRONG, "maximum")
+    _status(ex.check_plane_minimum(1.0, M, u, show=False), WRONG, "v_0")
+    _status(ex.check_plane_minimum(3.3, M, u, show=False), WRONG, "2×2")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_plane_minimum(placeholder, M, u, show=False), NOT_ATTEMPTED)
+
+
+def test_plane_range_and_dual_value():
+    M, _ = _three_by_three()
+    _status(ex.check_plane_range((1.0, 2.5), M, show=False), CORRECT)
+    _status(ex.check_plane_range([1.0, 2.5], M, show=False), CORRECT)
+    _status(ex.check_plane_range((1.0, 4.0), M, show=False), WRONG, "range of R itself")
+    _status(ex.check_plane_range((2.5, 2.5), M, show=False), WRONG, "contain v_0")
+    _status(ex.check_plane_range((1.0, 3.0), M, show=False), WRONG, "span(v_0, v_1)")
+    _status(ex.check_plane_range((2.5, 1.0), M, show=False), WRONG, "lowest value first")
+    _status(ex.check_plane_range(1.0, M, show=False), WRONG, "pair")
+    _status(ex.check_plane_range((..., ...), M, show=False), NOT_ATTEMPTED)
+    _status(ex.check_plane_range((1.0, ...), M, show=False), WRONG, "every part")
+    _status(ex.check_plane_range(..., M, show=False), NOT_ATTEMPTED)
+    _status(ex.check_dual_value(2.5, M, show=False), CORRECT)
+    _status(ex.check_dual_value(2.51, M, show=False), WRONG, "from above")
+    _status(ex.check_dual_value(4.0, M, show=False), WRONG, "largest maximum")
+    _status(ex.check_dual_value(1.0, M, show=False), WRONG, "span(v_1, v_2)")
+    _status(ex.check_dual_value(3.3, M, show=False), WRONG, "Bᵀ M B")
+    _status(ex.check_dual_value(..., M, show=False), NOT_ATTEMPTED)
+
+
+def test_gauss_bonnet_and_scaling():
+    _status(ex.check_gauss_bonnet(0, 2 * np.pi, show=False), CORRECT)
+    _status(ex.check_gauss_bonnet(0, 1, show=False), WRONG, "euler characteristics")
+    _status(ex.check_gauss_bonnet(4 * np.pi, 2 * np.pi, show=False), WRONG, "torus")
+    _status(ex.check_gauss_bonnet(0, 4 * np.pi, show=False), WRONG, "disk")
+    _status(ex.check_gauss_bonnet(..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_gauss_bonnet(0, ..., show=False), WRONG, "every part")
+    _status(ex.check_curvature_scaling(1 / 9, scale=3, show=False), CORRECT)
+    _status(ex.check_curvature_scaling(1 / 3, scale=3, show=False), WRONG, "principal curvatures")
+    _status(ex.check_curvature_scaling(9, scale=3, show=False), WRONG, "upside down")
+    _status(ex.check_curvature_scaling(1, scale=3, show=False), WRONG, "per unit area")
+    _status(ex.check_curvature_scaling(0.5, scale=3, show=False), WRONG, "δ_i")
+    _status(ex.check_curvature_scaling(..., scale=3, show=False), NOT_ATTEMPTED)
+    right = {a: 3.0 ** (-2 * (1 - a)) for a in (0.0, 0.4, 1.0)}
+    _status(ex.check_metric_scaling(right, scale=3, show=False), CORRECT)
+    _status(ex.check_metric_scaling({**right, 0.4: 3.0 ** 1.2}, scale=3, show=False), WRONG, "upside down")
+    _status(ex.check_metric_scaling({**right, 0.4: 3.0 ** -0.6}, scale=3, show=False), WRONG, "not s")
+    _status(ex.check_metric_scaling({**right, 1.0: 1 / 9}, scale=3, show=False), WRONG, "regular metric")
+    _status(ex.check_metric_scaling({**right, 0.4: 1.0}, scale=3, show=False), WRONG, "only α = 1")
+    _status(ex.check_metric_scaling({**right, 0.4: 0.5}, scale=3, show=False), WRONG, "W does not change")
+    _status(ex.check_metric_scaling([1, 2], scale=3, show=False), WRONG, "dict")
+    _status(ex.check_metric_scaling({0.0: ..., 0.4: ..., 1.0: ...}, scale=3, show=False), NOT_ATTEMPTED)
+    _status(ex.check_metric_scaling({**right, 0.4: ...}, scale=3, show=False), WRONG, "every part")
+
+
+def test_floor_fraction():
+    from lbo_notebooks import curvature
+
+    mesh = shapes.bumpy_sphere(2)
+    level = 4 * np.pi / mesh.area
+    ref = float(np.mean(curvature.metric_curvature(mesh, floor=1.0) <= level * (1 + 1e-12)))
+    assert 0 < ref < 1                                       # the test needs a mesh partly at the floor
+    _status(ex.check_floor_fraction(ref, mesh, show=False), CORRECT)
+    _status(ex.check_floor_fraction(100 * ref, mesh, show=False), WRONG, "percentage")
+    _status(ex.check_floor_fraction(1 - ref, mesh, show=False), WRONG, "above")
+    _status(ex.check_floor_fraction(ref + 0.01, mesh, show=False), WRONG, "metric_curvature")
+    _status(ex.check_floor_fraction(0, mesh, show=False), WRONG, "tolerance")
+    _status(ex.check_floor_fraction(..., mesh, show=False), NOT_ATTEMPTED)
+
+
+@pytest.mark.parametrize("check, right, slips", [
+    (ex.check_recap_04, (10, "vacuous", "no"), [(0, 9, "left out"), (0, 11, "count again"), (1, "tight", "huge"),
+                                                (1, "violated", "every function"), (2, "yes", "tilted")]),
+    (ex.check_recap_05, ("lam_n", "no", np.degrees(np.arctan(np.sqrt(2)))),
+     [(0, "lam_n+1", "codimension"), (1, "yes", "arc"), (2, np.degrees(np.arctan(2)), "ratio"),
+      (2, np.arctan(np.sqrt(2)), "radians"), (2, 30.0, "(λ_2 − λ_1)/(λ_1 − λ_0)")]),
+    (ex.check_recap_06, (0.25, "A", "regular"), [(0, 0.5, "1/R²"), (0, 4, "upside down"), (1, "w", "conformally"),
+                                                 (1, "both", "conformally"), (2, "scale-invariant", "section 6")]),
+])
+def test_recaps(check, right, slips):
+    _status(check(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in slips:
+        answers = list(right)
+        answers[k] = wrong
+        _status(check(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(check(right[0], "maybe", right[2], show=False), WRONG, "one of")
+    _status(check(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(check(right[0], ..., ..., show=False), WRONG, "every part")
+
+
+def test_messages_04_to_06_never_give_the_answer():
+    M, (v0, v1, _) = _three_by_three()
+    cases = [(ex.check_plane_minimum(3.3, M, v0 + 2 * v1, show=False), 1.3),
+             (ex.check_plane_range((1.0, 3.0), M, show=False), 2.5),
+             (ex.check_dual_value(3.3, M, show=False), 2.5),
+             (ex.check_curvature_scaling(0.5, scale=3, show=False), 1 / 9),
+             (ex.check_metric_scaling({0.4: 0.5}, scale=3, show=False), 3.0 ** -1.2),
+             (ex.check_recap_05("lam_n", "no", 30.0, show=False), np.degrees(np.arctan(np.sqrt(2)))),
+             (ex.check_recap_06(0.3, "A", "regular", show=False), 0.25),
+             (ex.check_recap_04(3, "vacuous", "no", show=False), 10)]
+    for feedback, answer in cases:
+        assert feedback.status == WRONG
+        numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
+        assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2)), feedback.message
