@@ -518,3 +518,16 @@ def test_03_messages_never_give_the_answer(messy_scan):
     values = np.array([0, 2, 2, 2, 6, 6, 6, 6, 6, 11.4])
     fb = ex.check_cloud_eigenvalue(0.3, values, 9, show=False)
     assert "12" not in fb.message and "-0.05" not in fb.message
+
+
+def test_the_student_edition_is_the_series_the_site_publishes(tmp_path):
+    edition = _script("student_edition")
+    site = _script("build_site")
+    assert edition.series(NOTEBOOKS) == site.series_notebooks(NOTEBOOKS)[0]
+    for name in ("00_start_here", "02_laplace_beltrami"):
+        (tmp_path / f"{name}.ipynb").write_bytes((NOTEBOOKS / f"{name}.ipynb").read_bytes())
+    for stray in ("scratch", "02_laplace_beltrami-Copy1", "02_laplace_beltrami.new", "42_draft"):
+        (tmp_path / f"{stray}.ipynb").write_text('{"cells": []}')
+    assert [p.stem for p in edition.series(tmp_path)] == ["00_start_here", "02_laplace_beltrami"]
+    (tmp_path / "00_start_here.ipynb").unlink()
+    assert [p.stem for p in edition.series(tmp_path)] == ["02_laplace_beltrami", "42_draft"]
