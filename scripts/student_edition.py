@@ -1,6 +1,6 @@
 """The student edition of the series, made by nbgrader from the instructor edition ``notebooks/``.
 
-    python scripts/student_edition.py                 # write build/student/ (every notebook)
+    python scripts/student_edition.py                 # write build/student/ (the series)
     python scripts/student_edition.py --check         # ... then check both editions (CI)
 
 (``./make.sh student [--check]`` runs it in the project's environment; ``./make.sh student lab``
