@@ -676,10 +676,11 @@ def _operator_hint(name: str, mesh: Any, defects: list[str], answer: str) -> str
         return f"{name}: none of the defects `lbo.robust.cotan_defects` checks is there."
     text = " ".join(defects)
     if "non-manifold edge" in text:
-        return f"{name}: an edge shared by three faces has three opposite angles; the cotangent formula is for two."
+        return (f"{name}: an edge shared by three faces has three opposite angles; the cotangent weight ½(cot a + cot b) "
+                "is written for an edge between two triangles.")
     if "non-manifold vert" in text:
-        return (f"{name}: every edge has at most two faces, but at one vertex the surface is pinched: its faces "
-                "meet only at a point, so around it the surface is not a disc.")
+        return (f"{name}: every edge has at most two faces, but at one vertex the surface is pinched: two fans of "
+                "triangles meet there at a single point, so around it the surface is not a disc.")
     return f"{name}: look at the smallest angles and the areas of its triangles: cotangents blow up near 0° and 180°."
 
 
@@ -711,8 +712,9 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
             defects = cotan_defects(mesh)
             if answer != ("robust" if defects else "cotan"):
                 raise _Stop(WRONG, _operator_hint(name, mesh, defects, answer))
-        return ("Right: what breaks the cotangent weights is local (an edge with more than two faces, a pinched "
-                "vertex, a needle); holes and separate pieces do not.")
+        return ("Right: what makes `eigenbasis` leave the cotangent Laplacian is local (an edge with more than two faces, "
+                "a pinched vertex, needle or zero-area triangles: what `lbo.robust.cotan_defects` checks); holes and "
+                "separate pieces are no defects.")
     return _run("03-operator", show, body)
 
 
@@ -792,7 +794,7 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
                             "and how many functions constant on each piece?")
             raise _Stop(WRONG, "A constant function still has zero energy: at least one eigenvalue is zero.")
         if _near(worst, ref, 0.02):
-            return "Right: one piece, one zero eigenvalue, then the sphere's spectrum, a little off because of the noise, the holes and the fins."
+            return "Right: one piece, one zero eigenvalue, then the sphere's spectrum, a little off (noise, holes, fins, and the discretisation itself)."
         if _near(worst, 100 * ref, 0.02):
             raise _Stop(WRONG, "That is a percentage; give the fraction.")
         if worst > 10 * ref:
@@ -806,7 +808,7 @@ def check_neighbors_effect(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 03-neighbors: with ``n_neighbors=10``, do the cloud's eigenvalues get "closer" to ℓ(ℓ+1) or "further"?"""
     return _choice("03-neighbors", answer, {
         "further": None,
-        "closer": "Run it: with fewer neighbours each local triangulation covers less of the surface around its point.",
+        "closer": "Run the cell after the check and compare the worst relative errors for 10 and 30 neighbours.",
         "same": "The neighbourhoods change, and so does the operator: run it and compare the errors.",
     }, show)
 

@@ -498,7 +498,7 @@ def test_largest_component(messy_scan):
 
 def test_neighbors_effect_and_cloud_pieces():
     _status(ex.check_neighbors_effect("further", show=False), CORRECT)
-    _status(ex.check_neighbors_effect("closer", show=False), WRONG, "covers less")
+    _status(ex.check_neighbors_effect("closer", show=False), WRONG, "compare")
     _status(ex.check_neighbors_effect(..., show=False), NOT_ATTEMPTED)
     _status(ex.check_cloud_pieces({2.0: 2}, show=False), CORRECT)
     _status(ex.check_cloud_pieces({1.5: 2}, show=False), WRONG, "reach further")
