@@ -42,7 +42,8 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "functional_maps": ("estimate_map", "map_from_points", "points_from_map", "zoomout"),
     "matching": ("match", "matching_error", "error_curve"),
 }
-_SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust", "formats", "cost", "shape_distribution"}
+_SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust", "formats", "cost", "shape_distribution",
+                                     "exercises"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 
 __all__ = sorted(_WHERE) + sorted(_SUBMODULES)

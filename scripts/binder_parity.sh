@@ -8,7 +8,8 @@
 # What Binder (repo2docker) does with this repository, reproduced here so the Binder configuration
 # cannot rot: apt-get install binder/apt.txt (checked here with dpkg-query: this script installs no
 # system packages), pip install -r binder/requirements.txt into a fresh environment, run
-# binder/postBuild from the repository root with that environment's python first on PATH. Then
+# binder/postBuild from the repository root with that environment's python first on PATH (it also
+# writes the student edition to build/student/, checked here: every notebook, no solutions). Then
 # pytest + nbval (installed into the environment for the check only, after postBuild) run the
 # notebooks with the environment's kernel. Nothing from .venv or pyproject.toml's dependency list
 # is used, so a package missing from binder/requirements.txt makes a notebook fail here.
@@ -52,6 +53,14 @@ PATH="$work/venv/bin:$PATH" VIRTUAL_ENV="$work/venv" bash binder/postBuild
 page_config="$work/venv/etc/jupyter/labconfig/page_config.json"
 [ -f "$page_config" ] || { log "postBuild did not write $page_config"; exit 1; }
 "$VPY" -c 'import lbo_notebooks, sys; print("lbo_notebooks from", lbo_notebooks.__file__, file=sys.stderr)'
+# The student edition the Binder link opens: built by postBuild, without solutions, and nbgrader
+# (used in a throw-away environment) left nothing in the student's environment.
+for nb in notebooks/[0-9][0-9]_*.ipynb; do
+  [ -f "build/student/$(basename "$nb")" ] || { log "postBuild did not write build/student/$(basename "$nb")"; exit 1; }
+done
+! grep -l "BEGIN SOLUTION" build/student/*.ipynb >&2 || { log "solutions left in the student edition (above)"; exit 1; }
+! "$VPY" -c 'import nbgrader' 2>/dev/null || { log "postBuild left nbgrader in the Binder environment"; exit 1; }
+log "postBuild wrote the student edition to build/student/ (no solutions, no grader in the environment)"
 "$VPY" -m pip check >&2 || log "warning: pip check reports inconsistent requirements (above)"
 
 # 4. The notebooks, with nbval, in that environment (test tools added only now, for the check).

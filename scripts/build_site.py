@@ -5,7 +5,13 @@ One command (from the repository root, with the project's environment)::
     python scripts/build_site.py                   # -> build/site/index.html
     python scripts/build_site.py --out /tmp/site notebooks/02_laplace_beltrami.ipynb
 
-Each notebook in ``notebooks/`` is executed top to bottom in a fresh kernel (working directory
+The site publishes exactly the series: ``00_start_here`` and the notebooks its map of the series
+lists (``| NN | [name](NN_name.ipynb) | topic |``), in that order. Any other ``.ipynb`` in
+``notebooks/`` (a lecturer's scratch notebook, a ``-Copy1`` JupyterLab made, a student's
+``.new.ipynb``) is neither executed nor listed; the build names what it skipped. Notebooks given
+on the command line are built as given.
+
+Each notebook of the series is executed top to bottom in a fresh kernel (working directory
 ``notebooks/``, like JupyterLab) and converted with nbconvert's ``HTMLExporter`` (lab template).
 The site works offline, from ``file://`` or any static host:
 
@@ -13,8 +19,10 @@ The site works offline, from ``file://`` or any static host:
   and every page loads the one ``plotly.min.js`` copied into the site from the installed plotly;
 - ``mesh_slider`` viewers (live widgets need a kernel) become plotly figures with a plotly slider
   over precomputed frames (see ``scripts/site_prelude.py``); other widgets are replaced by a note;
-- solutions (cells hidden with ``{"jupyter": {"source_hidden": true}}``) are folded in a
-  ``<details>`` block;
+- solutions (cells hidden with ``{"jupyter": {"source_hidden": true}}``, and the answer cells of
+  the exercises marked for nbgrader, with what they print) are folded in a ``<details>`` block; the
+  check cells show the check call only, not their hidden tests (``### BEGIN HIDDEN TESTS`` ...),
+  which are run but are the autograder's, not the reader's;
 - formulas are typeset by MathJax 2 copied into the site (``mathjax/``) from the installed Python
   package ``jupyter-server-mathjax`` (a ``[test]`` dependency; ``--mathjax`` names another local
   MathJax 2 folder, e.g. Debian's ``libjs-mathjax``), so no page loads anything from the network;
@@ -82,6 +90,27 @@ def series_map(nb: nbformat.NotebookNode) -> dict[str, str]:
             if link and len(cols) >= 3 and line.lstrip().startswith("|"):
                 topics[Path(link.group(1)).name] = cols[-1]
     return topics
+
+
+SERIES_NAME = re.compile(r"^\d\d_\w+$")   # NN_name: 00_start_here, 01_shapes, ...
+START_HERE = "00_start_here"
+
+
+def series_notebooks(folder: Path) -> tuple[list[Path], list[Path]]:
+    """The series in ``folder``, in order, and the other notebooks there (skipped by the site).
+
+    The series is ``00_start_here`` and the ``NN_name`` notebooks its map (:func:`series_map`)
+    links to, in the map's order; without ``00_start_here``, every ``NN_name.ipynb``. Scratch
+    notebooks, ``-Copy1`` files and ``.new.ipynb`` editions are never part of it.
+    """
+    everything = sorted(folder.glob("*.ipynb"))
+    start = folder / f"{START_HERE}.ipynb"
+    if start.exists():
+        listed = [folder / f"{stem}.ipynb" for stem in series_map(nbformat.read(start, as_version=4))]
+        series = [start] + [p for p in listed if p.exists() and SERIES_NAME.match(p.stem) and p != start]
+    else:
+        series = [p for p in everything if SERIES_NAME.match(p.stem)]
+    return series, [p for p in everything if p not in series]
 
 
 def title_and_description(nb: nbformat.NotebookNode, topic: str | None = None) -> tuple[str, str]:
@@ -152,13 +181,21 @@ def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int) -> str | None:
 
 
 def prepare_for_html(nb: nbformat.NotebookNode) -> None:
-    """Replace widget outputs by a note and fold hidden solution cells into <details>."""
+    """Replace widget outputs by a note, fold hidden solution cells and answer cells into <details>,
+    and drop the hidden tests from check cells."""
     cells = []
     for cell in nb.cells:
         if cell.cell_type == "code":
             for out in cell.get("outputs", []):
                 if out.get("output_type") in ("display_data", "execute_result") and WIDGET_MIME in out.get("data", {}):
                     out["data"] = {"text/html": WIDGET_NOTE}
+            grader = cell.metadata.get("nbgrader", {})
+            if grader.get("grade") and not grader.get("solution"):
+                cell.source = without_hidden_tests(cell.source)
+            if grader.get("solution"):
+                cells.append(folded_solution(cell))
+                cells.append(cell)
+                continue
             if cell.metadata.get("jupyter", {}).get("source_hidden"):
                 code = html.escape(cell.source)
                 summary = "Solutions" if cell.source.lstrip().lower().startswith("# solution") else "Hidden code"
@@ -169,6 +206,38 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
         cells.append(cell)
     nb.cells = cells
     nb.metadata.pop("widgets", None)
+
+
+_HIDDEN_TESTS = re.compile(r"^[ \t]*#+\s*BEGIN HIDDEN TESTS.*?^[ \t]*#+\s*END HIDDEN TESTS[^\n]*\n?", re.M | re.S)
+
+
+_SOLUTION_MARKER = re.compile(r"^[ \t]*#+\s*(BEGIN|END) SOLUTION[^\n]*\n?", re.M)
+
+
+def without_hidden_tests(source: str) -> str:
+    r"""A check cell's source without its nbgrader hidden tests (the autograder's, not the reader's).
+
+    >>> without_hidden_tests("feedback = check(x)\n### BEGIN HIDDEN TESTS\nassert feedback.correct\n### END HIDDEN TESTS")
+    'feedback = check(x)'
+    """
+    return _HIDDEN_TESTS.sub("", source).rstrip()
+
+
+def folded_solution(cell: nbformat.NotebookNode) -> nbformat.NotebookNode:
+    """An exercise's answer cell folded: the code and what it printed, in a <details> block.
+
+    The cell itself keeps its rich outputs (figures) but loses its input and printed text, so that
+    a reader sees the question, then the check's verdict, and opens the solution on purpose.
+    """
+    printed = "".join(o.get("text", "") for o in cell.get("outputs", []) if o.get("output_type") == "stream")
+    cell.outputs = [o for o in cell.get("outputs", []) if o.get("output_type") != "stream"]
+    cell.metadata.setdefault("tags", []).append("lbo-remove-input")
+    code = _SOLUTION_MARKER.sub("", cell.source).strip("\n")
+    shown = f'<pre><code class="language-python">{html.escape(code)}</code></pre>'
+    if printed.strip():
+        shown += f"\n<pre class=\"lbo-output\">{html.escape(printed.rstrip())}</pre>"
+    return nbformat.v4.new_markdown_cell(
+        f'<details class="lbo-solutions"><summary>Solution (click to show)</summary>\n{shown}\n</details>')
 
 
 # MathJax 2 configurations, best first: CommonHTML output where the copy has it, else HTML-CSS.
@@ -271,16 +340,21 @@ repository) and run it in JupyterLab: <code>./make.sh lab</code>.</p>
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("notebooks", nargs="*", type=Path, help="notebooks (default: notebooks/*.ipynb)")
+    parser.add_argument("notebooks", nargs="*", type=Path,
+                        help="notebooks (default: the series, 00_start_here and the notebooks its map lists)")
     parser.add_argument("--out", type=Path, default=REPO / "build" / "site", help="output folder (default build/site)")
     parser.add_argument("--timeout", type=int, default=600, help="per-cell timeout in seconds")
     parser.add_argument("--mathjax", help="local MathJax 2 folder to copy into the site "
                         "(default: the jupyter-server-mathjax package's)")
     args = parser.parse_args(argv)
 
-    # The series' entry point first, then the numbered notebooks in order.
-    sources = [p.resolve() for p in args.notebooks] or sorted(
-        (REPO / "notebooks").glob("*.ipynb"), key=lambda p: (p.stem != "00_start_here", p.name))
+    # Exactly the series (its entry point first, then the notebooks its map lists), unless named.
+    sources = [p.resolve() for p in args.notebooks]
+    if not sources:
+        sources, skipped = series_notebooks(REPO / "notebooks")
+        if skipped:
+            print("not part of the series (not in the map of 00_start_here), skipped: "
+                  + ", ".join(p.name for p in skipped), flush=True)
     if not sources:
         print("no notebooks found", file=sys.stderr)
         return 1

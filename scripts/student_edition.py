@@ -1,13 +1,14 @@
 """The student edition of the series, made by nbgrader from the instructor edition ``notebooks/``.
 
-    python scripts/student_edition.py                 # write build/student/ (every notebook)
+    python scripts/student_edition.py                 # write build/student/ (the series)
     python scripts/student_edition.py --check         # ... then check both editions (CI)
 
 (``./make.sh student [--check]`` runs it in the project's environment; ``./make.sh student lab``
 opens JupyterLab on the edition for self-study.)
 
 The build runs ``nbgrader generate_assignment`` on a throw-away course directory whose source is
-``notebooks/``: solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) become a stub,
+the series in ``notebooks/`` (``00_start_here`` and the notebooks its map lists, as on the static
+site; stray notebooks are left out): solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) become a stub,
 hidden tests (``### BEGIN HIDDEN TESTS`` ...) disappear, check cells are locked, outputs are
 cleared. Notebooks without exercises pass through unchanged apart from that. Files a notebook
 reads by a relative path outside its folder (``../benchmarks/...``) are copied to the same place
@@ -89,11 +90,28 @@ def nbgrader(root: Path, *args: str) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "nbgrader", *args], cwd=root, env=env)
 
 
+SERIES_NAME = re.compile(r"^\d\d_\w+$")
+MAP_LINK = re.compile(r"^\s*\|.*\]\((\d\d_\w+)\.ipynb\)", re.MULTILINE)
+
+
+def series(folder: Path) -> list[Path]:
+    """The notebooks of the series in ``folder``: ``00_start_here`` and the ``NN_name`` notebooks its
+    map of the series links to (as the static site, scripts/build_site.py); without ``00_start_here``,
+    every ``NN_name.ipynb``. A lecturer's scratch notebook, a ``-Copy1`` or a ``.new.ipynb`` never
+    goes into the student edition."""
+    start = folder / "00_start_here.ipynb"
+    if not start.exists():
+        return sorted(p for p in folder.glob("*.ipynb") if SERIES_NAME.match(p.stem))
+    text = "\n".join(source(c) for c in read(start)["cells"] if c["cell_type"] == "markdown")
+    listed = [folder / f"{stem}.ipynb" for stem in MAP_LINK.findall(text)]
+    return [start] + [p for p in listed if p.exists() and p != start]
+
+
 def course(root: Path) -> Path:
-    """A course directory whose assignment's source is a copy of notebooks/."""
+    """A course directory whose assignment's source is a copy of the series in notebooks/."""
     source_dir = root / "source" / ASSIGNMENT
     source_dir.mkdir(parents=True)
-    for nb in sorted(NOTEBOOKS.glob("*.ipynb")):
+    for nb in series(NOTEBOOKS):
         shutil.copy2(nb, source_dir / nb.name)
     (root / "nbgrader_config.py").write_text(CONFIG.format(root=str(root), db_url=f"sqlite:///{root / 'gradebook.db'}",
                                                            stub=CODE_STUB), encoding="utf-8")

@@ -610,3 +610,163 @@ def test_messages_04_to_06_never_give_the_answer():
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2)), feedback.message
+
+
+# --- 03 --------------------------------------------------------------------------------------------
+
+def _notebook_namespace(stem: str, upto: str) -> dict:
+    """Run the code cells of an instructor notebook up to (not including) the first cell containing ``upto``."""
+    import nbformat
+
+    nb = nbformat.read(NOTEBOOKS / f"{stem}.ipynb", as_version=4)
+    namespace: dict = {}
+    for cell in nb.cells:
+        if upto in cell.source:
+            return namespace
+        if cell.cell_type == "code" and not cell.metadata.get("nbgrader"):
+            exec(cell.source, namespace)
+    raise AssertionError(f"{upto!r} not in {stem}")
+
+
+@pytest.fixture(scope="module")
+def messy_scan():
+    """The messy scan notebook 03 writes (its arrays and file), without running the rest."""
+    ns = _notebook_namespace("03_your_own_data", "lbo.load_mesh(scan_path)")
+    return ns["v"], ns["faces"], ns["scan_path"]
+
+
+REPAIR = dict(polygons_split=1, vertices_welded=1, degenerate_faces=5, duplicate_faces=5,
+              unreferenced_vertices=10, non_manifold_edges=3, n_components=4)   # notebook 03's solution
+
+
+@pytest.mark.parametrize("change, hint", [
+    ({"polygons_split": 0}, "quads"),
+    ({"vertices_welded": 0}, "exact copy"),
+    ({"degenerate_faces": 4}, "on one line"),
+    ({"duplicate_faces": 10}, "one copy"),
+    ({"unreferenced_vertices": 5}, "holes"),
+    ({"unreferenced_vertices": 11}, "welded"),
+    ({"non_manifold_edges": 9}, "only the one it shares"),
+    ({"n_components": 7}, "part of its piece"),
+    ({"n_components": 3}, "quad included"),
+    ({"n_components": 3, "duplicate_faces": 10}, "1 other count also off"),
+])
+def test_repair_counts_hints(messy_scan, change, hint):
+    v, faces, _ = messy_scan
+    _status(ex.check_repair_counts({**REPAIR, **change}, (v, faces), show=False), WRONG, hint)
+
+
+def test_repair_counts_reference_and_unanswered(messy_scan):
+    v, faces, _ = messy_scan
+    _status(ex.check_repair_counts(REPAIR, (v, faces), show=False), CORRECT)
+    _status(ex.check_repair_counts(dict.fromkeys(REPAIR, ...), (v, faces), show=False), NOT_ATTEMPTED)
+    _status(ex.check_repair_counts({**dict.fromkeys(REPAIR, ...), "n_components": 4}, (v, faces), show=False), WRONG, "every part")
+    _status(ex.check_repair_counts({"n_components": 4}, (v, faces), show=False), WRONG, "missing")
+    _status(ex.check_repair_counts([1, 2], (v, faces), show=False), WRONG, "dict")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_repair_counts(placeholder, (v, faces), show=False), NOT_ATTEMPTED)
+
+
+@pytest.fixture(scope="module")
+def operator_candidates(messy_scan):
+    import warnings
+
+    ns = _notebook_namespace("03_your_own_data", "lbo.load_mesh(scan_path)")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ns["scan"] = ns["lbo"].load_mesh(messy_scan[2], clean=True)
+    nb = json.loads((NOTEBOOKS / "03_your_own_data.ipynb").read_text())
+    exec(next("".join(c["source"]) for c in nb["cells"] if "candidates = {" in "".join(c["source"])), ns)
+    return ns["candidates"]
+
+
+def test_operator_choice(operator_candidates):
+    right = {"holes": "cotan", "two_pieces": "cotan", "fins": "robust", "pinched": "robust"}
+    _status(ex.check_operator_choice(right, operator_candidates, show=False), CORRECT)
+    _status(ex.check_operator_choice({**right, "fins": " Robust "}, operator_candidates, show=False), CORRECT)
+    _status(ex.check_operator_choice(dict.fromkeys(right, "robust"), operator_candidates, show=False), WRONG, "boundary")
+    _status(ex.check_operator_choice({**right, "two_pieces": "robust"}, operator_candidates, show=False), WRONG, "block-diagonal")
+    _status(ex.check_operator_choice({**right, "fins": "cotan"}, operator_candidates, show=False), WRONG, "three opposite angles")
+    _status(ex.check_operator_choice({**right, "pinched": "cotan"}, operator_candidates, show=False), WRONG, "pinched")
+    _status(ex.check_operator_choice({**right, "pinched": "tufted"}, operator_candidates, show=False), WRONG, '"cotan" or "robust"')
+    _status(ex.check_operator_choice({"holes": "cotan"}, operator_candidates, show=False), WRONG, "one entry per mesh")
+    _status(ex.check_operator_choice(dict.fromkeys(right, ...), operator_candidates, show=False), NOT_ATTEMPTED)
+    _status(ex.check_operator_choice({**dict.fromkeys(right, ...), "holes": "cotan"}, operator_candidates, show=False), WRONG, "every part")
+
+
+def test_cloud_eigenvalue():
+    values = np.array([0, 1.9, 1.95, 1.97, 5.8, 5.85, 5.9, 5.9, 5.95, 11.4, 11.5])
+    ref = 11.4 / 12 - 1
+    _status(ex.check_cloud_eigenvalue(ref, values, 9, show=False), CORRECT, "ℓ = 3", "below")
+    _status(ex.check_cloud_eigenvalue(-ref, values, 9, show=False), WRONG, "sign")
+    _status(ex.check_cloud_eigenvalue(100 * ref, values, 9, show=False), WRONG, "percentage")
+    _status(ex.check_cloud_eigenvalue(11.4 - 12, values, 9, show=False), WRONG, "absolute")
+    _status(ex.check_cloud_eigenvalue(12 / 11.4 - 1, values, 9, show=False), WRONG, "upside down")
+    _status(ex.check_cloud_eigenvalue(11.4 / 90 - 1, values, 9, show=False), WRONG, "not ℓ")
+    _status(ex.check_cloud_eigenvalue(11.4 / 6 - 1, values, 9, show=False), WRONG, "wrong ℓ")
+    _status(ex.check_cloud_eigenvalue(11.4 / 20 - 1, values, 9, show=False), WRONG, "wrong ℓ")
+    _status(ex.check_cloud_eigenvalue(0.3, values, 9, show=False), WRONG, "find ℓ")
+    _status(ex.check_cloud_eigenvalue(10.4 / 12 - 1, values, 9, show=False), WRONG, "find ℓ")   # abs(ref) -> not "size"
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_cloud_eigenvalue(placeholder, values, 9, show=False), NOT_ATTEMPTED)
+    assert [ex._sphere_eigenvalue(k) for k in range(17)] == [0, 2, 2, 2, 6, 6, 6, 6, 6, 12, 12, 12, 12, 12, 12, 12, 20]
+
+
+def test_largest_component(messy_scan):
+    import warnings
+
+    from lbo_notebooks import eigenbasis, load_mesh
+
+    path = messy_scan[2]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        values = eigenbasis(load_mesh(path, clean=True, keep_largest_component=True), 16).values
+    exact = np.array([0, 2, 2, 2, 6, 6, 6, 6, 6, 12, 12, 12, 12, 12, 12, 12.0])
+    worst = np.max(np.abs(values[1:] / exact[1:] - 1))                   # the notebook's solution
+    _status(ex.check_largest_component(1, worst, path, show=False), CORRECT)
+    _status(ex.check_largest_component(4, worst, path, show=False), WRONG, "drops the flakes")
+    _status(ex.check_largest_component(0, worst, path, show=False), WRONG, "constant")
+    _status(ex.check_largest_component(1, 100 * worst, path, show=False), WRONG, "percentage")
+    shifted = np.max(np.abs(values[4:] / exact[1:13] - 1))               # the 4-zero offset kept
+    _status(ex.check_largest_component(1, shifted, path, show=False), WRONG, "index for index")
+    _status(ex.check_largest_component(1, 2 * worst, path, show=False), WRONG, "k = 1, ..., 15")
+    _status(ex.check_largest_component(1, float("nan"), path, show=False), WRONG, "got nan")
+    _status(ex.check_largest_component(..., ..., path, show=False), NOT_ATTEMPTED)
+    _status(ex.check_largest_component(1, ..., path, show=False), WRONG, "every part")
+
+
+def test_neighbors_effect_and_cloud_pieces():
+    _status(ex.check_neighbors_effect("further", show=False), CORRECT)
+    _status(ex.check_neighbors_effect("closer", show=False), WRONG, "compare")
+    _status(ex.check_neighbors_effect(..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_cloud_pieces({2.0: 2}, show=False), CORRECT)
+    _status(ex.check_cloud_pieces({1.5: 2}, show=False), WRONG, "reach further")
+    _status(ex.check_cloud_pieces({2.0: 1}, show=False), WRONG, "wider")
+    _status(ex.check_cloud_pieces({0.5: 1}, show=False), WRONG, "above 1")
+    _status(ex.check_cloud_pieces([2], show=False), WRONG, "dict")
+    _status(ex.check_cloud_pieces({1.5: ..., 2.0: ...}, show=False), NOT_ATTEMPTED)
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_cloud_pieces(placeholder, show=False), NOT_ATTEMPTED)
+
+
+def test_03_messages_never_give_the_answer(messy_scan):
+    v, faces, _ = messy_scan
+    for key in REPAIR:
+        fb = ex.check_repair_counts({**REPAIR, key: REPAIR[key] + 7}, (v, faces), show=False)
+        assert fb.status == WRONG and str(REPAIR[key]) not in re.sub(r"\d+ other count", "", fb.message), fb.message
+    values = np.array([0, 2, 2, 2, 6, 6, 6, 6, 6, 11.4])
+    fb = ex.check_cloud_eigenvalue(0.3, values, 9, show=False)
+    assert "12" not in fb.message and "-0.05" not in fb.message
+
+
+def test_the_student_edition_is_the_series_the_site_publishes(tmp_path):
+    edition = _script("student_edition")
+    site = _script("build_site")
+    assert edition.series(NOTEBOOKS) == site.series_notebooks(NOTEBOOKS)[0]
+    for name in ("00_start_here", "02_laplace_beltrami"):
+        (tmp_path / f"{name}.ipynb").write_bytes((NOTEBOOKS / f"{name}.ipynb").read_bytes())
+    for stray in ("scratch", "02_laplace_beltrami-Copy1", "02_laplace_beltrami.new", "42_draft"):
+        (tmp_path / f"{stray}.ipynb").write_text('{"cells": []}')
+    assert [p.stem for p in edition.series(tmp_path)] == ["00_start_here", "02_laplace_beltrami"]
+    (tmp_path / "00_start_here.ipynb").unlink()
+    assert [p.stem for p in edition.series(tmp_path)] == ["02_laplace_beltrami", "42_draft"]
