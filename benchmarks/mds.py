@@ -99,6 +99,184 @@ def accuracy_shapes(quick: bool) -> dict[str, Mesh]:
     return out
 
 
+# --- the validation family: shapes none of which was used to choose the SMDS defaults ------------
+def _largest_component(V: np.ndarray, F: np.ndarray) -> Mesh:
+    """The largest edge-connected piece of the faces ``F``, its unused vertices dropped."""
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(V)
+    e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
+    _, labels = connected_components(sp.coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n)), directed=False)
+    used = np.zeros(n, dtype=bool)
+    used[F.ravel()] = True
+    F = F[labels[F[:, 0]] == np.bincount(labels[used]).argmax()]
+    used = np.unique(F)
+    index = np.full(n, -1)
+    index[used] = np.arange(used.size)
+    return Mesh(V[used], index[F])
+
+
+def with_holes(mesh: Mesh, centres: np.ndarray, radius: float) -> Mesh:
+    """``mesh`` without the faces within ``radius`` of any of ``centres``: holes, as in a scan."""
+    c = mesh.vertices[mesh.faces].mean(axis=1)
+    d = np.min(np.linalg.norm(c[:, None, :] - np.asarray(centres)[None], axis=2), axis=1)
+    return _largest_component(np.array(mesh.vertices), np.array(mesh.faces)[d > radius])
+
+
+def double_torus(n_vertices: int) -> Mesh:
+    """A genus-2 surface: the zero set of a smooth implicit function, marched and remeshed."""
+    import gpytoolbox as gpy
+    from skimage.measure import marching_cubes
+
+    g = np.linspace(-1.7, 1.7, 120)
+    step = np.array([1.0, 0.7, 0.5]) * (g[1] - g[0])
+    x, y, z = np.meshgrid(g, 0.7 * g, 0.5 * g, indexing="ij")
+    f = (((x - 0.6) ** 2 + y**2) * ((x + 0.6) ** 2 + y**2) - 0.35) ** 2 + (2.2 * z) ** 2 - 0.06
+    V, F, _, _ = marching_cubes(f, 0.0, spacing=tuple(step))
+    marched = Mesh(V + g[0] * np.array([1.0, 0.7, 0.5]), F[:, ::-1])
+    h = np.sqrt(marched.area / (2 * n_vertices) * 4 / np.sqrt(3))
+    V2, F2 = gpy.remesh_botsch(np.array(marched.vertices), np.array(marched.faces), i=10, h=h, project=True)
+    return _largest_component(V2, F2)
+
+
+def wavy_sheet(n_vertices: int) -> Mesh:
+    """An open 2 x 1 sheet with one boundary loop, waved and sheared (a height field)."""
+    ny = int(round(np.sqrt(n_vertices / 2)))
+    nx = int(round(n_vertices / ny))
+    r = shapes.rectangle(2.0, 1.0, nx - 1, ny - 1)
+    x, y = r.vertices[:, 0], r.vertices[:, 1]
+    return Mesh(np.column_stack([x, y, 0.25 * np.sin(2.5 * x) * np.cos(3 * y) + 0.15 * x * y]), r.faces)
+
+
+def saddle_disk(n_vertices: int) -> Mesh:
+    """A disk (one boundary circle) bent into a saddle, with a bump."""
+    d = shapes.disk(1.0, int(round(np.sqrt(n_vertices / 3))))
+    x, y = d.vertices[:, 0], d.vertices[:, 1]
+    z = 0.35 * (x**2 - y**2) + 0.3 * np.exp(-((x - 0.3) ** 2 + y**2) / 0.1)
+    return Mesh(np.column_stack([x, y, z]), d.faces)
+
+
+def holed_horse(n_vertices: int) -> Mesh:
+    """A walking horse with three holes (a hoof, the muzzle, the belly): boundaries and thin legs."""
+    from lbo_notebooks.creatures import creature
+
+    horse = creature("horse", "walking", n_vertices=n_vertices)
+    V = horse.vertices
+    return with_holes(horse, [V[np.argmin(V[:, 2])], V[np.argmax(V[:, 0])], V.mean(axis=0) - [0.0, 0.0, 0.12]], 0.08)
+
+
+def _creature(species: str, pose: str, parts: dict | None = None):
+    from lbo_notebooks.creatures import creature
+
+    return lambda n: creature(species, pose, parts, n_vertices=n)
+
+
+#: The validation family of the SMDS defaults: (builder, description). None of these shapes was
+#: used to choose the defaults (the tuning shapes are :func:`tuning_shapes`; poses, parts, sizes
+#: and species combinations differ from every tuning creature).
+VALIDATION: dict[str, tuple] = {
+    "horse galloping": (_creature("horse", "galloping"), 9000, "closed, genus 0, thin legs"),
+    "dog tail raised": (_creature("dog", "tail_raised"), 3000, "closed, genus 0, thin tail"),
+    "dog sitting, long ears+tail": (_creature("dog", "sitting", {"ears": 1.5, "tail": 1.6}), 7000, "closed, genus 0, thin parts"),
+    "horse standing, long neck+legs": (_creature("horse", "standing", {"neck": 1.3, "legs": 1.25}), 5500, "closed, genus 0, thin legs"),
+    "dog walking, 12k": (_creature("dog", "walking"), 12000, "closed, genus 0"),
+    "horse with 3 holes": (holed_horse, 6000, "3 boundary loops, thin legs"),
+    "deformed torus": (deformed_torus, 5000, "closed, genus 1"),
+    "double torus": (double_torus, 5000, "closed, genus 2"),
+    "wavy sheet": (wavy_sheet, 4000, "1 boundary loop"),
+    "saddle disk": (saddle_disk, 4500, "1 boundary loop"),
+    "ellipsoid 1.6:1:0.6": (lambda n: remeshed(shapes.ellipsoid(1.6, 1.0, 0.6, subdivisions=5), n), 3500, "closed, genus 0, smooth"),
+    "bumpy sphere, seed 0": (lambda n: remeshed(shapes.bumpy_sphere(5), n), 4000, "closed, genus 0"),
+}
+
+#: The defaults before the held-out validation (commit 5fb7d99): projected rows, k = q = 300.
+OLD_DEFAULTS = {"k": 300, "n_samples": 300, "sampled": "rows"}
+
+
+def part_validation(quick: bool, names: list[str] | None = None) -> list[dict]:
+    """SMDS with today's defaults (and with the previous ones) against classical MDS on the validation family."""
+    print(f"\nValidation family: SMDS defaults {SMDS_DEFAULTS} (and the previous {OLD_DEFAULTS}) against classical "
+          f"MDS from the same heat-method distances")
+    print(f"{'shape':32s} {'n':>6s} {'topology':30s} {'Gram err':>9s} {'previous':>9s} {'gap':>6s}  verdict")
+    rows = []
+    for name, (build, size, topology) in VALIDATION.items():
+        if names and name not in names:
+            continue
+        mesh = build(int(size * (0.4 if quick else 1.0)))
+        X = classical_mds(mesh, progress=False)
+        Z, info = spectral_mds(mesh, return_details=True, progress=False)
+        old = spectral_mds(mesh, progress=False, **OLD_DEFAULTS)
+        row = {"shape": name, "n": mesh.n_vertices, "topology": topology, "euler": mesh.euler_characteristic,
+               "boundary_edges": int(len(mesh.boundary_edges)), "gram_error": gram_error(Z, X),
+               "previous_gram_error": gram_error(old, X), "eigengap": info["eigengap"]}
+        row["pass"] = row["gram_error"] <= 0.01
+        rows.append(row)
+        print(f"{name:32s} {row['n']:6d} {topology:30s} {row['gram_error']:9.4f} {row['previous_gram_error']:9.4f} "
+              f"{row['eigengap']:6.2f}  {'PASS' if row['pass'] else 'FAIL'} (<= 0.01)", flush=True)
+    if rows:
+        print(f"largest Gram error: {max(r['gram_error'] for r in rows):.4f} (previous defaults: "
+              f"{max(r['previous_gram_error'] for r in rows):.4f})")
+    return rows
+
+
+# --- end to end at 51k vertices, interleaved against an earlier commit ----------------------------
+SPEED_CHILD = """
+import sys, time
+sys.path[:0] = [sys.argv[1], sys.argv[2]]
+import lbo_notebooks as lbo
+from lbo_notebooks.mds import spectral_mds
+from mds import deformed_torus
+assert lbo.__file__.startswith(sys.argv[1]), lbo.__file__
+spectral_mds(lbo.shapes.icosphere(3), k=60, n_samples=60, progress=False)   # warm-up: imports, lazy set-up
+mesh = deformed_torus(int(sys.argv[3]))
+_ = mesh.edges, mesh.face_areas
+cpu, start = time.process_time(), time.perf_counter()
+X, info = spectral_mds(mesh, return_details=True, progress=False)
+t = info["timings"]
+print(time.perf_counter() - start, time.process_time() - cpu, t["eigenbasis"], t["sampling"], t["embedding"])
+"""
+
+
+def part_speed(rev: str, pairs: int, n: int) -> dict:
+    """``spectral_mds`` with its defaults on a deformed torus of ``n`` vertices: this tree against ``rev``.
+
+    Each pair runs the old and the new code back to back, each in a fresh process (the old from a
+    ``git worktree`` of ``rev``), alternating which goes first; the machine is shared, so only the
+    per-pair ratios are compared (their median), not two separate runs.
+    """
+    import tempfile
+
+    root = Path(__file__).resolve().parents[1]
+    results: dict[str, list[list[float]]] = {"old": [], "new": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        old_tree = Path(tmp) / "old"
+        subprocess.run(["git", "-C", str(root), "worktree", "add", "--detach", str(old_tree), rev], check=True, capture_output=True)
+        try:
+            for i in range(pairs):
+                for name in (("old", "new") if i % 2 == 0 else ("new", "old")):
+                    tree = old_tree if name == "old" else root
+                    out = subprocess.run([sys.executable, "-c", SPEED_CHILD, str(tree), str(root / "benchmarks"), str(n)],
+                                         capture_output=True, text=True, check=True)
+                    results[name].append([float(v) for v in out.stdout.split()[-5:]])
+                    print(f"pair {i + 1} {name}: {results[name][-1][0]:.2f} s wall, {results[name][-1][1]:.2f} s CPU "
+                          f"(eigenbasis {results[name][-1][2]:.2f}, sampling {results[name][-1][3]:.2f}, "
+                          f"embedding {results[name][-1][4]:.2f})", flush=True)
+        finally:
+            subprocess.run(["git", "-C", str(root), "worktree", "remove", "--force", str(old_tree)], check=False)
+    old, new = np.array(results["old"]), np.array(results["new"])
+    ratio = old[:, 0] / new[:, 0]
+    cpu_ratio = old[:, 1] / new[:, 1]
+    print(f"\nspectral_mds defaults, deformed torus of {n} vertices, {pairs} interleaved pairs (old = {rev}, new = this tree)")
+    print(f"{'':5s} {'median s':>9s} {'min s':>7s} {'CPU s':>7s} {'eig s':>7s} {'samp s':>7s} {'emb s':>7s}")
+    for name, a in (("old", old), ("new", new)):
+        print(f"{name:5s} {np.median(a[:, 0]):9.2f} {a[:, 0].min():7.2f} {np.median(a[:, 1]):7.2f} "
+              f"{np.median(a[:, 2]):7.2f} {np.median(a[:, 3]):7.2f} {np.median(a[:, 4]):7.2f}")
+    print(f"old/new per pair: wall median {np.median(ratio):.2f} (min {ratio.min():.2f}), CPU median {np.median(cpu_ratio):.2f}")
+    return {"rev": rev, "n": n, "pairs": pairs, "old": results["old"], "new": results["new"],
+            "ratio_median": float(np.median(ratio)), "cpu_ratio_median": float(np.median(cpu_ratio))}
+
+
 # --- one measurement in this process -----------------------------------------------------------
 def _status_mib(field: str) -> float:
     """A memory field of /proc/self/status (VmRSS, VmHWM) in MiB (Linux)."""
@@ -331,6 +509,17 @@ def part_four(quick: bool, classical_max: int, sizes: list[int] | None = None) -
     return rows
 
 
+def _record(path: Path | None, key: str, value: object, header: dict) -> None:
+    """Store ``value`` under ``key`` (with this run's date, load and defaults) in the JSON file, keeping the rest."""
+    if path is None:
+        return
+    old = json.loads(path.read_text()) if path.exists() else {}
+    old[key] = {"date": header["date"], "load_average": max(header["load_average"], os.getloadavg()[0]),
+                "cores": header["cores"], "blas_threads": header["blas_threads"], "defaults": SMDS_DEFAULTS, "rows": value}
+    path.write_text(json.dumps(old, indent=1, default=float))
+    print(f"{key} written to {path}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small sizes only")
@@ -345,6 +534,11 @@ def main() -> None:
                     help="only the table of SMDS Gram errors over k and q, rows against pairs (tuning shapes)")
     ap.add_argument("--fcs-tuning", action="store_true",
                     help="only the table of fast classical scaling's Gram errors over q and mu (tuning shapes)")
+    ap.add_argument("--validation", nargs="*", metavar="SHAPE",
+                    help="only the validation-family table (all shapes, or the ones named)")
+    ap.add_argument("--speed", metavar="REV", help="only the interleaved end-to-end timing against commit REV")
+    ap.add_argument("--pairs", type=int, default=5, help="interleaved pairs of --speed")
+    ap.add_argument("--speed-n", type=int, default=51200, help="vertices of the --speed torus")
     ap.add_argument("--sizes", type=int, nargs="+", help="vertex counts of the scaling part")
     ap.add_argument("--merge", action="store_true",
                     help="merge the scaling rows into the existing --json file (same n replaced)")
@@ -362,6 +556,13 @@ def main() -> None:
           f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
     result: dict = {"load_average": os.getloadavg()[0], "cores": os.cpu_count(), "blas_threads": threads,
                     "defaults": SMDS_DEFAULTS, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+    if args.validation is not None:
+        rows = part_validation(args.quick, args.validation or None)
+        _record(args.json, "validation", rows, result)
+        return
+    if args.speed:
+        _record(args.json, "speed", part_speed(args.speed, args.pairs, args.speed_n), result)
+        return
     if args.energies:
         part_energies(args.quick)
         return
