@@ -68,7 +68,7 @@ __all__ = [
 #: the previous default (projected rows, k = q = 300) reached 0.9%; with q <= k the interpolation
 #: of the columns is underdetermined and depends on mu, with q = 1.5 k mu in 0.01-0.2 changes it by
 #: under 5%. Validated on twelve other shapes (creatures at other sizes, poses and proportions, a
-#: horse with holes, genus 1 and 2, two open sheets): at most 0.X% (``benchmarks/mds.py
+#: horse with holes, genus 1 and 2, two open sheets): at most 0.69% (``benchmarks/mds.py
 #: --validation``, recorded in ``benchmarks/results/mds.json``). k = 200 also keeps 51k vertices
 #: within 8 s (``--speed``).
 SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 300, "mu": 0.05, "sampled": "fields"}
