@@ -264,6 +264,23 @@ def part_validation(quick: bool, names: list[str] | None = None) -> list[dict]:
     return rows
 
 
+def part_growth(sizes: list[int]) -> list[dict]:
+    """The defaults (and the previous ones) on one shape, a walking dog, at growing resolution."""
+    from lbo_notebooks.creatures import creature
+
+    print(f"\nOne shape at growing resolution: walking dog, SMDS defaults {SMDS_DEFAULTS} and the previous {OLD_DEFAULTS}")
+    print(f"{'n':>6s} {'Gram err':>9s} {'previous':>9s}")
+    rows = []
+    for size in sizes:
+        mesh = creature("dog", "walking", n_vertices=size)
+        X = classical_mds(mesh, progress=False)
+        row = {"n": mesh.n_vertices, "gram_error": gram_error(spectral_mds(mesh, progress=False), X),
+               "previous_gram_error": gram_error(spectral_mds(mesh, progress=False, **OLD_DEFAULTS), X)}
+        rows.append(row)
+        print(f"{row['n']:6d} {row['gram_error']:9.4f} {row['previous_gram_error']:9.4f}", flush=True)
+    return rows
+
+
 # --- paper section 5: higher resolution at the same cost ------------------------------------------
 def at_points(mesh: Mesh, values: np.ndarray, points: np.ndarray) -> np.ndarray:
     """``values`` (one row per vertex of ``mesh``) interpolated linearly at the closest points of ``mesh`` to ``points``."""
@@ -630,6 +647,8 @@ def main() -> None:
                     help="only the table of fast classical scaling's Gram errors over q and mu (tuning shapes)")
     ap.add_argument("--validation", nargs="*", metavar="SHAPE",
                     help="only the validation-family table (all shapes, or the ones named)")
+    ap.add_argument("--growth", type=int, nargs="+", metavar="N",
+                    help="only the defaults on a walking dog of these sizes (accuracy against resolution)")
     ap.add_argument("--resolution", action="store_true",
                     help="only SMDS on a fine mesh against classical MDS on coarser ones, against a finer reference")
     ap.add_argument("--speed", metavar="REV", help="only the interleaved end-to-end timing against commit REV")
@@ -655,6 +674,9 @@ def main() -> None:
     if args.validation is not None:
         rows = part_validation(args.quick, args.validation or None)
         _record(args.json, "validation", rows, result)
+        return
+    if args.growth:
+        _record(args.json, "growth", part_growth(args.growth), result)
         return
     if args.resolution:
         _record(args.json, "resolution", part_resolution(), result)
