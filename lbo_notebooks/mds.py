@@ -61,9 +61,9 @@ __all__ = [
 #: vertices). The rule: fixed counts, independent of the area and the units (mu is dimensionless,
 #: :func:`scale_mu`), with more sampled fields than eigenfunctions (q = 1.5 k). The error depends on
 #: the shape's geometry more than on its resolution, but it does grow slowly with n (a walking dog:
-#: 0.47% at 3k vertices, 0.69% at 12k, 0.76% at 18k; ``--growth``); above about 25k vertices no
+#: 0.47% at 3k vertices, 0.69% at 12k, 0.79% at 23k; ``--growth``); above about 25k vertices no
 #: reference can be computed here (classical MDS needs two n x n matrices), so the 1% bound at 50k
-#: rests on that trend (about +0.1% per doubling of n). With ``sampled="fields"`` the embedding is not confined to
+#: rests on that trend (about +0.11% per doubling of n: some 0.9% at 50k for that dog). With ``sampled="fields"`` the embedding is not confined to
 #: the span of the eigenfunctions, so 200 of them do better than 300 with projected rows: on the
 #: tuning shapes (``benchmarks/mds.py --smds-tuning``: two creature poses, a dog with long legs and
 #: tail, a bumpy sphere, a thin torus) the Gram error against classical MDS was at most 0.6% where
