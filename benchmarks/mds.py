@@ -63,8 +63,16 @@ CPU seconds are far steadier than wall seconds under such load)::
     new       54.13   44.30   12.27   31.32   20.94    2.08
     old/new per pair: wall median 1.96 (min 1.12), CPU median 1.38
 
-The previous defaults took 10.5 s on a quiet machine (issue 30) for 16.9-17.5 s of CPU; at the same
-parallel efficiency the new defaults' 11.9-12.4 s of CPU are about 7.6 s (not measured quiet).
+Repeated 50 minutes later (``--pairs 3``, load average 5-7)::
+
+           median s   min s   CPU s   eig s  samp s   emb s
+    old       48.96   47.88   17.03   38.16   15.06    0.80
+    new       31.74   18.82   12.20   19.83   11.06    0.85
+    old/new per pair: wall median 1.54 (min 1.42), CPU median 1.40
+
+The previous defaults took 10.5 s on a quiet machine (issue 30) for 16.8-17.5 s of CPU; at the same
+parallel efficiency the new defaults' 11.9-12.4 s of CPU are about 7.5 s (7.5 s from the CPU ratio,
+6.8 s from the wall-time ratio of the quieter run; not measured on a quiet machine).
 
 One shape at growing resolution (``--growth 3000 6000 12000 18000 24000``, 2026-11-26 06:31 UTC,
 load average 13.8): the error grows by about 0.11% per doubling of n, so some 0.9% at 50k (where
