@@ -8,11 +8,12 @@ the same shape then get (nearly) the same canonical form, up to a rigid motion.
   top ``dim`` eigenpairs (a partial Lanczos solve, not a full eigendecomposition). O(n^2) memory.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
-* :func:`spectral_mds` — Aflalo & Kimmel (2013): the squared-distance matrix is interpolated in the
-  span of the first ``k`` Laplace–Beltrami eigenfunctions from the distance fields of q samples
-  (the smoothest interpolant: least biharmonic energy as in the paper, or least Dirichlet energy),
-  and the scaling is done in that k x k space. O(n k^2) time, O(n k + q n) memory; never forms an
-  n x n matrix.
+* :func:`spectral_mds` — Aflalo & Kimmel (2013): every column of the squared-distance matrix is
+  interpolated in the span of the first ``k`` Laplace–Beltrami eigenfunctions from its values at
+  q samples, whose whole distance fields are computed (the smoothest interpolant: least
+  biharmonic energy as in the paper, or least Dirichlet energy), and the scaling is done in a
+  (k + q)-dimensional space (k x k in the paper's form, ``sampled="rows"`` or ``"pairs"``).
+  O(n (k + q)^2) time, O(n k + q n) memory; never forms an n x n matrix.
 
 Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
 of the Gram matrices), and after an optimal rotation by :func:`procrustes_error`.
@@ -57,26 +58,40 @@ __all__ = [
 ]
 
 #: Defaults of :func:`spectral_mds` (``n_samples`` and ``k`` are capped at the number of
-#: vertices). Chosen on tuning shapes of 3.7-4.5k vertices (two creature poses, a bumpy sphere, a
-#: thin torus; ``benchmarks/mds.py --smds-tuning`` and ``--energies``) for a Gram error under 1%
-#: against classical MDS: the number of eigenfunctions sets the floor (the classical embedding
-#: projected onto 300 eigenfunctions already has a 0.6% Gram error on a dog). Interpolating whole
-#: sampled rows needs about as many samples as eigenfunctions (300 and 300: at most 0.75%), the
-#: q x q pairs among the samples about twice as many (300 and 600: at most 0.70%), so rows halve
-#: the geodesic solves. With the biharmonic energy, mu = 0.05 is within 15% of the best mu in
-#: 0.002-1 on every tuning shape (the Dirichlet energy is up to 10x worse at mu = 1).
-SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 300, "n_samples": 300, "mu": 0.05, "sampled": "rows"}
+#: vertices). The rule: fixed counts, independent of the area and the units (mu is dimensionless,
+#: :func:`scale_mu`), with more sampled fields than eigenfunctions (q = 1.5 k). The error depends on
+#: the shape's geometry more than on its resolution, but it does grow slowly with n (a walking dog:
+#: 0.47% at 3k vertices, 0.69% at 12k, 0.79% at 23k; ``--growth``); above about 25k vertices no
+#: reference can be computed here (classical MDS needs two n x n matrices), so the 1% bound at 50k
+#: rests on that trend (about +0.11% per doubling of n: some 0.9% at 50k for that dog). With ``sampled="fields"`` the embedding is not confined to
+#: the span of the eigenfunctions, so 200 of them do better than 300 with projected rows: on the
+#: tuning shapes (``benchmarks/mds.py --smds-tuning``: two creature poses, a dog with long legs and
+#: tail, a bumpy sphere, a thin torus) the Gram error against classical MDS was at most 0.6% where
+#: the previous default (projected rows, k = q = 300) reached 0.9%; with q <= k the interpolation
+#: of the columns is underdetermined and depends on mu, with q = 1.5 k mu in 0.01-0.2 changes it by
+#: under 5%. Validated on twelve other shapes (creatures at other sizes, poses and proportions, a
+#: horse with holes, genus 1 and 2, two open sheets): at most 0.69% (``benchmarks/mds.py
+#: --validation``, recorded in ``benchmarks/results/mds.json``). k = 200 also takes 51k vertices
+#: end to end with 0.71 of the previous defaults' CPU time (``--speed``; about 7.5 s on a quiet
+#: machine, estimated from that ratio and the previous 10.5 s).
+SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 300, "mu": 0.05, "sampled": "fields"}
 
-#: Lanczos tolerance of the eigenbasis :func:`spectral_mds` computes itself. The embedding lives
-#: in the span of the eigenfunctions and their eigenvalues weigh the smoothness term: 1e-8 gives
-#: both to round-off (eigenvalues to about 1e-14, the span of the first 290 of 300 to 1e-15 at
-#: 51k vertices) and saves 15-20% of the eigensolver's time against its default 1e-10.
-SMDS_EIGEN_TOL = 1e-8
+#: Lanczos tolerance of the eigenbasis :func:`spectral_mds` computes itself. The embedding only
+#: needs the span of the eigenfunctions and eigenvalues good to a few digits (they weigh the
+#: smoothness term): with 1e-6 the eigenvalues still agree with a 1e-10 basis to 1e-14 and the
+#: embedding to 1e-11 (an 8k-vertex dog, k = 200; no further gain in time at 1e-4). At 51k
+#: vertices the eigenbasis then took 11.1 s of CPU instead of 12.2 s at k = 300, and 7.2 s at the
+#: default k = 200 (one run each on a loaded machine, so only roughly).
+SMDS_EIGEN_TOL = 1e-6
 
-#: What :func:`spectral_mds` interpolates from: the samples' whole squared-distance rows
-#: ``D2[S, :]`` (q x n), or only the pairs among the samples ``D2[S, S]`` (q x q, the closed form of
+#: How :func:`spectral_mds` uses the samples' squared-distance rows ``F = D2[S, :]`` (q x n):
+#: ``"fields"`` keeps them whole and interpolates only the columns, ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``,
+#: so the embedding lives in the span of the eigenfunctions *and* of the sampled fields;
+#: ``"rows"`` also projects the rows onto the eigenfunctions, ``D2 ~ Phi alpha Phi.T`` with
+#: ``alpha = M F A Phi`` (the paper's form of the result, ``X = Phi B``); ``"pairs"`` uses only
+#: the pairs among the samples ``D2[S, S]`` (q x q), ``alpha = M D2[S, S] M.T`` (the closed form of
 #: Aflalo & Kimmel as reimplemented elsewhere).
-SAMPLED = ("rows", "pairs")
+SAMPLED = ("fields", "rows", "pairs")
 
 
 # --- small helpers ----------------------------------------------------------------------------
@@ -357,8 +372,8 @@ ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 def _check_sampled(sampled: Any) -> str:
     if not isinstance(sampled, str) or sampled not in SAMPLED:
         raise ValueError(
-            f"sampled must be 'rows' (the samples' whole distance fields) or 'pairs' (the distances among "
-            f"the samples only), got {sampled!r}."
+            f"sampled must be 'fields' (the samples' distance fields kept whole), 'rows' (those fields "
+            f"projected onto the eigenfunctions) or 'pairs' (the distances among the samples only), got {sampled!r}."
         )
     return sampled
 
@@ -410,6 +425,39 @@ def _scaling_in_span(gram: NDArray[np.float64], middle: NDArray[np.float64], dim
     return y, G
 
 
+def _scaling_with_fields(
+    phi: NDArray[np.float64], m: NDArray[np.float64], fields: NDArray[np.float64], M: NDArray[np.float64], dim: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Classical scaling of ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2`` (``sampled="fields"``), ``(X, G)``.
+
+    ``F`` = ``fields`` (q x n, squared distances), ``m`` the column means of ``Phi``. Then
+    ``B = -1/2 J D2 J = C middle C.T`` with ``C = J [Phi, F.T]`` (n x (k + q)) and
+    ``middle = -1/4 [[0, M], [M.T, 0]]``, and ``_scaling_in_span`` needs only ``C.T C``: built from
+    ``[Phi, F.T].T [Phi, F.T]`` minus the rank-one centring term, O(n (k + q)^2), without a copy of
+    ``F``. Returns the (uncentred) embedding and the eigenvalues, descending.
+    """
+    n, k = phi.shape
+    q = fields.shape[0]
+    f = fields.mean(axis=1)
+    gram = np.empty((k + q, k + q))
+    gram[:k, :k] = phi.T @ phi
+    gram[:k, k:] = phi.T @ fields.T
+    gram[k:, :k] = gram[:k, k:].T
+    gram[k:, k:] = fields @ fields.T
+    # Columns of unit length (before centring, so that the constant eigenfunction, which centring
+    # annihilates, stays at round-off and is dropped): eigenfunctions and squared distances have
+    # unrelated units.
+    unit = 1.0 / np.sqrt(np.diag(gram))
+    means = np.concatenate([m, f])
+    gram -= n * np.outer(means, means)
+    middle = np.zeros((k + q, k + q))
+    middle[:k, k:] = -0.25 * M
+    middle[k:, :k] = -0.25 * M.T
+    y, G = _scaling_in_span(gram * np.outer(unit, unit), middle / np.outer(unit, unit), dim)
+    y *= unit[:, None]
+    return phi @ y[:k] + fields.T @ y[k:], G
+
+
 @renamed({"n_eigs": "k"}, keyword_only=("n_samples", "k", "mu", "method"), n_positional=2)
 def spectral_mds(
     mesh: Mesh,
@@ -420,7 +468,7 @@ def spectral_mds(
     mu: float = 0.05,
     method: GeodesicMethod = "heat",
     energy: str = "biharmonic",
-    sampled: str = "rows",
+    sampled: str = "fields",
     spectrum: Spectrum | None = None,
     sampling: tuple[ArrayLike, ArrayLike] | None = None,
     progress: bool | None = None,
@@ -429,20 +477,31 @@ def spectral_mds(
     """Spectral MDS (Aflalo & Kimmel 2013): canonical form from q sampled distance rows.
 
     1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples S and
-       their geodesic distance fields; ``Phi_s`` the rows of Phi at the samples;
-    2. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` interpolates values at the samples by the
-       smoothest function of the span: least biharmonic energy (``p = 2``, the paper's choice,
-       default) or least Dirichlet energy (``p = 1``);
-    3. ``D2 ~ Phi alpha Phi.T`` with, for ``sampled="rows"`` (default), ``alpha = M D2[S, :] A Phi``:
-       each sampled row is projected onto the eigenfunctions exactly (its A-inner products), and
-       only the other direction is interpolated; for ``sampled="pairs"``, ``alpha = M D2[S, S] M.T``:
-       both directions are interpolated from the q x q block. ``alpha`` is then symmetrised. Each
-       geodesic solve yields a whole row anyway, and rows need about half the samples for the same
-       accuracy;
-    4. reduced scaling: with ``J Phi = Q R`` (Q orthonormal; R from the k x k Gram matrix, see
-       ``_scaling_in_span``), eigendecompose ``-1/2 R alpha R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
-    Cost O(n k^2 + q n k) plus q geodesic solves; memory O(n k + q n) (``"pairs"``: O(n k + q^2)).
-    No n x n matrix is formed.
+       their squared geodesic distance fields ``F = D2[S, :]`` (q x n); ``Phi_s`` the rows of Phi
+       at the samples;
+    2. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` (k x q) interpolates values at the samples
+       by the smoothest function of the span: least biharmonic energy (``p = 2``, the paper's
+       choice, default) or least Dirichlet energy (``p = 1``). Column j of D2 is the distance
+       field of vertex j, known at the samples (``F[:, j]``), so ``Phi M F`` interpolates every
+       column;
+    3. the approximate ``D2``, from which ``B = -1/2 J D2 J`` is scaled:
+
+       - ``sampled="fields"`` (default): ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``. The sampled rows
+         are kept as they are, so B lives in the span of ``J [Phi, F.T]`` (k + q columns) and the
+         embedding is not confined to the span of the eigenfunctions (whose projection of the
+         classical embedding is the floor of the other two forms);
+       - ``sampled="rows"``: ``D2 ~ Phi alpha Phi.T`` with ``alpha = M F A Phi`` (symmetrised):
+         each sampled row is also projected onto the eigenfunctions (its A-inner products). This is
+         the paper's form of the result, ``X = Phi B``;
+       - ``sampled="pairs"``: ``alpha = M D2[S, S] M.T``, both directions interpolated from the
+         q x q block among the samples (the closed form as reimplemented elsewhere); rows need
+         about half the samples for the same accuracy;
+    4. reduced scaling: with ``C = Q R`` (Q orthonormal; R from the small Gram matrix ``C.T C``,
+       see ``_scaling_in_span``), ``C = J [Phi, F.T]`` (fields) or ``J Phi`` (rows, pairs),
+       eigendecompose the small ``R middle R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
+
+    Cost O(n (k + q)^2) plus q geodesic solves and the eigenbasis; memory O(n k + q n)
+    (``"pairs"``: O(n k + q^2)). No n x n matrix is formed.
 
     Parameters
     ----------
@@ -451,10 +510,11 @@ def spectral_mds(
     dim : int, default 3
         Embedding dimension, ``dim < k``.
     n_samples : int, optional
-        Number of farthest-point samples q, ``2 <= q <= n``. Default ``min(300, n)``.
+        Number of farthest-point samples q, ``2 <= q <= n``. Default ``min(300, n)``
+        (:data:`SMDS_DEFAULTS`).
     k : int, optional
-        Number of LBO eigenfunctions k. Default ``min(300, n)``. Accuracy depends on it far more
-        than on mu: the embedding lives in their span.
+        Number of LBO eigenfunctions k. Default ``min(200, n)``. Accuracy depends on it and on q
+        far more than on mu.
     mu : float, default 0.05
         Dimensionless smoothness weight; the absolute weight is given by :func:`scale_mu`.
     method : {"heat", "exact", "fmm"}
@@ -463,9 +523,8 @@ def spectral_mds(
         Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
         ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was, each at its best ``mu``, as
         accurate or better, and far less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
-    sampled : {"rows", "pairs"}, default "rows"
-        Interpolate from the samples' whole squared-distance rows, or from the distances among
-        the samples only (see step 3).
+    sampled : {"fields", "rows", "pairs"}, default "fields"
+        What is kept of the samples' distance fields (see step 3).
     spectrum : Spectrum, optional
         A precomputed eigenbasis of ``mesh`` with at least ``k`` pairs (its first ``k``
         are used). Lets a parameter sweep pay for the eigenbasis once.
@@ -477,7 +536,7 @@ def spectral_mds(
     return_details : bool, default False
         Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
         problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``sampled``, ``alpha`` (the k x k
-        coefficients of ``D2 ~ Phi alpha Phi.T``) and ``timings`` (seconds for
+        coefficients of ``D2 ~ Phi alpha Phi.T``; ``None`` for ``"fields"``) and ``timings`` (seconds for
         ``eigenbasis``, ``sampling`` (including the distances), ``embedding``, ``total``).
 
     Returns
@@ -527,7 +586,7 @@ def spectral_mds(
 
     # 2. samples and their squared distances: whole rows (q x n), or only the q x q block among the
     # samples (each field is still solved on the whole mesh)
-    if sampling is None and sampled == "rows":
+    if sampling is None and sampled != "pairs":
         samples, ds = farthest_point_sampling(mesh, q, method=method, select="graph", return_distances=True, progress=progress)
         np.square(ds, out=ds)
     elif sampling is None:
@@ -541,14 +600,18 @@ def spectral_mds(
                 f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
             )
         samples = samples[:q].astype(np.int64)
-        ds = fields[:q] ** 2 if sampled == "rows" else fields[:q][:, samples] ** 2
+        ds = fields[:q] ** 2 if sampled != "pairs" else fields[:q][:, samples] ** 2
     t2 = time.perf_counter()
 
-    # 3. interpolation coefficients alpha (k x k)
+    # 3. the interpolation operator M (k x q), then the coefficients alpha (k x k) of D2 ~ Phi alpha Phi.T
     phi_s = phi[samples]
     mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
     M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
-    if sampled == "rows":
+    m = phi.mean(axis=0)
+    if sampled == "fields":
+        X, G = _scaling_with_fields(phi, m, ds, M, dim)
+        alpha = None
+    elif sampled == "rows":
         # Each row's coefficients are its A-inner products with the eigenfunctions; then the other
         # direction is interpolated. ds is this function's own array: a lumped mass scales it in place.
         mass = mass_operator(spectrum.mass)
@@ -560,13 +623,12 @@ def spectral_mds(
     else:
         alpha = M @ (0.5 * (ds + ds.T)) @ M.T
     del ds
-    alpha = 0.5 * (alpha + alpha.T)
-
-    # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
-    m = phi.mean(axis=0)
-    gram = phi.T @ phi - n * np.outer(m, m)
-    y, G = _scaling_in_span(gram, -0.5 * alpha, dim)
-    X = phi @ y
+    if alpha is not None:
+        alpha = 0.5 * (alpha + alpha.T)
+        # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
+        gram = phi.T @ phi - n * np.outer(m, m)
+        y, G = _scaling_in_span(gram, -0.5 * alpha, dim)
+        X = phi @ y
     X = fix_signs(X - X.mean(axis=0))
     t3 = time.perf_counter()
     if not return_details:
