@@ -193,7 +193,7 @@ def eigenbasis(
         precision. Eigenvalues converge as its square, and the basis is A-orthonormalised to
         round-off either way; a looser ``1e-8`` is faster at large ``k`` (at 51k vertices and
         ``k = 300``, 15-20%) and still gives the eigenvalues to about 1e-14 and the span of all
-        but the last few eigenvectors to round-off, which is what :func:`spectral_mds` needs.
+        but the last few eigenvectors to round-off (:func:`spectral_mds` asks for ``1e-6``).
 
     Returns
     -------

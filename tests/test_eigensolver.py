@@ -152,7 +152,7 @@ def test_bad_arguments():
 
 def test_a_looser_tolerance_keeps_the_eigenvalues_and_the_span():
     # tol bounds each pair's residual; eigenvalues converge as its square, and the basis is
-    # A-orthonormalised afterwards either way (spectral_mds asks for 1e-8).
+    # A-orthonormalised afterwards either way.
     mesh = shapes.bumpy_sphere(4)
     tight = eigenbasis(mesh, 120, solver="slicing")
     loose = eigenbasis(mesh, 120, solver="slicing", tol=1e-8)
