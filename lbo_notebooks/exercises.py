@@ -1189,7 +1189,7 @@ def check_mirror_maps(with_orientation: Any, without_orientation: Any, *, show: 
             given.append(value.strip().lower())
         if given == ["same position", "i -> i"]:
             return ("Right: intrinsically the mirror is the dog itself, so without the orientation term i -> i is a perfect map; "
-                    "it reverses orientation, and the only orientation-preserving near-isometry is the left–right swap.")
+                    "it reverses orientation, and the term asks for a map that preserves it: the left–right swap.")
         if given == ["i -> i", "same position"]:
             raise _Stop(WRONG, "The other way round: which of the two maps reverses orientation (a mirror does)?")
         if given[0] == "i -> i":
