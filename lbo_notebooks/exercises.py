@@ -757,7 +757,7 @@ def check_mesh_size(counts: Any, mesh: Any, *, show: bool = True) -> Feedback:
     >>> ball = shapes.icosphere(1)
     >>> check_mesh_size((ball.n_vertices, ball.n_faces), ball, show=False).correct
     True
-    >>> "swapped" in check_mesh_size((ball.n_faces, ball.n_vertices), ball, show=False).message
+    >>> "Swapped" in check_mesh_size((ball.n_faces, ball.n_vertices), ball, show=False).message
     True
     """
     def body() -> str:
