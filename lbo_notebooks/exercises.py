@@ -951,7 +951,7 @@ def check_validation_choice(chosen_beta: Any, beats_by_four: Any, errors: Mappin
             raise _Stop(WRONG, "Answer the second question with True or False.")
         truth = bool(np.all(np.asarray(errors[ref])[others] < np.asarray(err_lbo)[others] / 4))
         if bool(beats_by_four) != truth:
-            raise _Stop(WRONG, f"The β is right; compare its errors with a quarter of the eigenbasis' (`err_lbo`) on the two other poses.")
+            raise _Stop(WRONG, "The β is right; compare its errors with a quarter of the eigenbasis' (`err_lbo`) on the two other poses.")
         return f"Right: the choice made on {pose}, and its verdict on the two poses it did not see."
     return _run("08-validation", show, body)
 
@@ -1143,7 +1143,7 @@ def check_truncation_bound(bound: Any, spectrum: Any, f: Any, k: int, *, show: b
         if _near(got, ref, 1e-6):
             return f"Right: ‖∇f‖²/λ_{k} as a fraction of ‖f‖²_A (the first k functions are φ_0 ... φ_{k - 1})."
         candidates = (
-            (energy / lam[k - 1] / norm2, f"Off by one index: the first k functions are φ_0 ... φ_(k−1), so the bound divides by λ_k, the first one left out."),
+            (energy / lam[k - 1] / norm2, "Off by one index: the first k functions are φ_0 ... φ_(k−1), so the bound divides by λ_k, the first one left out."),
             (energy / lam[k + 1] / norm2 if k + 1 < len(lam) else np.nan, "Off by one index: the bound divides by λ_k, the first eigenvalue left out (indices from 0)."),
             (energy / lam[k], "That is the bound on ‖f − P_k f‖²_A itself; the question asks for it as a fraction of ‖f‖²_A."),
             (energy / lam[k] / float(g @ g), "Divide by ‖f‖²_A = fᵀ A f, the A-norm, not fᵀ f."),
