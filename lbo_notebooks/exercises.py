@@ -674,7 +674,7 @@ __all__ += [
 ]
 
 
-def _array(value: Any, what: str) -> np.ndarray:
+def _array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
     """The student's answer as a float array (sparse matrices densified), or a 'wrong' stop."""
     import scipy.sparse as sp
 
@@ -684,8 +684,8 @@ def _array(value: Any, what: str) -> np.ndarray:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
         raise _Stop(WRONG, f"Expected {what}, got {type(value).__name__}.") from None
-    if not np.all(np.isfinite(arr)):
-        raise _Stop(WRONG, f"Your {what} has NaN or infinite entries.")
+    if finite and not np.all(np.isfinite(arr)):
+        raise _Stop(WRONG, "Your answer has NaN or infinite entries.")
     return arr
 
 
@@ -1057,7 +1057,10 @@ def check_hks(hks_function: Any, spectrum: Any, *, show: bool = True) -> Feedbac
     def body() -> str:
         times = hks_times(spectrum, 4)
         ref = hks(spectrum, times)
-        h = _array(_call(hks_function, spectrum, times.copy()), "an array of shape (vertices, times)")
+        with np.errstate(over="ignore", invalid="ignore"):
+            h = _array(_call(hks_function, spectrum, times.copy()), "an array of shape (vertices, times)", finite=False)
+        if not np.all(np.isfinite(h)):
+            raise _Stop(WRONG, "Your values overflow or are NaN: e^(+λ t) grows without bound; heat decays, e^(−λ_i t).")
         if h.shape == ref.shape[::-1]:
             raise _Stop(WRONG, f"Transposed: one row per vertex and one column per time, shape {ref.shape}.")
         if h.shape != ref.shape:
@@ -1067,17 +1070,19 @@ def check_hks(hks_function: Any, spectrum: Any, *, show: bool = True) -> Feedbac
         phi, lam = spectrum.vectors, np.maximum(spectrum.values, 0.0)
         decay = np.exp(-np.outer(lam, times))
         mass = np.asarray(spectrum.mass.diagonal())
+        with np.errstate(over="ignore"):
+            growth = np.exp(np.outer(lam, times))
         candidates = (
             (phi @ decay, "Square the eigenfunctions: the sum is over φ_i(x)², not φ_i(x)."),
             (np.abs(phi) @ decay, "Square the eigenfunctions: φ_i(x)², not |φ_i(x)|."),
-            ((phi**2) @ np.exp(np.outer(lam, times)), "exp(+λ t) grows; heat decays: e^(−λ_i t)."),
+            ((phi**2) @ growth, "exp(+λ t) grows; heat decays: e^(−λ_i t)."),
             ((phi[:, 1:] ** 2) @ decay[1:], "The sum starts at i = 0: the constant φ_0 (λ_0 = 0) keeps its share of heat at every time."),
             ((phi**2)[:, :-1] @ decay[:-1], "Use every computed eigenpair: the last one is missing."),
             (mass[:, None] * ((phi**2) @ decay), "No mass matrix: the HKS is a value at each vertex, not an integral."),
             ((phi**2) @ np.exp(-lam)[:, None] * times[None, :], "The time goes inside the exponential: e^(−λ_i t)."),
         )
         for value, hint in candidates:
-            if _same(h, value, 1e-6):
+            if np.all(np.isfinite(value)) and _same(h, value, 1e-6):
                 raise _Stop(WRONG, hint)
         raise _Stop(WRONG, "Not Σ_i e^(−λ_i t) φ_i(x)²: try it on one vertex and one time by hand, "
                            "with `spectrum.values` and `spectrum.vectors`.")

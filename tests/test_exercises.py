@@ -589,6 +589,24 @@ def test_hks(two_spectra):
         _status(ex.check_hks(attempt, s, show=False), NOT_ATTEMPTED)
 
 
+def test_hks_hints_when_exp_plus_overflows(two_spectra):
+    """On a long spectrum (the dog's 60 eigenpairs) e^(+λ t) overflows: an infinite candidate must not match
+    every attempt, and an infinite attempt gets the exp(+λ t) hint."""
+    from lbo_notebooks.spectrum import Spectrum
+
+    s = two_spectra[0]
+    values = s.values.copy()
+    values[-1] *= 100.0                                   # lam_max / lam_1 large enough for exp(+lam t) to overflow
+    long = Spectrum(values, s.vectors.copy(), s.stiffness, s.mass)
+    decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
+    with np.errstate(over="ignore"):
+        from lbo_notebooks.descriptors import hks_times
+        assert not np.all(np.isfinite(np.exp(np.outer(long.values, hks_times(long, 4)))))
+    _status(ex.check_hks(lambda s, t: (s.vectors[:, 1:] ** 2) @ decay(s, t)[1:], long, show=False), WRONG, "starts at i = 0")
+    _status(ex.check_hks(lambda s, t: s.mass @ ((s.vectors**2) @ decay(s, t)), long, show=False), WRONG, "no mass matrix")
+    _status(ex.check_hks(lambda s, t: (s.vectors**2) @ np.exp(np.outer(s.values, t)), long, show=False), WRONG, "overflow")
+
+
 def test_functional_map(two_spectra):
     from lbo_notebooks import functional_maps as fm
 
