@@ -689,11 +689,6 @@ def _array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
     return arr
 
 
-def _close(x: np.ndarray, ref: np.ndarray, rtol: float = 1e-6) -> bool:
-    """Same shape and equal to ``rtol`` of the reference's largest entry."""
-    return x.shape == ref.shape and _same(x, ref, rtol)
-
-
 def _recap(exercise: str, answers: Any, questions: Mapping[int, Mapping[str, str | None]], show: bool) -> Feedback:
     """Several multiple-choice questions at once, ``{question: {choice: hint or None}}``; the feedback
     names the questions answered wrongly and their hints, never the right choice."""
