@@ -689,25 +689,20 @@ def _array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
     return arr
 
 
-def _recap(exercise: str, answers: Any, questions: Mapping[int, Mapping[str, str | None]], show: bool) -> Feedback:
-    """Several multiple-choice questions at once, ``{question: {choice: hint or None}}``; the feedback
-    names the questions answered wrongly and their hints, never the right choice."""
+def _recap(exercise: str, answers: list[Any], questions: list[Mapping[str, str | None]], show: bool) -> Feedback:
+    """Several multiple-choice questions in one check, each ``{choice: hint or None}`` (None: the right
+    one); the feedback gives the hints of the questions answered wrongly, never the right choice."""
     def body() -> str:
         _attempt(answers)
-        if not isinstance(answers, Mapping):
-            raise _Stop(WRONG, "Answer with a dict {question number: letter}, e.g. {1: \"a\", 2: ...}.")
         hints = []
-        for q, options in questions.items():
-            given = answers.get(q, answers.get(str(q)))
+        for q, (given, options) in enumerate(zip(answers, questions), 1):
             if not isinstance(given, str) or given.strip().lower() not in options:
                 hints.append(f"Question {q}: answer with one of " + ", ".join(f'"{o}"' for o in options) + ".")
-                continue
-            hint = options[given.strip().lower()]
-            if hint is not None:
+            elif (hint := options[given.strip().lower()]) is not None:
                 hints.append(f"Question {q}: {hint}")
         if hints:
-            raise _Stop(WRONG, " ".join(hints))
-        return f"Right: all {len(questions)}."
+            raise _Stop(WRONG, f"{len(answers) - len(hints)} of {len(answers)} right. " + " ".join(hints))
+        return f"Right, all {len(answers)}."
     return _run(exercise, show, body)
 
 
@@ -1018,19 +1013,19 @@ def check_rpca_objective(objective: Any, X: Any, W: Any, A: Any, P: Any, mu: flo
     return _run("08-objective", show, body)
 
 
-def check_recap_08(answers: Any, *, show: bool = True) -> Feedback:
-    """Exercise 08-recap: three multiple-choice questions on notebook 08, ``{1: letter, 2: letter, 3: letter}``."""
-    return _recap("08-recap", answers, {
-        1: {"a": "PCA on the coordinates then smoothed is not optimal for the combined objective; section 1 derives a closed form.",
-            "b": None,
-            "c": "Which term is maximised and which penalised? The eigenvalue problem keeps the *top* eigenvectors of a difference."},
-        2: {"a": None,
-            "b": "Centring removes only the constant direction; count the independent functions two poses give.",
-            "c": "Smoothness plays no part in plain PCA; the trouble is in the data term alone."},
-        3: {"a": "A dimensionless weight is not faster to compute: the solver factorises once either way.",
-            "b": "μ is never negative here; what changes about μ when the shape is scaled?",
-            "c": None},
-    }, show)
+def check_recap_08(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Exercise 08-recap: three multiple-choice questions on notebook 08, each answered with a letter."""
+    return _recap("08-recap", [q1, q2, q3], [
+        {"a": "PCA on the coordinates then smoothed is not optimal for the combined objective; section 1 derives a closed form.",
+         "b": None,
+         "c": "Which term is maximised and which penalised? The eigenvalue problem keeps the *top* eigenvectors of a difference."},
+        {"a": None,
+         "b": "Centring removes only the constant direction; count the independent functions two poses give.",
+         "c": "Smoothness plays no part in plain PCA; the trouble is in the data term alone."},
+        {"a": "A dimensionless weight is not faster to compute: the solver factorises once either way.",
+         "b": "μ is never negative here; what changes about μ when the shape is scaled?",
+         "c": None},
+    ], show)
 
 
 # --- 09 · the spectral toolbox ---------------------------------------------------------------------
@@ -1207,16 +1202,16 @@ def check_zoomout(answer: Any, *, show: bool = True) -> Feedback:
     }, show)
 
 
-def check_recap_09(answers: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-recap: three multiple-choice questions on notebook 09, ``{1: letter, 2: letter, 3: letter}``."""
-    return _recap("09-recap", answers, {
-        1: {"a": "Each eigenfunction is defined up to sign, and inside a cluster only up to rotation: compare φ_8 in section 1.",
-            "b": None,
-            "c": "The eigenfunctions change with the pose (signs, mixing); the HKS uses only squares and eigenvalues."},
-        2: {"a": None,
-            "b": "Which basis is A₂-orthonormal, and so needs A₂ to take coefficients?",
-            "c": "Π pulls functions from shape 1 back to shape 2, so it acts on Φ₁, between A₂ and Φ₁."},
-        3: {"a": "A functional map of size k sees only k coefficients; what bounds the rest?",
-            "b": "Eigenfunctions are not invariant (signs, mixing: section 1); the reason is a bound on what lies beyond φ_(k−1).",
-            "c": None},
-    }, show)
+def check_recap_09(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Exercise 09-recap: three multiple-choice questions on notebook 09, each answered with a letter."""
+    return _recap("09-recap", [q1, q2, q3], [
+        {"a": "Each eigenfunction is defined up to sign, and inside a cluster only up to rotation: compare φ_8 in section 1.",
+         "b": None,
+         "c": "The eigenfunctions change with the pose (signs, mixing); the HKS uses only squares and eigenvalues."},
+        {"a": None,
+         "b": "Which basis is A₂-orthonormal, and so needs A₂ to take coefficients?",
+         "c": "Π pulls functions from shape 1 back to shape 2, so it acts on Φ₁, between A₂ and Φ₁."},
+        {"a": "A functional map of size k sees only k coefficients; what bounds the rest?",
+         "b": "Eigenfunctions are not invariant (signs, mixing: section 1); the reason is a bound on what lies beyond φ_(k−1).",
+         "c": None},
+    ], show)

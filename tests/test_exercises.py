@@ -541,18 +541,19 @@ def test_rpca_objective_reference_and_unanswered(rpca_problem):
 
 
 def test_recaps():
-    _status(ex.check_recap_08({1: "b", 2: "a", 3: "c"}, show=False), CORRECT)
-    _status(ex.check_recap_08({"1": "B", "2": "a", "3": "c"}, show=False), CORRECT)
-    fb = ex.check_recap_08({1: "b", 2: "b", 3: "a"}, show=False)
-    _status(fb, WRONG, "question 2", "question 3", "centring")
+    _status(ex.check_recap_08("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_08(" B", "a", "c", show=False), CORRECT)
+    fb = ex.check_recap_08("b", "b", "a", show=False)
+    _status(fb, WRONG, "1 of 3 right", "question 2", "question 3", "centring")
     assert "question 1" not in fb.message.lower()
-    _status(ex.check_recap_08({1: "b", 2: "d", 3: "c"}, show=False), WRONG, "question 2: answer with one of")
-    _status(ex.check_recap_08({1: ..., 2: ..., 3: ...}, show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_08({1: "b", 2: ..., 3: "c"}, show=False), WRONG, "every part")
-    _status(ex.check_recap_08("bac", show=False), WRONG, "dict")
-    _status(ex.check_recap_09({1: "b", 2: "a", 3: "c"}, show=False), CORRECT)
-    _status(ex.check_recap_09({1: "c", 2: "b", 3: "c"}, show=False), WRONG, "question 1", "question 2")
-    _status(ex.check_recap_09({1: ..., 2: ..., 3: ...}, show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_08("b", "d", "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_08("b", 1, "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_08(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_08("b", ..., "c", show=False), WRONG, "every part")
+    _status(ex.check_recap_09("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_09("c", "b", "c", show=False), WRONG, "question 1", "question 2")
+    _status(ex.check_recap_09("b", "a", "b", show=False), WRONG, "question 3", "not invariant")
+    _status(ex.check_recap_09(..., ..., ..., show=False), NOT_ATTEMPTED)
 
 
 @pytest.fixture(scope="module")
