@@ -585,7 +585,7 @@ def test_floor_fraction():
     (ex.check_recap_06, (0.25, "A", "regular"), [(0, 0.5, "1/R²"), (0, 4, "upside down"), (1, "w", "conformally"),
                                                  (1, "both", "conformally"), (2, "scale-invariant", "section 6")]),
 ])
-def test_recaps(check, right, slips):
+def test_recaps_04_06(check, right, slips):
     _status(check(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in slips:
         answers = list(right)
@@ -770,3 +770,312 @@ def test_the_student_edition_is_the_series_the_site_publishes(tmp_path):
     assert [p.stem for p in edition.series(tmp_path)] == ["00_start_here", "02_laplace_beltrami"]
     (tmp_path / "00_start_here.ipynb").unlink()
     assert [p.stem for p in edition.series(tmp_path)] == ["02_laplace_beltrami", "42_draft"]
+
+# --- notebooks 00, 08, 09 ---------------------------------------------------------------------------
+
+def test_sphere_eigenvalues():
+    _status(ex.check_sphere_eigenvalues([0, 2, 2, 2, 6, 6, 6, 6, 6], show=False), CORRECT)
+    _status(ex.check_sphere_eigenvalues(np.array([0.0, 2, 2, 2, 6, 6, 6, 6, 6]), show=False), CORRECT)
+    _status(ex.check_sphere_eigenvalues([0, 1, 1, 1, 4, 4, 4, 4, 4], show=False), WRONG, "ℓ²")
+    _status(ex.check_sphere_eigenvalues([0, 2, 6, 12, 20, 30, 42, 56, 72], show=False), WRONG, "2ℓ+1 times")
+    _status(ex.check_sphere_eigenvalues([2, 2, 2, 6, 6, 6, 6, 6, 12], show=False), WRONG, "λ_0 = 0")
+    _status(ex.check_sphere_eigenvalues([6, 6, 6, 6, 6, 2, 2, 2, 0], show=False), WRONG, "increasing")
+    _status(ex.check_sphere_eigenvalues([0, 2, 2, 6], show=False), WRONG, "nine")
+    _status(ex.check_sphere_eigenvalues([0, 2, 2, 2, 6, 6, 6, 6, 7], show=False), WRONG, "2ℓ+1 times")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_sphere_eigenvalues(placeholder, show=False), NOT_ATTEMPTED)
+    _status(ex.check_sphere_eigenvalues([..., ...], show=False), NOT_ATTEMPTED)
+
+
+def test_mesh_size():
+    ball = shapes.icosphere(2)
+    v, f = ball.n_vertices, ball.n_faces
+    _status(ex.check_mesh_size((v, f), ball, show=False), CORRECT, "V - E + F = 2")
+    _status(ex.check_mesh_size([v, f], ball, show=False), CORRECT)
+    _status(ex.check_mesh_size((f, v), ball, show=False), WRONG, "swapped")
+    _status(ex.check_mesh_size((3 * v, f), ball, show=False), WRONG, "three per vertex")
+    _status(ex.check_mesh_size((v, 3 * f), ball, show=False), WRONG, "three per triangle")
+    _status(ex.check_mesh_size((v, len(ball.edges)), ball, show=False), WRONG, "edges")
+    _status(ex.check_mesh_size((v + 1, f), ball, show=False), WRONG, "rows")
+    _status(ex.check_mesh_size(v, ball, show=False), WRONG, "two numbers")
+    _status(ex.check_mesh_size((..., ...), ball, show=False), NOT_ATTEMPTED)
+    _status(ex.check_mesh_size((v, ...), ball, show=False), WRONG, "every part")
+
+
+def test_eigenfunction_of_the_torus():
+    from lbo_notebooks import eigenbasis
+
+    s = eigenbasis(shapes.torus(), 12)
+    _status(ex.check_eigenfunction(s.vectors[:, 6], 6, show=False), CORRECT)
+    _status(ex.check_eigenfunction(-3 * s.vectors[:, 6], 6, show=False), CORRECT)    # any sign or scale
+    _status(ex.check_eigenfunction(s.vectors[:, 5], 6, show=False), WRONG, "indices start at 0")
+    _status(ex.check_eigenfunction(s.vectors[:, 7], 6, show=False), WRONG, "larger eigenvalue")
+    _status(ex.check_eigenfunction(s.vectors[:, 5] + s.vectors[:, 6], 6, show=False), WRONG, "not an eigenfunction")
+    _status(ex.check_eigenfunction(s.vectors[:, :7], 6, show=False), WRONG, "one column")
+    _status(ex.check_eigenfunction(np.zeros(s.n_vertices), 6, show=False), WRONG, "zero")
+    _status(ex.check_eigenfunction(..., show=False), NOT_ATTEMPTED)
+
+
+def test_load_error(tmp_path):
+    import lbo_notebooks as lbo
+
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+    with pytest.raises(lbo.MeshError) as info:
+        lbo.load_mesh(bad)
+    _status(ex.check_load_error(info.value, show=False), CORRECT, "MeshError")
+    _status(ex.check_load_error(str(info.value), show=False), WRONG, "exception object")
+    _status(ex.check_load_error(lbo.MeshError, show=False), WRONG, "class")
+    _status(ex.check_load_error(IndexError("7"), show=False), WRONG, "IndexError")
+    _status(ex.check_load_error(shapes.icosphere(1), show=False), WRONG, "returned a mesh")
+    _status(ex.check_load_error(7, show=False), WRONG, "exception object")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_load_error(placeholder, show=False), NOT_ATTEMPTED)
+
+
+def test_rpca_limits():
+    _status(ex.check_rpca_limits("PCA + smooth", "eigenbasis", "intermediate", show=False), CORRECT)
+    _status(ex.check_rpca_limits("pca (6)", "eigenbasis", "intermediate", show=False), WRONG, "94")
+    _status(ex.check_rpca_limits("eigenbasis", "pca + smooth", "intermediate", show=False), WRONG, "which end")
+    _status(ex.check_rpca_limits("pca + smooth", "pca (6)", "intermediate", show=False), WRONG, "μ → ∞")
+    _status(ex.check_rpca_limits("pca + smooth", "eigenbasis", "small", show=False), WRONG, "each end")
+    _status(ex.check_rpca_limits("pca", "eigenbasis", "small", show=False), WRONG, "one of")
+    _status(ex.check_rpca_limits(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_rpca_limits("pca + smooth", ..., ..., show=False), WRONG, "every part")
+
+
+@pytest.fixture(scope="module")
+def rpca_problem():
+    """A small regularized-PCA problem: a bumpy sphere and a bent copy as two 'poses' (as in notebook 08, §1)."""
+    from lbo_notebooks.rpca import RegularizedPCA
+
+    small = shapes.bumpy_sphere(2)
+    W, A = operators.stiffness_matrix(small), operators.mass_matrix(small)
+    bent = small.vertices * [1.0, 1.2, 1.0] + 0.3 * small.vertices[:, [2]] ** 2 * [1.0, 0.0, 0.0]
+    solver = RegularizedPCA(np.hstack([small.vertices, bent]), W, A, center=True)
+    return solver, solver.solve(20, beta=1e-3), W, A
+
+
+def test_dirichlet_energies(rpca_problem):
+    _, result, W, A = rpca_problem
+    P = result.basis
+    ref = np.einsum("ij,ij->j", P, W @ P)
+    _status(ex.check_dirichlet_energies(ref, P, W, A, show=False), CORRECT)
+    _status(ex.check_dirichlet_energies(np.diag(P.T @ (W @ P)), P, W, A, show=False), CORRECT)
+    _status(ex.check_dirichlet_energies(P.T @ (W @ P), P, W, A, show=False), WRONG, "diagonal")
+    _status(ex.check_dirichlet_energies(np.einsum("ij,ij->j", P, A @ P), P, W, A, show=False), WRONG, "A-norm")
+    _status(ex.check_dirichlet_energies(np.einsum("ij,ij->j", P, P), P, W, A, show=False), WRONG, "neither")
+    _status(ex.check_dirichlet_energies(np.sqrt(np.abs(ref)), P, W, A, show=False), WRONG, "square root")
+    _status(ex.check_dirichlet_energies(ref / 2, P, W, A, show=False), WRONG, "factor of two")
+    _status(ex.check_dirichlet_energies((W @ P).sum(axis=0), P, W, A, show=False), WRONG, "vector")
+    _status(ex.check_dirichlet_energies(ref[:-1], P, W, A, show=False), WRONG, "one energy per column")
+    _status(ex.check_dirichlet_energies(ref + 1.0, P, W, A, show=False), WRONG, "einsum")
+    _status(ex.check_dirichlet_energies(..., P, W, A, show=False), NOT_ATTEMPTED)
+
+
+def test_validation_choice():
+    unseen = ["sitting", "tail_raised", "lying"]
+    errors = {1e-5: np.array([0.20, 0.30, 0.20]), 1e-4: np.array([0.05, 0.10, 0.06]),
+              1e-3: np.array([0.04, 0.15, 0.04]), 0.9: np.array([0.40, 0.40, 0.40])}
+    err_lbo = np.array([0.4, 0.4, 0.4])
+    check = lambda beta, four: ex.check_validation_choice(beta, four, errors, err_lbo, unseen, show=False)  # noqa: E731
+    _status(check(1e-4, True), CORRECT)
+    _status(check(1e-4, False), WRONG, "a quarter")
+    _status(check(0.9, True), WRONG, "largest")
+    _status(check(1e-3, True), WRONG, "other")
+    _status(check(3e-4, True), WRONG, "swept")
+    _status(check(1e-4, "yes"), WRONG, "True or False")
+    errors[1e-3] = np.array([0.03, 0.11, 0.04])                 # now best on average (peeking)
+    _status(check(1e-3, True), WRONG, "peeking")
+    _status(check(..., ..., ), NOT_ATTEMPTED)
+    _status(check(1e-4, ...), WRONG, "every part")
+
+
+def test_mu_scaling():
+    _status(ex.check_mu_scaling(64, show=False), CORRECT)
+    _status(ex.check_mu_scaling(3.0**6, scale=3, show=False), CORRECT)
+    _status(ex.check_mu_scaling(1 / 64, show=False), WRONG, "upside down")
+    _status(ex.check_mu_scaling(1, show=False), WRONG, "dimensionless")
+    _status(ex.check_mu_scaling(16, show=False), WRONG, "s_B alone")
+    _status(ex.check_mu_scaling(4, show=False), WRONG, "both")
+    _status(ex.check_mu_scaling(32, show=False), WRONG, "powers")
+    _status(ex.check_mu_scaling(10, show=False), WRONG, "4πm/area")
+    _status(ex.check_mu_scaling(..., show=False), NOT_ATTEMPTED)
+
+
+def _objective_variant(kind):
+    def objective(P, X, W, A, mu):
+        proj = P @ (P.T @ X) if kind == "euclid_proj" else P @ (P.T @ (A @ X))
+        R = proj - X
+        fit = np.sum(R * R) if kind == "euclid_norm" else np.sum(R * (A @ R))
+        energy = np.sum(P * ((A if kind == "A_energy" else W) @ P))
+        return {"no_mu": fit + energy, "minus": fit - mu * energy, "no_smooth": fit}.get(kind, fit + mu * energy)
+    return objective
+
+
+def _trace_identity(P, X, W, A, mu):
+    """The other side of notebook 08's identity: trace(Xᵀ A X) − trace(Pᵀ (A X Xᵀ A − μ W) P)."""
+    B = P.T @ (A @ X)
+    return np.trace(X.T @ (A @ X)) - (np.sum(B**2) - mu * np.sum(P * (W @ P)))
+
+
+@pytest.mark.parametrize("kind, hint", [("euclid_norm", "Euclidean norm"), ("euclid_proj", "P Pᵀ A x"), ("A_energy", "uses A"),
+                                        ("no_mu", "μ is missing"), ("minus", "wrong sign"), ("no_smooth", "missing")])
+def test_rpca_objective_hints(rpca_problem, kind, hint):
+    solver, result, W, A = rpca_problem
+    _status(ex.check_rpca_objective(_objective_variant(kind), solver.data, W, A, result.basis, result.mu, show=False), WRONG, hint)
+
+
+def test_rpca_objective_reference_and_unanswered(rpca_problem):
+    solver, result, W, A = rpca_problem
+    args = (solver.data, W, A, result.basis, result.mu)
+    _status(ex.check_rpca_objective(_objective_variant("right"), *args, show=False), CORRECT)
+    _status(ex.check_rpca_objective(_trace_identity, *args, show=False), CORRECT)            # equal for A-orthonormal P
+    _status(ex.check_rpca_objective(_solution_function("08-objective", "my_objective"), *args, show=False), CORRECT)
+    _status(ex.check_rpca_objective(lambda P, X, W, A, mu: 1.0, *args, show=False), WRONG, "each term")
+    _status(ex.check_rpca_objective(lambda P, X, W, A, mu: "big", *args, show=False), WRONG, "a number")
+    for attempt in (..., None, lambda P, X, W, A, mu: None, lambda *a: _stub(None)):
+        _status(ex.check_rpca_objective(attempt, *args, show=False), NOT_ATTEMPTED)
+
+
+def test_recaps_08_09():
+    _status(ex.check_recap_08("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_08(" B", "a", "c", show=False), CORRECT)
+    fb = ex.check_recap_08("b", "b", "a", show=False)
+    _status(fb, WRONG, "1 of 3 right", "question 2", "question 3", "centring")
+    assert "question 1" not in fb.message.lower()
+    _status(ex.check_recap_08("b", "d", "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_08("b", 1, "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_08(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_08("b", ..., "c", show=False), WRONG, "every part")
+    _status(ex.check_recap_09("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_09("c", "b", "c", show=False), WRONG, "question 1", "question 2")
+    _status(ex.check_recap_09("b", "a", "b", show=False), WRONG, "question 3", "not invariant")
+    _status(ex.check_recap_09(..., ..., ..., show=False), NOT_ATTEMPTED)
+
+
+@pytest.fixture(scope="module")
+def two_spectra():
+    """Two spectra on one triangulation (a bumpy sphere and a stretched copy), as the two poses of notebook 09."""
+    from lbo_notebooks import eigenbasis
+
+    one = shapes.bumpy_sphere(2)
+    two = one.with_vertices(one.vertices * [1.0, 1.3, 0.8])
+    return eigenbasis(one, 16), eigenbasis(two, 16)
+
+
+def test_hks(two_spectra):
+    from lbo_notebooks import descriptors
+
+    s = two_spectra[0]
+    decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
+    _status(ex.check_hks(descriptors.hks, s, show=False), CORRECT)
+    _status(ex.check_hks(lambda s, t: (s.vectors**2) @ np.exp(-np.outer(s.values, t)), s, show=False), CORRECT)  # raw lam_0
+    _status(ex.check_hks(_solution_function("09-hks", "my_hks"), s, show=False), CORRECT)
+    for attempt, hint in [
+        (lambda s, t: s.vectors @ decay(s, t), "square the eigenfunctions"),
+        (lambda s, t: (s.vectors**2) @ np.exp(np.outer(s.values, t)), "exp(+λ t)"),
+        (lambda s, t: (s.vectors[:, 1:] ** 2) @ decay(s, t)[1:], "starts at i = 0"),
+        (lambda s, t: ((s.vectors**2) @ decay(s, t)).T, "transposed"),
+        (lambda s, t: s.mass @ ((s.vectors**2) @ decay(s, t)), "no mass matrix"),
+        (lambda s, t: (s.vectors**2) @ np.exp(-s.values)[:, None] * t[None, :], "inside the exponential"),
+        (lambda s, t: (s.vectors**2)[:, :-1] @ decay(s, t)[:-1], "every computed eigenpair"),
+        (lambda s, t: (s.vectors**2) @ decay(s, t)[:, :1], "expected shape"),
+        (lambda s, t: (s.vectors**2) @ decay(s, 2 * t), "by hand"),
+    ]:
+        _status(ex.check_hks(attempt, s, show=False), WRONG, hint)
+    for attempt in (..., None, lambda s, t: None, lambda s, t: _stub(s)):
+        _status(ex.check_hks(attempt, s, show=False), NOT_ATTEMPTED)
+
+
+def test_hks_hints_when_exp_plus_overflows(two_spectra):
+    """On a long spectrum (the dog's 60 eigenpairs) e^(+λ t) overflows: an infinite candidate must not match
+    every attempt, and an infinite attempt gets the exp(+λ t) hint."""
+    from lbo_notebooks.spectrum import Spectrum
+
+    s = two_spectra[0]
+    values = s.values.copy()
+    values[-1] *= 100.0                                   # lam_max / lam_1 large enough for exp(+lam t) to overflow
+    long = Spectrum(values, s.vectors.copy(), s.stiffness, s.mass)
+    decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
+    with np.errstate(over="ignore"):
+        from lbo_notebooks.descriptors import hks_times
+        assert not np.all(np.isfinite(np.exp(np.outer(long.values, hks_times(long, 4)))))
+    _status(ex.check_hks(lambda s, t: (s.vectors[:, 1:] ** 2) @ decay(s, t)[1:], long, show=False), WRONG, "starts at i = 0")
+    _status(ex.check_hks(lambda s, t: s.mass @ ((s.vectors**2) @ decay(s, t)), long, show=False), WRONG, "no mass matrix")
+    _status(ex.check_hks(lambda s, t: (s.vectors**2) @ np.exp(np.outer(s.values, t)), long, show=False), WRONG, "overflow")
+
+
+def test_functional_map(two_spectra):
+    from lbo_notebooks import functional_maps as fm
+
+    one, two = two_spectra
+    reference = lambda p2p, s1, s2, k: fm.map_from_points(p2p, s1, s2, k_source=k, k_target=k)  # noqa: E731
+    mine = lambda p2p, s1, s2, k: s2.vectors[:, :k].T @ (s2.mass @ s1.vectors[p2p, :k])  # noqa: E731
+    _status(ex.check_functional_map(reference, one, two, show=False), CORRECT)
+    _status(ex.check_functional_map(mine, one, two, show=False), CORRECT)
+    _status(ex.check_functional_map(_solution_function("09-fmap", "my_functional_map"), one, two, show=False), CORRECT)
+    for attempt, hint in [
+        (lambda p, s1, s2, k: mine(p, s1, s2, k).T, "transposed"),
+        (lambda p, s1, s2, k: s2.vectors[:, :k].T @ s1.vectors[p, :k], "Euclidean inner product"),
+        (lambda p, s1, s2, k: s2.vectors[:, :k].T @ (s2.mass @ s1.vectors[:, :k]), "Π is missing"),
+        (lambda p, s1, s2, k: s2.vectors[:, :k].T @ (s2.mass @ s1.vectors[np.argsort(p), :k]), "wrong way round"),
+        (lambda p, s1, s2, k: s2.vectors[:, :k].T @ (s1.mass @ s1.vectors[p, :k]), "A₁"),
+        (lambda p, s1, s2, k: np.linalg.lstsq(s2.vectors[:, :k], s1.vectors[p, :k], rcond=None)[0], "least-squares"),
+        (lambda p, s1, s2, k: mine(p, s1, s2, k - 1), "k functions on each side"),
+        (lambda p, s1, s2, k: 2 * mine(p, s1, s2, k), "pull the first k"),
+    ]:
+        _status(ex.check_functional_map(attempt, one, two, show=False), WRONG, hint)
+    for attempt in (..., None, lambda p, s1, s2, k: None):
+        _status(ex.check_functional_map(attempt, one, two, show=False), NOT_ATTEMPTED)
+
+
+def test_truncation_bound(two_spectra):
+    from lbo_notebooks import representation_error
+
+    s = two_spectra[0]
+    f = s.vectors[:, :3] @ [0.0, 1.0, 0.5] + 0.1 * s.vectors[:, 10]          # a smooth function with a tail
+    f = f + 0.3 * s.vectors[:, 14]
+    W, A, lam, k = s.stiffness, s.mass, s.values, 8
+    energy, norm2 = f @ (W @ f), f @ (A @ f)
+    check = lambda b: ex.check_truncation_bound(b, s, f, k, show=False)  # noqa: E731
+    _status(check(energy / lam[k] / norm2), CORRECT)
+    _status(check(energy / lam[k - 1] / norm2), WRONG, "off by one")
+    _status(check(energy / lam[k + 1] / norm2), WRONG, "off by one")
+    _status(check(energy / lam[k]), WRONG, "fraction")
+    _status(check(energy / lam[k] / (f @ f)), WRONG, "A-norm")
+    _status(check(np.sqrt(energy / lam[k] / norm2)), WRONG, "square root")
+    _status(check(norm2 / lam[k] / norm2), WRONG, "Dirichlet energy")
+    _status(check(representation_error(s, f, k) / norm2), WRONG, "actually lost")
+    _status(check(0.5), WRONG, "fᵀ W f / λ_k")
+    _status(check(...), NOT_ATTEMPTED)
+
+
+def test_choices_of_09():
+    _status(ex.check_alpha_choice(1, show=False), CORRECT)
+    _status(ex.check_alpha_choice(1.0, show=False), CORRECT)
+    _status(ex.check_alpha_choice(0, show=False), WRONG, "regular metric")
+    _status(ex.check_alpha_choice(0.4, show=False), WRONG, "in part")
+    _status(ex.check_alpha_choice(2, show=False), WRONG, "0, 0.4 or 1")
+    _status(ex.check_alpha_choice("one", show=False), WRONG, "one of")
+    _status(ex.check_alpha_choice(..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_mirror_maps("same position", "i -> i", show=False), CORRECT)
+    _status(ex.check_mirror_maps("i -> i", "same position", show=False), WRONG, "other way round")
+    _status(ex.check_mirror_maps("i -> i", "i -> i", show=False), WRONG, "reverses orientation")
+    _status(ex.check_mirror_maps("same position", "same position", show=False), WRONG, "intrinsic")
+    _status(ex.check_mirror_maps("left", "i -> i", show=False), WRONG, "answer each")
+    _status(ex.check_mirror_maps(..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_zoomout("larger", show=False), CORRECT)
+    _status(ex.check_zoomout("same", show=False), WRONG, "50 more")
+    _status(ex.check_zoomout("smaller", show=False), WRONG, "sharpens")
+    _status(ex.check_zoomout(..., show=False), NOT_ATTEMPTED)
+
+
+def test_messages_of_00_08_09_never_give_the_answer():
+    """Wrong numeric answers: no message contains the reference value."""
+    cases = [(ex.check_mu_scaling(10, show=False), 64.0), (ex.check_mu_scaling(16, show=False), 64.0),
+             (ex.check_sphere_eigenvalues([0, 2, 2, 2, 6, 6, 6, 6, 7], show=False), 6.0)]
+    for feedback, answer in cases:
+        assert feedback.status == WRONG
+        numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
+        assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message
