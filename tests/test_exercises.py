@@ -158,7 +158,7 @@ def test_stiffness_reference_and_unanswered():
 
 
 def _pure_voronoi(mesh):
-    return sp.diags(ex._pure_voronoi(mesh))
+    return sp.diags(ex.basics._pure_voronoi(mesh))
 
 
 @pytest.mark.parametrize("attempt, hint", [
@@ -276,7 +276,7 @@ def test_jupyter_shows_one_coloured_line_once(monkeypatch):
     class Shell:
         execution_count = 7
 
-    monkeypatch.setattr(ex, "_shell", lambda: Shell())
+    monkeypatch.setattr(ex.feedback, "_shell", lambda: Shell())
     monkeypatch.setattr("IPython.display.display", lambda obj, raw=False: shown.append((obj, raw)))
     fb = ex.check_area_factor(..., scale=1.6)
     assert len(shown) == 1 and shown[0][1] and shown[0][0][ex.MIME_TYPE]["status"] == NOT_ATTEMPTED
@@ -294,7 +294,7 @@ def test_solution_is_revealed_on_request(capsys, monkeypatch):
     ex.solution("01-area")
     assert "1.6**2" in capsys.readouterr().out
     assert "No solution found" in ex.solution("99-nothing", show=False)
-    monkeypatch.setattr(ex, "_instructor_notebooks", lambda: None)
+    monkeypatch.setattr(ex.feedback, "_instructor_notebooks", lambda: None)
     assert "not part of this edition" in ex.solution("02-stiffness", show=False)
 
 
@@ -709,7 +709,7 @@ def test_cloud_eigenvalue():
     _status(ex.check_cloud_eigenvalue(10.4 / 12 - 1, values, 9, show=False), WRONG, "find ℓ")   # abs(ref) -> not "size"
     for placeholder in PLACEHOLDERS:
         _status(ex.check_cloud_eigenvalue(placeholder, values, 9, show=False), NOT_ATTEMPTED)
-    assert [ex._sphere_eigenvalue(k) for k in range(17)] == [0, 2, 2, 2, 6, 6, 6, 6, 6, 12, 12, 12, 12, 12, 12, 12, 20]
+    assert [ex.your_data._sphere_eigenvalue(k) for k in range(17)] == [0, 2, 2, 2, 6, 6, 6, 6, 6, 12, 12, 12, 12, 12, 12, 12, 20]
 
 
 def test_largest_component(messy_scan):

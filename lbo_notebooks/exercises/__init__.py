@@ -1,0 +1,56 @@
+"""Self-checks for the notebooks' exercises: feedback on an attempt, never the answer.
+
+Each exercise in the notebooks ends with a call such as ``exercises.check_stiffness(my_stiffness)``.
+The check compares the student's answer with the library (or with the exact value), and says one of
+
+- **correct**, sometimes with a remark (e.g. which of two valid mass matrices was built);
+- **wrong**, with a hint aimed at the typical mistake: a factor of two, a wrong sign, a transpose,
+  the Euclidean inner product where the ``A`` inner product belongs, a missing diagonal, ...;
+- **not attempted**, when the answer is still the placeholder the student edition leaves
+  (``...``, ``None``, ``NotImplemented``, a function that raises ``NotImplementedError`` or
+  returns nothing). This never raises, so the student edition runs top to bottom unanswered.
+
+Messages never contain the reference value. In Jupyter the feedback is shown as one coloured
+line (IPython's display machinery; plain text elsewhere), and the check returns a
+:class:`Feedback` whose ``correct`` attribute the autograder asserts (the hidden tests of the
+notebooks, see docs/exercises.md). :func:`solution` shows the instructor's solution of an
+exercise on purpose, read from the instructor edition (``notebooks/``) when it is available.
+
+This module needs neither the grader nor IPython; the checks import the heavier parts of the
+library (creatures, spectra) only when an attempt has to be compared with them.
+
+Examples
+--------
+>>> from lbo_notebooks import exercises
+>>> exercises.check_area_factor(..., scale=1.6, show=False).status
+'not attempted'
+>>> exercises.check_area_factor(1.6, scale=1.6, show=False).status
+'wrong'
+>>> exercises.check_area_factor(1.6**2, scale=1.6, show=False).correct
+True
+"""
+
+from .feedback import CORRECT, MIME_TYPE, NOT_ATTEMPTED, WRONG, Feedback, solution
+from .basics import check_edge_count, check_area_factor, check_stretch_growth, check_smallest_angles, check_leg_area, check_stiffness, check_mass, check_convergence_factor, check_coefficients, check_consistent_mass, check_eigenvalue_scaling, check_zero_eigenvalues
+from .your_data import check_repair_counts, check_operator_choice, check_cloud_eigenvalue, check_largest_component, check_neighbors_effect, check_cloud_pieces
+from .theory import check_projection, check_energy_bound, check_shifted_basis, check_consistent_optimality, check_extra_function, check_worst_ratio, check_recap_04, check_plane_minimum, check_plane_range, check_lowest_family, check_dual_value, check_interlacing, check_consistent_minmax, check_recap_05, check_gauss_bonnet, check_curvature_scaling, check_metric_scaling, check_best_alpha, check_floor_fraction, check_sphere_alpha, check_consistent_invariance, check_recap_06
+from .toolbox import check_sphere_eigenvalues, check_mesh_size, check_eigenfunction, check_load_error, check_rpca_limits, check_dirichlet_energies, check_validation_choice, check_mu_scaling, check_rpca_objective, check_recap_08, check_hks, check_functional_map, check_truncation_bound, check_alpha_choice, check_mirror_maps, check_zoomout, check_recap_09
+
+__all__ = [
+    "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "check_edge_count",
+    "check_area_factor", "check_stretch_growth", "check_smallest_angles", "check_leg_area",
+    "check_stiffness", "check_mass", "check_convergence_factor", "check_coefficients",
+    "check_consistent_mass", "check_eigenvalue_scaling", "check_zero_eigenvalues",
+    "check_repair_counts", "check_operator_choice", "check_cloud_eigenvalue",
+    "check_largest_component", "check_neighbors_effect", "check_cloud_pieces", "check_projection",
+    "check_energy_bound", "check_shifted_basis", "check_consistent_optimality",
+    "check_extra_function", "check_worst_ratio", "check_recap_04", "check_plane_minimum",
+    "check_plane_range", "check_lowest_family", "check_dual_value", "check_interlacing",
+    "check_consistent_minmax", "check_recap_05", "check_gauss_bonnet", "check_curvature_scaling",
+    "check_metric_scaling", "check_best_alpha", "check_floor_fraction", "check_sphere_alpha",
+    "check_consistent_invariance", "check_recap_06", "check_sphere_eigenvalues", "check_mesh_size",
+    "check_eigenfunction", "check_load_error", "check_rpca_limits", "check_dirichlet_energies",
+    "check_validation_choice", "check_mu_scaling", "check_rpca_objective", "check_recap_08",
+    "check_hks", "check_functional_map", "check_truncation_bound", "check_alpha_choice",
+    "check_mirror_maps", "check_zoomout", "check_recap_09",
+]

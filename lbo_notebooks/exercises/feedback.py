@@ -1,0 +1,279 @@
+"""The feedback of the exercises' self-checks, and revealing a solution on purpose.
+
+A check (in the sibling modules, one per part of the series) runs the student's attempt inside
+:func:`run_check`: it returns a :class:`Feedback` that says *correct*, *wrong* (with a hint) or
+*not attempted*, displays it, and never raises. The helpers here turn an attempt into a number,
+an array or a call result, or stop the check with :class:`Stop` and a message.
+
+Examples
+--------
+>>> run_check("00-demo", False, lambda: "Right.").status
+'correct'
+>>> run_check("00-demo", False, lambda: require_attempt(...)).status
+'not attempted'
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import re
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "Stop", "run_check",
+    "require_attempt", "as_number", "call_attempt", "close_to", "same_values", "choose",
+    "unanswered", "is_placeholder", "result",
+]
+
+CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
+MIME_TYPE = "application/vnd.lbo-notebooks.feedback+json"
+"""Extra MIME type of the displayed feedback: ``{"exercise", "status"}``, for scripts that read outputs."""
+
+_STYLE = {CORRECT: ("#1a7f37", "✔"), WRONG: ("#b42318", "✘"), NOT_ATTEMPTED: ("#8a6d00", "…")}
+
+
+class Feedback:
+    """The result of a check: exercise id, status and a message (which never gives the answer away).
+
+    Attributes
+    ----------
+    exercise : str
+        The exercise's id, e.g. ``"02-stiffness"`` (its cells in the notebook carry the grade ids
+        ``"02-stiffness-answer"`` and ``"02-stiffness-check"``).
+    status : {"correct", "wrong", "not attempted"}
+    message : str
+        One or two sentences, with inline code in backticks.
+
+    Examples
+    --------
+    >>> fb = Feedback("01-edges", "wrong", "Off by a factor of two.")
+    >>> fb.correct, fb.attempted
+    (False, True)
+    >>> print(fb)
+    01-edges · wrong: Off by a factor of two.
+    """
+
+    __slots__ = ("exercise", "status", "message", "_shown_at")
+
+    def __init__(self, exercise: str, status: str, message: str) -> None:
+        if status not in _STYLE:
+            raise ValueError(f"status must be one of {tuple(_STYLE)}, got {status!r}.")
+        self.exercise, self.status, self.message = exercise, status, message
+        self._shown_at: int | None = None
+
+    @property
+    def correct(self) -> bool:
+        return self.status == CORRECT
+
+    @property
+    def attempted(self) -> bool:
+        return self.status != NOT_ATTEMPTED
+
+    def __str__(self) -> str:
+        return f"{self.exercise} · {self.status}: {self.message}"
+
+    def __repr__(self) -> str:
+        return f"Feedback({self.exercise!r}, {self.status!r}, {self.message!r})"
+
+    def _repr_html_(self) -> str:
+        colour, mark = _STYLE[self.status]
+        text = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(self.message, quote=False))
+        reveal = ("" if self.correct else
+                  f' <span style="opacity: 0.6">(to see a solution: <code>exercises.solution("{html.escape(self.exercise)}")</code>)</span>')
+        return (f'<div class="lbo-feedback" data-exercise="{html.escape(self.exercise)}" data-status="{self.status}" '
+                f'style="border-left: 4px solid {colour}; padding: 2px 8px; margin: 2px 0">'
+                f'<b style="color: {colour}">{mark} {self.status}</b> · exercise {html.escape(self.exercise)}: {text}{reveal}</div>')
+
+    def _bundle(self) -> dict[str, Any]:
+        return {"text/plain": str(self), "text/html": self._repr_html_(),
+                MIME_TYPE: {"exercise": self.exercise, "status": self.status}}
+
+    def _ipython_display_(self) -> None:
+        # A check shows its feedback itself; returned as a cell's last value, it is not shown twice.
+        shell = _shell()
+        if shell is not None and self._shown_at == shell.execution_count:
+            return
+        _show(self)
+
+
+def _shell() -> Any:
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython is a dependency of JupyterLab
+        return None
+    return get_ipython()
+
+
+def _show(feedback: Feedback) -> None:
+    shell = _shell()
+    if shell is None:
+        print(feedback)
+        return
+    from IPython.display import display
+
+    display(feedback._bundle(), raw=True)
+    feedback._shown_at = shell.execution_count
+
+
+def result(exercise: str, status: str, message: str, show: bool) -> Feedback:
+    feedback = Feedback(exercise, status, message)
+    if show:
+        _show(feedback)
+    return feedback
+
+
+# --- the answer as given -------------------------------------------------------------------------
+
+def is_placeholder(x: Any) -> bool:
+    return x is None or x is Ellipsis or x is NotImplemented or (isinstance(x, str) and x.strip() in ("", "..."))
+
+
+def unanswered(x: Any) -> str | None:
+    """Why ``x`` counts as not attempted (a message), or None if it is an attempt."""
+    if is_placeholder(x):
+        return "Replace the `...` placeholder with your answer and run the cell again."
+    parts = list(x.values()) if isinstance(x, Mapping) else list(x) if isinstance(x, (list, tuple)) else []
+    if parts and all(is_placeholder(p) for p in parts):
+        return "Replace the `...` placeholders with your answers and run the cell again."
+    return None
+
+
+class Stop(Exception):
+    """Raised inside a check to finish it early with this feedback status and message."""
+
+    def __init__(self, status: str, message: str) -> None:
+        super().__init__(message)
+        self.status, self.message = status, message
+
+
+def run_check(exercise: str, show: bool, body: Callable[[], str]) -> Feedback:
+    """Run a check's body: it returns the message of a correct answer or raises Stop."""
+    try:
+        return result(exercise, CORRECT, body(), show)
+    except Stop as stop:
+        return result(exercise, stop.status, stop.message, show)
+
+
+def require_attempt(x: Any) -> None:
+    why = unanswered(x)
+    if why is not None:
+        raise Stop(NOT_ATTEMPTED, why)
+    if isinstance(x, (Mapping, list, tuple)):
+        parts = list(x.values()) if isinstance(x, Mapping) else list(x)
+        if any(is_placeholder(p) for p in parts):
+            raise Stop(WRONG, "Some parts are still `...`: fill in every part.")
+
+
+def as_number(x: Any, what: str = "a number") -> float:
+    try:
+        value = float(np.asarray(x, dtype=np.float64).reshape(()))
+    except (TypeError, ValueError):
+        raise Stop(WRONG, f"Expected {what}, got {type(x).__name__}.") from None
+    if not np.isfinite(value):
+        raise Stop(WRONG, f"Expected {what}, got {value}.")
+    return value
+
+
+def call_attempt(function: Any, *args: Any) -> Any:
+    """Call the student's function; placeholders and stubs count as not attempted."""
+    if is_placeholder(function):
+        raise Stop(NOT_ATTEMPTED, "Write the function, then run the cell again.")
+    if not callable(function):
+        raise Stop(WRONG, f"Pass the function itself (without calling it); got {type(function).__name__}.")
+    try:
+        value = function(*args)
+    except NotImplementedError:
+        raise Stop(NOT_ATTEMPTED, "The function body is still the stub: write it, then run the cell again.") from None
+    except Exception as err:  # the student's bug, reported, not raised
+        raise Stop(WRONG, f"Your function raised {type(err).__name__}: {err}") from None
+    if is_placeholder(value):
+        raise Stop(NOT_ATTEMPTED, "Your function returns nothing: still the stub, or a missing `return`?")
+    return value
+
+
+def close_to(x: float, target: float, rtol: float = 1e-2) -> bool:
+    return abs(x - target) <= rtol * abs(target)
+
+
+def choose(exercise: str, answer: Any, options: Mapping[str, str | None], show: bool) -> Feedback:
+    """A multiple-choice answer: ``options`` maps each choice to its hint (None: the right one)."""
+    def body() -> str:
+        require_attempt(answer)
+        if not isinstance(answer, str) or answer.strip().lower() not in options:
+            raise Stop(WRONG, "Answer with one of: " + ", ".join(f'"{o}"' for o in options) + ".")
+        hint = options[answer.strip().lower()]
+        if hint is not None:
+            raise Stop(WRONG, hint)
+        return "Right."
+    return run_check(exercise, show, body)
+
+def same_values(m: np.ndarray, ref: np.ndarray, rtol: float = 1e-8) -> bool:
+    return bool(np.abs(m - ref).max() <= rtol * max(np.abs(ref).max(), 1e-300))
+
+
+# --- revealing a solution on purpose -------------------------------------------------------------
+
+_REGION = re.compile(r"^[ \t]*(?:#+|<!--)\s*BEGIN SOLUTION.*?$\n(.*?)^[ \t]*(?:#+|<!--)\s*END SOLUTION.*?$",
+                     re.MULTILINE | re.DOTALL)
+
+
+def _instructor_notebooks() -> Path | None:
+    here = Path(__file__).resolve().parents[2] / "notebooks"
+    return here if here.is_dir() else None
+
+
+def solution(exercise: str, *, show: bool = True) -> str:
+    """The instructor's solution of one exercise, on purpose: try first, then look.
+
+    Reads the solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) of the cells with
+    the grade id ``<exercise>-answer`` (and ``<exercise>-explain``) in the instructor edition,
+    ``notebooks/`` of the checkout the package is installed from. The student edition has no
+    solutions in it; where no checkout is at hand (a handed-out edition), this says so.
+
+    Parameters
+    ----------
+    exercise : str
+        The exercise id shown by its check, e.g. ``"02-mass"``.
+    show : bool
+        Display the solution (as Markdown in Jupyter, as text elsewhere).
+
+    Returns
+    -------
+    str
+        The solution's text.
+
+    Examples
+    --------
+    >>> "BEGIN SOLUTION" not in solution("02-scaling", show=False)
+    True
+    """
+    folder = _instructor_notebooks()
+    if folder is None:
+        text = "The solutions are not part of this edition (no instructor notebooks found next to the package)."
+    else:
+        number = exercise.split("-", 1)[0]
+        pieces = []
+        for path in sorted(folder.glob(f"{number}_*.ipynb")):
+            for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+                grade_id = cell.get("metadata", {}).get("nbgrader", {}).get("grade_id", "")
+                if grade_id in (f"{exercise}-answer", f"{exercise}-explain"):
+                    source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+                    for region in _REGION.findall(source):
+                        pieces.append(f"```python\n{region.rstrip()}\n```" if cell["cell_type"] == "code" else region.strip())
+        text = "\n\n".join(pieces) if pieces else f"No solution found for exercise {exercise!r}."
+    if show:
+        shell = _shell()
+        if shell is None:
+            print(text)
+        else:
+            from IPython.display import Markdown, display
+
+            display(Markdown(f"**Solution of exercise {exercise}**\n\n{text}"))
+    return text
+
+
