@@ -2,7 +2,9 @@
 
 A *canonical form* (Elad & Kimmel 2003) embeds a surface in R^m so that Euclidean distances
 between the embedded vertices approximate geodesic distances on the surface. Isometric poses of
-the same shape then get (nearly) the same canonical form, up to a rigid motion.
+the same shape then get (nearly) the same canonical form: for exact isometries the same one up to a
+translation and an orthogonal map (a rotation or a reflection); real poses stretch slightly, so
+theirs nearly coincide.
 
 * :func:`classical_mds` — the reference: double-centre the n x n squared distances and keep the
   top ``dim`` eigenpairs (a partial Lanczos solve, not a full eigendecomposition). O(n^2) memory.
@@ -72,8 +74,8 @@ __all__ = [
 #: under 5%. Validated on twelve other shapes (creatures at other sizes, poses and proportions, a
 #: horse with holes, genus 1 and 2, two open sheets): at most 0.69% (``benchmarks/mds.py
 #: --validation``, recorded in ``benchmarks/results/mds.json``). k = 200 also takes 51k vertices
-#: end to end with 0.71 of the previous defaults' CPU time (``--speed``; about 7.5 s on a quiet
-#: machine, estimated from that ratio and the previous 10.5 s).
+#: end to end with 0.72 of the previous defaults' CPU time (``--speed``, recorded median; about 7.5 s
+#: on a quiet machine, estimated from that ratio and the previous 10.5 s).
 SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 300, "mu": 0.05, "sampled": "fields"}
 
 #: Lanczos tolerance of the eigenbasis :func:`spectral_mds` computes itself. The embedding only
@@ -391,8 +393,8 @@ def scale_mu(
 
     ``p = 1`` for the Dirichlet energy ``sum lam_i c_i^2`` and ``p = 2`` for the biharmonic one
     ``sum lam_i^2 c_i^2``. ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and
-    ``lam`` with 1/length^2; dividing them out makes ``mu`` dimensionless, so one default works for
-    any shape, size, resolution and sample count.
+    ``lam`` with 1/length^2; dividing them out makes ``mu`` dimensionless, so one value of ``mu``
+    can serve meshes of different sizes, resolutions, units and sample counts.
 
     Examples
     --------
@@ -529,7 +531,7 @@ def spectral_mds(
         A precomputed eigenbasis of ``mesh`` with at least ``k`` pairs (its first ``k``
         are used). Lets a parameter sweep pay for the eigenbasis once.
     sampling : (samples, distances), optional
-        A precomputed ``farthest_point_sampling(mesh, k, method=..., return_distances=True)``
+        A precomputed ``farthest_point_sampling(mesh, count, method=..., select="graph", return_distances=True)``
         with ``count >= n_samples``; its first ``n_samples`` are used (sampling is nested).
     progress : bool, optional
         Progress bar for the sampling.
