@@ -289,9 +289,9 @@ def test_jupyter_shows_one_coloured_line_once(monkeypatch):
 
 def test_solution_is_revealed_on_request(capsys, monkeypatch):
     text = ex.solution("02-stiffness", show=False)
-    assert "def " not in text and "np.cross" in text and "BEGIN SOLUTION" not in text
+    assert "def my_stiffness" in text and "np.cross" in text and "BEGIN SOLUTION" not in text
     assert capsys.readouterr().out == ""
-    ex.solution("01-area")
+    assert ex.solution("01-area") is None                            # shown once, not again as the value
     assert "1.6**2" in capsys.readouterr().out
     assert "No solution found" in ex.solution("99-nothing", show=False)
     monkeypatch.setattr(ex.feedback, "_instructor_notebooks", lambda: None)
@@ -509,7 +509,9 @@ def test_plane_minimum():
     _status(ex.check_plane_minimum((4 * 1.0 + 2.5) / 5, M, u, show=False), CORRECT)
     _status(ex.check_plane_minimum(2.5, M, u, show=False), WRONG, "optimal plane")
     _status(ex.check_plane_minimum((1.0 + 4 * 2.5) / 5, M, u, show=False), WRONG, "at the normal")
-    _status(ex.check_plane_minimum(4.0, M, u, show=False), WRONG, "maximum")
+    _status(ex.check_plane_minimum(4.0, M, u, show=False), WRONG, "maximum", "dividing by xᵀx")
+    w = 2 * v0 - v1                                              # in the plane, not unit length
+    _status(ex.check_plane_minimum(w @ M @ w, M, u, show=False), WRONG, "dividing by xᵀx")   # 6.5: no R gives it
     _status(ex.check_plane_minimum(1.0, M, u, show=False), WRONG, "v_0")
     _status(ex.check_plane_minimum(3.3, M, u, show=False), WRONG, "2×2")
     for placeholder in PLACEHOLDERS:

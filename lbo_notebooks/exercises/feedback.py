@@ -227,7 +227,7 @@ def _instructor_notebooks() -> Path | None:
     return here if here.is_dir() else None
 
 
-def solution(exercise: str, *, show: bool = True) -> str:
+def solution(exercise: str, *, show: bool = True) -> str | None:
     """The instructor's solution of one exercise, on purpose: try first, then look.
 
     Reads the solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) of the cells with
@@ -244,8 +244,9 @@ def solution(exercise: str, *, show: bool = True) -> str:
 
     Returns
     -------
-    str
-        The solution's text.
+    str or None
+        The solution's text with ``show=False``; ``None`` once it has been displayed (so that
+        Jupyter does not show it a second time as the cell's value).
 
     Examples
     --------
@@ -263,8 +264,14 @@ def solution(exercise: str, *, show: bool = True) -> str:
                 grade_id = cell.get("metadata", {}).get("nbgrader", {}).get("grade_id", "")
                 if grade_id in (f"{exercise}-answer", f"{exercise}-explain"):
                     source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
-                    for region in _REGION.findall(source):
-                        pieces.append(f"```python\n{region.rstrip()}\n```" if cell["cell_type"] == "code" else region.strip())
+                    for match in _REGION.finditer(source):
+                        region = match.group(1)
+                        if cell["cell_type"] != "code":
+                            pieces.append(region.strip())
+                            continue
+                        if region[:1] in (" ", "\t"):  # a function body: show it under its def line
+                            region = source[: match.start()] + region
+                        pieces.append(f"```python\n{region.rstrip()}\n```")
         text = "\n\n".join(pieces) if pieces else f"No solution found for exercise {exercise!r}."
     if show:
         shell = _shell()
@@ -274,6 +281,7 @@ def solution(exercise: str, *, show: bool = True) -> str:
             from IPython.display import Markdown, display
 
             display(Markdown(f"**Solution of exercise {exercise}**\n\n{text}"))
+        return None
     return text
 
 

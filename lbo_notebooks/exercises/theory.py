@@ -285,11 +285,14 @@ def check_plane_minimum(value: Any, M: Any, normal: Any, *, show: bool = True) -
         for slip, hint in (
             (lam[1], "That is λ_1, the value of the optimal plane (normal v_0); this normal is not v_0."),
             (float(u @ M_ @ u / (u @ u)), "That is R at the normal, which is not in the plane: minimise over the vectors orthogonal to u."),
-            (high, "That is the maximum on the plane; the question asks for the minimum."),
+            (high, "That is the maximum of R on the plane, where a min(...) also lands when one of its candidates "
+                   "is not a unit vector (xᵀMx without dividing by xᵀx): the question asks for the minimum of R."),
             (lam[0], "λ_0 needs v_0 in the plane, i.e. the normal orthogonal to v_0: is it?"),
         ):
             if close_to(got, slip, 1e-6):
                 raise Stop(WRONG, hint)
+        if got > high * (1 + 1e-6) or got < lam[0] * (1 - 1e-6) - 1e-12 * abs(lam[-1]):
+            raise Stop(WRONG, "No vector gives that value of R = xᵀMx / xᵀx: did you use xᵀMx without dividing by xᵀx (a vector that is not unit length)?")
         raise Stop(WRONG, "Write the plane as two orthonormal vectors orthogonal to u (columns of B); the minimum is the smaller eigenvalue of the 2×2 matrix Bᵀ M B.")
     return run_check("05-plane", show, body)
 
