@@ -1081,3 +1081,148 @@ def test_messages_of_00_08_09_never_give_the_answer():
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message
+
+
+# --- 07 --------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def rows_embedding():
+    """A small spectral MDS in the paper's form: (phi, alpha, X) with X the library's embedding."""
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.mds import spectral_mds
+
+    mesh = shapes.creature("dog", "walking", n_vertices=1000)
+    s = eigenbasis(mesh, 40)
+    X, details = spectral_mds(mesh, k=40, n_samples=60, sampled="rows", spectrum=s, return_details=True)
+    assert details["eigengap"] > 1.2                       # the top three directions are well defined
+    return s.vectors[:, :40], details["alpha"], X
+
+
+def _scaling(phi, alpha, dim, *, centre=True, factor=-0.5, power=0.5, smallest=False, transpose=False, orthonormal=False,
+             back="Q"):
+    """The k x k step of spectral MDS, and each of its typical slips."""
+    C = phi - phi.mean(axis=0) if centre else phi
+    if orthonormal:                                        # Phi^T Phi taken for I
+        Q, R = C, np.eye(phi.shape[1])
+    else:
+        Q, R = np.linalg.qr(C)
+    small = factor * (R.T @ alpha @ R if transpose else R @ alpha @ R.T)
+    G, U = np.linalg.eigh(small)
+    if not smallest:
+        G, U = G[::-1], U[:, ::-1]
+    G, U = G[:dim], U[:, :dim]
+    return (Q if back == "Q" else C) @ (U * np.abs(G) ** power)
+
+
+def test_small_scaling_reference_and_library(rows_embedding):
+    phi, alpha, X = rows_embedding
+    from lbo_notebooks.mds import gram_error
+
+    assert gram_error(_scaling(phi, alpha, 3), X) < 1e-8    # the k x k route is the library's embedding
+    _status(ex.check_small_scaling(_solution_function("07-scaling", "my_scaling"), phi, alpha, X, show=False), CORRECT, "k × k")
+    _status(ex.check_small_scaling(_scaling, phi, alpha, X, show=False), CORRECT)
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_small_scaling(placeholder, phi, alpha, X, show=False), NOT_ATTEMPTED)
+    _status(ex.check_small_scaling(lambda phi, alpha, dim: None, phi, alpha, X, show=False), NOT_ATTEMPTED)
+    _status(ex.check_small_scaling(lambda phi, alpha, dim: _stub(phi), phi, alpha, X, show=False), NOT_ATTEMPTED)
+
+
+@pytest.mark.parametrize("slip, hint", [
+    ({"centre": False}, "double-centred"),
+    ({"factor": -1.0}, "factor √2"),
+    ({"factor": 0.5}, "wrong sign"),
+    ({"factor": 0.5}, "smallest eigenpairs"),
+    ({"power": 1.0}, "square-rooted"),
+    ({"power": -0.5}, "G_m^(-½)"),
+    ({"smallest": True}, "smallest eigenpairs"),   # |G|^(1/2): the same embedding as the wrong sign
+    ({"orthonormal": True}, "A-orthonormal"),
+    ({"orthonormal": True, "centre": False}, "A-orthonormal"),   # the Gram error centres: J does not show
+    ({"transpose": True}, "transpose"),
+    ({"back": "C"}, "maps back with Q"),
+])
+def test_small_scaling_slips(rows_embedding, slip, hint):
+    phi, alpha, X = rows_embedding
+    _status(ex.check_small_scaling(lambda p, a, d: _scaling(p, a, d, **slip), phi, alpha, X, show=False), WRONG, hint)
+
+
+def test_small_scaling_shapes_and_other_mistakes(rows_embedding):
+    phi, alpha, X = rows_embedding
+    check = lambda f: ex.check_small_scaling(f, phi, alpha, X, show=False)  # noqa: E731
+    _status(check(lambda p, a, d: _scaling(p, a, d).T), WRONG, "transposed")
+    _status(check(lambda p, a, d: np.ones((p.shape[1], d))), WRONG, "coefficients")
+    _status(check(lambda p, a, d: np.ones(5)), WRONG, "one row per vertex")
+    _status(check(lambda p, a, d: _scaling(p, a, 3)), WRONG, "`dim` argument")
+    _status(check(lambda p, a, d: np.full((p.shape[0], d), np.nan)), WRONG, "NaN")
+    _status(check(lambda p, a, d: np.zeros((p.shape[0], d))), WRONG, "zeros")
+    _status(check(lambda p, a, d: 1.1 * _scaling(p, a, d)), WRONG, "Q R, S = −½ R α Rᵀ")
+    _status(check(lambda p, a, d: "x"), WRONG, "array")
+    _status(check(lambda p, a, d: 1 / 0), WRONG, "ZeroDivisionError")
+
+
+def test_classical_memory():
+    n = 50_000
+    ref = 2 * 8 * n**2 / 1e9
+    _status(ex.check_classical_memory(ref, n, show=False), CORRECT)
+    for wrong, hint in [(ref / 2, "two"), (ref * 1e9, "bytes"), (ref * 1e3, "megabytes"), (ref / 1.073741824, "GiB"),
+                        (ref / 8, "8 bytes"), (ref / 16, "entries of one matrix"), (2 * 8 * n / 1e9, "n²"), (3.0, "10⁹")]:
+        _status(ex.check_classical_memory(wrong, n, show=False), WRONG, hint)
+    _status(ex.check_classical_memory("forty", n, show=False), WRONG, "gigabytes")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_classical_memory(placeholder, n, show=False), NOT_ATTEMPTED)
+
+
+def test_gram_2d(rows_embedding):
+    from lbo_notebooks.mds import gram_error, procrustes_error
+
+    phi, alpha, X = rows_embedding
+    rng = np.random.default_rng(1)
+    Z = X + 0.05 * np.abs(X).max() * rng.normal(size=X.shape)     # an approximate embedding
+    ref = gram_error(Z[:, :2], X[:, :2])
+    _status(ex.check_gram_2d(ref, Z, X, show=False), CORRECT)
+    for wrong, hint in [(gram_error(Z[:, :2], X), "3-D classical"), (gram_error(Z, X), "dim=2"),
+                        (gram_error(X[:, :2], Z[:, :2]), "second"), (procrustes_error(Z[:, :2], X[:, :2]), "Procrustes"),
+                        (100 * ref, "percentage"), (0.5, "gram_error(Z, X)")]:
+        _status(ex.check_gram_2d(wrong, Z, X, show=False), WRONG, hint)
+    _status(ex.check_gram_2d(..., Z, X, show=False), NOT_ATTEMPTED)
+
+
+def test_choices_of_07():
+    _status(ex.check_fmm_gap("farther", show=False), CORRECT)
+    _status(ex.check_fmm_gap("Farther ", show=False), CORRECT)
+    _status(ex.check_fmm_gap("closer", show=False), WRONG, "reference")
+    _status(ex.check_fmm_gap("same", show=False), WRONG, "other numbers")
+    _status(ex.check_fmm_gap("far", show=False), WRONG, "one of")
+    _status(ex.check_fmm_gap(..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_landmark_samples("less", show=False), CORRECT)
+    _status(ex.check_landmark_samples("more", show=False), WRONG, "triangulation")
+    _status(ex.check_landmark_samples("as", show=False), WRONG, "interpolates nothing")
+    _status(ex.check_landmark_samples(None, show=False), NOT_ATTEMPTED)
+
+
+def test_recap_07():
+    right = (500, "rigid motion", "no")
+    _status(ex.check_recap_07(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, 200, "projected rows"), (0, 300, "eigenfunctions' columns"), (0, 250_000, "side"),
+                           (0, 7, "J [Φ, Fᵀ]"), (0, "five hundred", "expected"), (1, "scaling", "bends"),
+                           (1, "nothing", "Gram"), (2, "yes", "dashed")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_07(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_07(500, "maybe", "no", show=False), WRONG, "one of")
+    _status(ex.check_recap_07(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_07(500, ..., ..., show=False), WRONG, "every part")
+
+
+def test_messages_of_07_never_give_the_answer(rows_embedding):
+    phi, alpha, X = rows_embedding
+    from lbo_notebooks.mds import gram_error
+
+    Z = X + 0.05 * np.abs(X).max() * np.random.default_rng(2).normal(size=X.shape)
+    cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
+             (ex.check_classical_memory(37.25, 50_000, show=False), 40.0),
+             (ex.check_gram_2d(0.5, Z, X, show=False), gram_error(Z[:, :2], X[:, :2])),
+             (ex.check_recap_07(200, "rigid motion", "no", show=False), 500)]
+    for feedback, answer in cases:
+        assert feedback.status == WRONG
+        numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
+        assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message

@@ -1,0 +1,268 @@
+"""Self-checks of notebook 07 (spectral MDS, canonical forms).
+
+The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
+see :mod:`lbo_notebooks.exercises` for how an exercise works. The one the student builds is the
+small step of spectral MDS: from the eigenbasis ``Phi`` and the k x k coefficients ``alpha`` of
+``D2 ~ Phi alpha Phi.T`` to the embedding, through a k x k eigenproblem (notebook 07, section 2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose
+
+__all__ = [
+    "check_classical_memory", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
+    "check_landmark_samples", "check_recap_07",
+]
+
+
+# --- 07-memory -----------------------------------------------------------------------------------
+
+def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feedback:
+    """Exercise 07-memory: the memory classical MDS needs on ``n`` vertices, in GB (10⁹ bytes).
+
+    Two n x n float64 matrices (the squared distances and B), 8 bytes per entry.
+
+    Examples
+    --------
+    >>> check_classical_memory(2 * 8 * 10_000**2 / 1e9, 10_000, show=False).correct
+    True
+    >>> "two" in check_classical_memory(8 * 10_000**2 / 1e9, 10_000, show=False).message
+    True
+    """
+    def body() -> str:
+        require_attempt(gigabytes)
+        got = as_number(gigabytes, "a number of gigabytes")
+        ref = 2 * 8 * float(n) ** 2 / 1e9
+        if close_to(got, ref, 0.02):
+            return "Right: two n × n matrices of 8-byte floats; n² makes every tenfold in n a hundredfold in memory."
+        for slip, hint in (
+            (ref / 2, "Half of it: classical MDS keeps *two* n × n matrices (D² and B), each entry 8 bytes (float64)."),
+            (ref * 1e9, "That is in bytes; give gigabytes (10⁹ bytes)."),
+            (ref * 1e3, "That is in megabytes; give gigabytes (10⁹ bytes)."),
+            (ref / 1.073741824, "That is in GiB (2³⁰ bytes); the question asks for GB (10⁹ bytes)."),
+            (ref / 8, "You counted entries, not bytes: a float64 takes 8 bytes."),
+            (ref / 16, "You counted the entries of one matrix: there are two, 8 bytes per entry."),
+            (2 * 8 * n / 1e9, "Memory grows like n², not n: each matrix has n × n entries."),
+        ):
+            if close_to(got, slip, 0.02):
+                raise Stop(WRONG, hint)
+        raise Stop(WRONG, "Count the entries of two n × n matrices, times 8 bytes, and divide by 10⁹.")
+    return run_check("07-memory", show, body)
+
+
+# --- 07-scaling: build it yourself ------------------------------------------------------------------
+
+def _top(S: np.ndarray, dim: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``dim`` largest eigenpairs of a symmetric matrix, descending."""
+    G, U = np.linalg.eigh(0.5 * (S + S.T))
+    return G[::-1][:dim], U[:, ::-1][:, :dim]
+
+
+def _scaling_slips(phi: np.ndarray, alpha: np.ndarray, dim: int) -> tuple[np.ndarray, list[tuple[Any, str]]]:
+    """The embedding by the k x k route, and the typical slips as (embedding or predicate, hint)."""
+    J_phi = phi - phi.mean(axis=0)
+    Q, R = np.linalg.qr(J_phi)
+    S = -0.5 * (R @ alpha @ R.T)
+    G, U = _top(S, dim)
+    ref = Q @ (U * np.sqrt(np.maximum(G, 0.0)))
+
+    def embed(Qx: np.ndarray, Sx: np.ndarray) -> np.ndarray:
+        g, u = _top(Sx, dim)
+        return Qx @ (u * np.sqrt(np.abs(g)))
+
+    Q0, R0 = np.linalg.qr(phi)
+    Ge, Ue = _top(-0.5 * alpha, dim)
+    slips = [
+        (embed(Q0, -0.5 * (R0 @ alpha @ R0.T)),
+         "Not double-centred: B = −½ J D² J, so factor J Φ (`phi - phi.mean(axis=0)`), not Φ."),
+        (Q @ (U * np.sqrt(np.maximum(2 * G, 0.0))),
+         "Off by a factor √2 (your Gram matrix is twice the right one): B = −½ J D² J, mind the ½."),
+        (embed(Q, 0.5 * (R @ alpha @ R.T)),
+         "Those are the directions of B's most negative eigenvalues: a wrong sign (B = −½ J D² J, so the small matrix is "
+         "−½ R α Rᵀ), or the smallest eigenpairs (`np.linalg.eigh` sorts ascending); keep the largest."),
+        (Q @ (U * np.maximum(G, 0.0)),
+         "The eigenvalues are not square-rooted: X = Q U_m G_m^½ (the Gram matrix X Xᵀ is Q U G Uᵀ Qᵀ)."),
+        (Q @ (U / np.sqrt(np.maximum(G, 1e-300))),
+         "G_m^(-½) where G_m^½ belongs: X = Q U_m G_m^½."),
+        (J_phi @ (Ue * np.sqrt(np.maximum(Ge, 0.0))),
+         "Φ is A-orthonormal (Φᵀ A Φ = I), not orthonormal: Φᵀ Φ ≠ I, and B is a plain n × n matrix. "
+         "Factor J Φ = Q R (Euclidean) and eigendecompose −½ R α Rᵀ."),
+        (embed(Q, -0.5 * (R.T @ alpha @ R)),
+         "A transpose: the small matrix is −½ R α Rᵀ (R from J Φ = Q R), not −½ Rᵀ α R."),
+        (J_phi @ (U * np.sqrt(np.maximum(G, 0.0))),
+         "The last step maps back with Q, the orthonormal factor of J Φ = Q R: X = Q U_m G_m^½, not J Φ U_m G_m^½."),
+    ]
+    return ref, slips
+
+
+def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, show: bool = True) -> Feedback:
+    """Exercise 07-scaling: the student's ``scaling(phi, alpha, dim)``, spectral MDS's k x k step.
+
+    ``phi`` (n x k, A-orthonormal eigenvectors) and ``alpha`` (k x k, ``D2 ~ Phi alpha Phi.T``)
+    are those :func:`~lbo_notebooks.mds.spectral_mds` used (``sampled="rows"``), and
+    ``X_library`` its embedding. The attempt is compared with it by the Gram error (no alignment
+    needed), then with ``dim = 2``; a wrong one is matched against the typical slips (missing
+    double centring, the −½, square roots, the order of eigenpairs, Φᵀ Φ taken for I, a transpose).
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> phi = rng.normal(size=(50, 6)); a = rng.normal(size=(6, 6)); alpha = -(a @ a.T)
+    >>> def mine(phi, alpha, dim):
+    ...     Q, R = np.linalg.qr(phi - phi.mean(axis=0))
+    ...     G, U = np.linalg.eigh(-0.5 * R @ alpha @ R.T)
+    ...     return Q @ U[:, ::-1][:, :dim] * np.sqrt(G[::-1][:dim])
+    >>> check_small_scaling(mine, phi, alpha, mine(phi, alpha, 3), show=False).correct
+    True
+    """
+    from ..mds import gram_error
+
+    def body() -> str:
+        phi_, alpha_ = np.asarray(phi, dtype=np.float64), np.asarray(alpha, dtype=np.float64)
+        alpha_ = 0.5 * (alpha_ + alpha_.T)
+        library = np.asarray(X_library, dtype=np.float64)
+        n, k = phi_.shape
+        for dim, reference in ((library.shape[1], library), (2, None)):
+            X = call_attempt(scaling, phi_.copy(), alpha_.copy(), dim)
+            try:
+                X = np.asarray(X, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise Stop(WRONG, f"Return an array, one row per vertex (n × dim); got {type(X).__name__}.") from None
+            ref, slips = _scaling_slips(phi_, alpha_, dim)
+            if reference is None:
+                reference = ref
+            if X.shape == (dim, n):
+                raise Stop(WRONG, f"Transposed: return one row per vertex, shape ({n}, {dim}), not ({dim}, {n}).")
+            if X.shape == (k, dim):
+                raise Stop(WRONG, "That is a k × dim matrix of coefficients (C = U_m G_m^½); the embedding is Q C, one row per vertex.")
+            if dim == 2 and X.shape == (n, library.shape[1]):
+                raise Stop(WRONG, "Asked for dim = 2, you returned the same number of columns as before: use the `dim` argument, not a fixed number.")
+            if X.shape != (n, dim):
+                raise Stop(WRONG, f"Return one row per vertex and one column per dimension, shape ({n}, {dim}); got {X.shape}.")
+            if not np.all(np.isfinite(X)):
+                raise Stop(WRONG, "NaN in your embedding: a square root of a negative eigenvalue? `np.linalg.eigh` sorts "
+                                  "ascending, and B has negative eigenvalues at the bottom; keep the largest.")
+            if np.linalg.norm(X) == 0:
+                raise Stop(WRONG, "Your embedding is all zeros.")
+            if gram_error(X, reference) <= 1e-6:
+                continue
+            for slip, hint in slips:
+                if gram_error(X, slip) <= 1e-6:
+                    raise Stop(WRONG, hint + ("" if dim != 2 else " (seen with dim = 2)"))
+            if dim == 2:
+                raise Stop(WRONG, "Right for dim = 3 but not for dim = 2: use the `dim` argument, not a fixed 3.")
+            raise Stop(WRONG, "Not the library's embedding (Gram error above 1e-6). The steps: J Φ = Q R, S = −½ R α Rᵀ, "
+                              "the top eigenpairs S = U G Uᵀ, then X = Q U_m G_m^½.")
+        return ("Right: the library's embedding, from a k × k eigenproblem. B = −½ J Φ α Φᵀ J = Q S Qᵀ with S = −½ R α Rᵀ, "
+                "and nothing n × n was formed.")
+    return run_check("07-scaling", show, body)
+
+
+# --- closing exercises ------------------------------------------------------------------------------
+
+def check_fmm_gap(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 07-fmm: SMDS with fast-marching samples, against heat classical MDS: closer, same or farther."""
+    return choose("07-fmm", answer, {
+        "closer": "What is the reference computed from? Changing the sampled distances to another method changes "
+                  "what is being approximated, not only how well.",
+        "same": "The sampled distances enter D² directly: another geodesic method gives other numbers.",
+        "farther": None,
+    }, show)
+
+
+def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = True) -> Feedback:
+    """Exercise 07-two-d: the Gram error of 2-D spectral MDS against 2-D classical MDS.
+
+    Both methods keep the top eigenpairs of one matrix, so their 2-D embeddings are the first two
+    columns of the 3-D ones (up to signs); the reference is computed from those.
+    """
+    from ..mds import gram_error, procrustes_error
+
+    def body() -> str:
+        require_attempt(value)
+        got = as_number(value, "a Gram error (a number)")
+        S, C = np.asarray(X_smds, dtype=np.float64), np.asarray(X_classical, dtype=np.float64)
+        ref = gram_error(S[:, :2], C[:, :2])
+        if close_to(got, ref, 1e-3):
+            return "Right: the Gram error of the two 2-D embeddings, as small as in 3-D."
+        for slip, hint in (
+            (gram_error(S[:, :2], C), "You compared with the 3-D classical embedding: compare like with like, both in 2-D."),
+            (gram_error(S, C), "That is the 3-D Gram error; embed with `dim=2`."),
+            (gram_error(C[:, :2], S[:, :2]), "The reference is classical MDS: `gram_error(Z, X)` takes the reference second."),
+            (procrustes_error(S[:, :2], C[:, :2]), "That is the Procrustes error; the question asks for the Gram error."),
+            (100 * ref, "That is a percentage; give the fraction."),
+        ):
+            if close_to(got, slip, 1e-3):
+                raise Stop(WRONG, hint)
+        raise Stop(WRONG, "Use `gram_error(Z, X)` with Z the 2-D spectral MDS (`spectral_mds(..., dim=2)`) and X the 2-D classical MDS.")
+    return run_check("07-two-d", show, body)
+
+
+def check_landmark_samples(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 07-landmarks: landmark MDS with twice SMDS's samples: more, as, or less accurate than SMDS."""
+    return choose("07-landmarks", answer, {
+        "more": "Landmark MDS uses only the samples' distances to place each vertex, by triangulation; it interpolates "
+                "nothing. Does doubling the samples make up for that?",
+        "as": "Twice as many samples is a lot, but landmark MDS uses them differently: it interpolates nothing.",
+        "less": None,
+    }, show)
+
+
+# --- recap ------------------------------------------------------------------------------------------
+
+def _recap(exercise: str, answers: list[Any], judges: list[Callable[[Any], str | None]], show: bool) -> Feedback:
+    def body() -> str:
+        require_attempt(answers)
+        wrong = [f"Question {k}: {hint}" for k, (answer, judge) in enumerate(zip(answers, judges), 1)
+                 if (hint := judge(answer)) is not None]
+        if wrong:
+            raise Stop(WRONG, f"{len(answers) - len(wrong)} of {len(answers)} right. " + " ".join(wrong))
+        return f"Right, all {len(answers)}."
+    return run_check(exercise, show, body)
+
+
+def _pick(options: dict[str, str | None]) -> Callable[[Any], str | None]:
+    def judge(answer: Any) -> str | None:
+        key = answer.strip().lower() if isinstance(answer, str) else None
+        if key not in options:
+            return "answer with one of: " + ", ".join(f'"{o}"' for o in options) + "."
+        return options[key]
+    return judge
+
+
+def _size(k: int, q: int) -> Callable[[Any], str | None]:
+    def judge(answer: Any) -> str | None:
+        try:
+            got = as_number(answer)
+        except Stop as stop:
+            return stop.message
+        if got == k + q:
+            return None
+        if got == k:
+            return "k × k is the size with projected rows or pairs; the sampled fields add their own columns."
+        if got == q:
+            return "the eigenfunctions' columns count too."
+        if got in (k * k, (k + q) ** 2, k * q):
+            return "give the side of the square matrix, not its number of entries."
+        return "count the columns of J [Φ, Fᵀ]."
+    return judge
+
+
+def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
+    """Recap of notebook 07: (1) the side of the small eigenproblem with fields (k, q the defaults),
+    (2) how the canonical forms of two isometric poses differ, (3) whether more samples get projected
+    rows with 25 eigenfunctions under 1%."""
+    return _recap("07-recap", [q1, q2, q3], [
+        _size(int(k), int(q)),
+        _pick({"rigid motion": None,
+               "scaling": "geodesic distances do not change when a pose bends, so neither does their scale.",
+               "nothing": "classical MDS of equal distances gives equal Gram matrices."}),
+        _pick({"yes": "section 3: with rows the embedding lives in the span of the eigenfunctions; see the dashed line.",
+               "no": None}),
+    ], show)
