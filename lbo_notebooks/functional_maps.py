@@ -24,7 +24,9 @@ energy is quadratic in ``C``, so it is minimised exactly by one dense linear sol
 ``k_1 k_2`` (no iterative optimiser, no initial guess).
 
 A point map is recovered from ``C`` by nearest neighbours (:func:`points_from_map`), and ZoomOut
-(Melzi et al. 2019, :func:`zoomout`) alternates the two conversions while growing ``k``.
+(Melzi et al. 2019, :func:`zoomout`) alternates the two conversions while growing ``k``, on every
+vertex or, as its authors suggest for large meshes, on farthest-point samples with one final
+conversion on every vertex.
 """
 
 from __future__ import annotations
@@ -108,28 +110,34 @@ def _nearest_rows(queries: NDArray[np.float64], points: NDArray[np.float64], *, 
     """Index of the nearest row of ``points`` (Euclidean) for every row of ``queries``; exact.
 
     ``|q - p|^2 = |q|^2 - 2 q.p + |p|^2``, so the nearest ``p`` maximises ``q.p - |p|^2 / 2``:
-    with ``-|p|^2 / 2`` appended to every point and ``1`` to every query, that is one matrix
-    product per block of queries and an argmax along its rows. A k-d tree, the textbook answer,
-    degrades to a near-exhaustive search in the 30-80 dimensions of a spectral embedding, and
-    then its scalar distance loops lose to the matrix product by an order of magnitude
-    (benchmarks/matching.py). Blocks keep each product near 8 MB. ``dtype=np.float32`` halves the
-    time; the scores it compares differ by ``|p - p'|^2 / 2`` between neighbouring points, far
-    above its rounding, so only near-ties can change.
+    with ``-|p|^2 / 2`` appended to every point and ``1`` to every query, that is a matrix
+    product and an argmax along its rows, done on tiles of 1024 queries x 2048 points (at 50,000
+    x 50,000 points in 81 dimensions 40% faster than full rows of points, whose products leave
+    the cache before the argmax reads them). A k-d tree, the textbook answer, degrades to a
+    near-exhaustive search in the 30-80 dimensions of a spectral embedding, and there its scalar
+    distance loops lose to the matrix product by an order of magnitude (benchmarks/matching.py).
+    ``dtype=np.float32`` halves the time; the scores it compares differ by ``|p - p'|^2 / 2``
+    between neighbouring points, far above its rounding, so only near-ties can change.
     """
-    n_points = points.shape[0]
-    augmented = np.empty((points.shape[1] + 1, n_points), dtype=dtype)
+    n_points, dim = points.shape
+    augmented = np.empty((dim + 1, n_points), dtype=dtype)
     augmented[:-1] = points.T
     augmented[-1] = -0.5 * np.einsum("ij,ij->i", points, points)
-    block = max(1, (8 << 20) // (n_points * np.dtype(dtype).itemsize))
-    scores = np.empty((min(block, len(queries)), n_points), dtype=dtype)
-    rows = np.empty((scores.shape[0], points.shape[1] + 1), dtype=dtype)
+    rows = np.empty((len(queries), dim + 1), dtype=dtype)
+    rows[:, :-1] = queries
     rows[:, -1] = 1.0
     out = np.empty(len(queries), dtype=np.int64)
-    for start in range(0, len(queries), block):
-        q = queries[start : start + block]
-        rows[: len(q), :-1] = q
-        np.matmul(rows[: len(q)], augmented, out=scores[: len(q)])
-        out[start : start + len(q)] = scores[: len(q)].argmax(axis=1)
+    for start in range(0, len(queries), 1024):
+        block = rows[start : start + 1024]
+        best = np.full(len(block), -np.inf, dtype=dtype)
+        at = out[start : start + 1024]
+        for first in range(0, n_points, 2048):
+            scores = block @ augmented[:, first : first + 2048]
+            arg = scores.argmax(axis=1)
+            value = scores[np.arange(len(block)), arg]
+            better = value > best  # ties keep the lower index, as one argmax over all points would
+            best[better] = value[better]
+            at[better] = arg[better] + first
     return out
 
 

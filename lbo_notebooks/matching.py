@@ -4,8 +4,12 @@
 the metric ``|K|^alpha g`` (:func:`~lbo_notebooks.spectrum.eigenbasis` with ``alpha``), WKS
 descriptors, a ``k x k`` functional map from the quadratic energy of
 :func:`~lbo_notebooks.functional_maps.estimate_map` (descriptors, Laplacian commutativity,
-descriptor commutativity and orientation), then ZoomOut to ``k_final``. Nothing uses vertex
-indices: the target's vertices may come in any order.
+descriptor commutativity and orientation), then ZoomOut to ``k_final`` on 2000 farthest-point
+samples of each shape, and one final nearest-neighbour search over every vertex. Nothing uses
+vertex indices: the target's vertices may come in any order. At 25,000 vertices the eigenbases
+are most of the time: ZoomOut on every vertex took 54 s of CPU there, on the samples 2 s
+(sampling included), for a mean error of 0.0018 instead of 0.0005 sqrt(area)
+(benchmarks/matching.py).
 
 :func:`matching_error` is the standard score: for every target vertex the geodesic distance *on
 the source* between the predicted and the true match, divided by ``sqrt(source area)``;
