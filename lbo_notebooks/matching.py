@@ -90,9 +90,11 @@ def match(
     n_samples : int or None, default 2000
         ZoomOut iterates on this many farthest-point samples of each shape (chosen along the
         edges, :func:`~lbo_notebooks.geodesics.farthest_point_sampling` with ``select="graph"``)
-        and converts the final map to a point map once, on every vertex. ``None``, or a shape
-        with fewer vertices: iterate on every vertex. Each iteration then costs a nearest-
-        neighbour search among the samples instead of among all vertices.
+        and converts the final map to a point map once, on every vertex: each iteration then
+        searches nearest neighbours among the samples instead of among all vertices. Only when
+        both shapes have more than ``2.5 * n_samples`` vertices (5,000 by default); on smaller
+        shapes, and with ``None``, ZoomOut iterates on every vertex (at 3,000 vertices that was
+        as fast as 2,000 samples, and a little more accurate).
     progress : bool or None, default None
         A progress bar over the stages (eigenbases, descriptors, map, samples, ZoomOut). ``None``: only
         for shapes of 10,000 vertices or more, and only in a notebook or a terminal (never in a
@@ -139,7 +141,7 @@ def match(
         )
     check_progress(progress)
 
-    sampled = n_samples is not None and n_samples < n_min
+    sampled = n_samples is not None and n_min > 2.5 * n_samples
     long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
     with progress_bar(5 + sampled, "match", progress, long=long) as bar:
         def stage(name: str) -> None:
