@@ -202,7 +202,7 @@ def zoomout(
     k_final: int | None = None,
     step: int = 1,
     samples: tuple[ArrayLike, ArrayLike] | None = None,
-    progress: bool | None = False,
+    progress: bool | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """ZoomOut refinement (Melzi et al. 2019): grow ``C`` from (k, k) to (k_final, k_final).
 
@@ -226,9 +226,9 @@ def zoomout(
         ``Phi_2[S_2] C ~ Phi_1[p2p]`` on the samples, which needs many more samples than
         ``k_final`` and samples that cover the shapes evenly (farthest-point samples weigh every
         part of the surface alike). Default: every vertex, the map from :func:`map_from_points`.
-    progress : bool or None, default False
-        A progress bar over the iterations (``None``: only in a notebook or a terminal, and only
-        for meshes of 10,000 vertices or more).
+    progress : bool or None, default None
+        A progress bar over the iterations. ``None``: only for meshes of 10,000 vertices or
+        more, and only in a notebook or a terminal (never in a log file or under pytest).
 
     Returns
     -------

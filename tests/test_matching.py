@@ -307,6 +307,8 @@ def test_match_progress_bar_when_asked_and_silent_by_default(dog, capsys):
     lbo.match(dog, target, k=10, k_final=20, progress=True)
     assert "match" in capsys.readouterr().err
     s = lbo.eigenbasis(dog, 12)
+    fm.zoomout(np.eye(6), s, s)
+    assert capsys.readouterr().err == ""
     fm.zoomout(np.eye(6), s, s, progress=True)
     assert "ZoomOut" in capsys.readouterr().err
 
