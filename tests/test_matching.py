@@ -324,9 +324,13 @@ def test_default_progress_shows_in_a_terminal_only_for_long_calls(dog, monkeypat
     monkeypatch.setattr(lbo.matching, "LARGE_MESH", 1000)  # as if the dog were large
     lbo.match(dog, target, k=10, k_final=20)
     assert "match" in terminal.getvalue()
-    with _progress.progress_bar(3, "quiet", None, long=True) as bar:  # a log file: no terminal
-        monkeypatch.setattr(sys, "stderr", io.StringIO())
+    log = io.StringIO()  # stderr redirected to a file: no bar even for a long call
+    monkeypatch.setattr(sys, "stderr", log)
+    with _progress.progress_bar(3, "quiet", None, long=True) as bar:
         bar.update(3)
+    assert log.getvalue() == ""
+    with pytest.raises(ValueError, match="progress"):
+        _progress.check_progress(1)
 
 
 def test_default_progress_bar_shows_in_a_notebook():
