@@ -96,9 +96,9 @@ def match(
         shapes, and with ``None``, ZoomOut iterates on every vertex (at 3,000 vertices that was
         as fast as 2,000 samples, and a little more accurate).
     progress : bool or None, default None
-        A progress bar over the stages (eigenbases, descriptors, map, samples, ZoomOut). ``None``: only
-        for shapes of 10,000 vertices or more, and only in a notebook or a terminal (never in a
-        log file or under pytest).
+        A progress bar over the stages (eigenbases, descriptors, map, samples, ZoomOut).
+        ``None``: only for shapes of 10,000 vertices or more, and only in a notebook or a
+        terminal (never in a log file or under pytest).
 
     Returns
     -------
