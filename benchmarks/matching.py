@@ -23,7 +23,7 @@ Real sizes (``--sizes``): one dog standing -> walking pair per size, target shuf
 with its defaults and pyFM's default pipeline run in turn ``--repeats`` times; medians of wall
 and CPU seconds, and the median of the per-round ratios of wall times. The error is the mean
 over 2000 random target vertices (a wrong vertex costs a geodesic field on the source).
-2-core machine shared with other jobs (load 7-9), OPENBLAS_NUM_THREADS=1:
+2-core machine shared with other jobs (load 7-9), OPENBLAS_NUM_THREADS=1, PYTHONPATH=. :
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/matching.py --sizes 25000 50000 --repeats 2
 
@@ -32,6 +32,13 @@ over 2000 random target vertices (a wrong vertex costs a geodesic field on the s
      24705 pyFM default             0.0094     48.51    23.17
      49124 lbo.match                0.0018     41.38    20.55              4.41
      49124 pyFM default             0.0100    150.35    60.53
+
+A second run of the same command 15 minutes later (load 5-6), final code:
+
+     24705 lbo.match                0.0023     20.50     8.31              2.63
+     24705 pyFM default             0.0094     51.50    24.86
+     49124 lbo.match                0.0018     29.41    20.11              2.87
+     49124 pyFM default             0.0101     83.58    57.91
 
 On that loaded machine the wall times are 1.5-2.5x the CPU times; the eigensolver runs in two
 threads, so on a quiet machine ``match`` takes less wall time than CPU time. Where the time of
