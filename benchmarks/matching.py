@@ -17,18 +17,76 @@ Error: mean geodesic error on the source / sqrt(area) (heat-method distances). T
 times of the whole pipeline including eigenbases, on a shared machine: read the ratios.
 Run:
 
-    python benchmarks/matching.py            # both tables
-    python benchmarks/matching.py --record   # the second table only, also written to results/matching.json
+    python benchmarks/matching.py            # the 4k tables
+    python benchmarks/matching.py --record   # the semi-local scaling table only, also written to results/matching.json
 
 ``--record`` stores the semi-local scaling table with its date, machine load and BLAS threads;
 notebook 09 quotes those numbers as recorded and asserts its prose against the file.
+
+Real sizes (``--sizes``): one dog standing -> walking pair per size, target shuffled, ``match``
+with its defaults and pyFM's default pipeline run in turn ``--repeats`` times; medians of wall
+and CPU seconds, and the median of the per-round ratios of wall times. The error is the mean
+over 2000 random target vertices (a wrong vertex costs a geodesic field on the source).
+2-core machine shared with other jobs (load 7-9), OPENBLAS_NUM_THREADS=1, PYTHONPATH=. :
+
+    OPENBLAS_NUM_THREADS=1 python benchmarks/matching.py --sizes 25000 50000 --repeats 2
+
+         n method                    error  wall (s)  cpu (s)  pyFM wall / ours
+     24705 lbo.match                0.0023     11.98     8.12              4.90
+     24705 pyFM default             0.0094     48.51    23.17
+     49124 lbo.match                0.0018     41.38    20.55              4.41
+     49124 pyFM default             0.0100    150.35    60.53
+
+A second run of the same command 15 minutes later (load 5-6), final code:
+
+     24705 lbo.match                0.0023     20.50     8.31              2.63
+     24705 pyFM default             0.0094     51.50    24.86
+     49124 lbo.match                0.0018     29.41    20.11              2.87
+     49124 pyFM default             0.0101     83.58    57.91
+
+On that loaded machine the wall times are 1.5-2.5x the CPU times; the eigensolver runs in two
+threads, so on a quiet machine ``match`` takes less wall time than CPU time. Where the time of
+``match`` goes at 50k vertices (same pair, load about 6, wall / CPU seconds): eigenbases
+7.7 / 6.2 and 6.5 / 6.0, WKS 0.1, ``estimate_map`` 3.7 / 3.0, farthest-point samples 1.1 / 1.1,
+ZoomOut on the samples with the final search over every vertex 4.1 / 3.8.
+
+How ``match`` got there (issue 30; before: 135 s at 25k vertices, 129 s of it in the 26
+k-d-tree queries of ZoomOut's point maps). CPU seconds, one thread, dog pair at 25k vertices
+unless said otherwise; the machine was loaded, so CPU rather than wall time:
+
+* Nearest neighbours for one point map (25k x 25k rows, k = 80). ``cKDTree``: 34.5 s wall, one
+  query (in 80 dimensions a k-d tree visits nearly every point, with scalar loops). Matrix
+  products ``q.p - |p|^2/2`` in blocks of queries and an argmax: 1.97 s in double precision,
+  0.96 s in single (same points up to near-ties). Tiles of 1024 queries x 2048 points instead
+  of whole rows: 3.9 s instead of 6.6 s at 50k x 50k (random data, 80 dimensions).
+* Exact pruning by the triangle inequality (points grouped in balls around 500-1000 samples,
+  a ball skipped when ``|q - c| - r`` exceeds the best distance so far): only 1.3-4% of the
+  products are left, but the bookkeeping makes it 0.65-1.0 s, no better than the plain single
+  precision search. Grouping by the samples' cells on the mesh instead leaves 48-99% of the
+  products: in the 80-dimensional embedding a mesh edge is 0.9 long (median) against a nearest-
+  neighbour distance of 2.2 (median; 5.4 at the 90th percentile), so the balls are not small.
+  Not kept.
+* An approximate nearest-neighbour library: none is among the dependencies, and the exact
+  search is now about a tenth of the pipeline at 25k vertices, so it could save at most that.
+  Not tried.
+* ZoomOut (30 -> 80, step 2) on farthest-point samples of both shapes, then one search over
+  every vertex, against ZoomOut on every vertex (54.4 s, error 0.00047 on the dog pair):
+
+      samples   CPU s (sampling included)   error, dog   error, horse standing -> sitting
+        500           1.9                     0.0059        0.0111
+       1000           1.9                     0.0035        0.0076
+       2000           2.0                     0.0018        0.0051
+       4000           3.2                     0.0009        0.0050
+
+  2000 is the default (``match(n_samples=...)``). One more iteration on every vertex after the
+  sampled ones: 0.0018 -> 0.0014 for 1.2 s more; not kept.
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
-import sys
 import time
 from pathlib import Path
 
@@ -94,9 +152,42 @@ def record() -> None:
     print(f"written {path}")
 
 
+def large_pairs(sizes: list[int], repeats: int) -> None:
+    """Real sizes: ``match`` and pyFM's default pipeline, interleaved, on one pair per size."""
+    print("dog standing -> walking, target shuffled; wall and CPU seconds of the whole pipeline; runs interleaved")
+    print(f"{'n':>6s} {'method':22s} {'error':>8s} {'wall (s)':>9s} {'cpu (s)':>8s} {'pyFM wall / ours':>17s}")
+    for n in sizes:
+        source = creature("dog", "standing", n_vertices=n)
+        target, perm = shuffled(creature("dog", "walking", n_vertices=n), seed=n)
+        runs: dict[str, list[tuple[float, float]]] = {"lbo.match": [], "pyFM default": []}
+        errors: dict[str, float] = {}
+        # The mean error over 2000 random target vertices: each wrong vertex costs a geodesic
+        # field on the source, 50,000 of them would take longer than the matching.
+        scored = np.random.default_rng(0).choice(target.n_vertices, 2000, replace=False)
+        for _ in range(repeats):
+            for label, fn in (("lbo.match", lambda: match(source, target, progress=False)), ("pyFM default", lambda: pyfm(source, target, False))):
+                wall, cpu = time.perf_counter(), time.process_time()
+                p2p = fn()
+                runs[label].append((time.perf_counter() - wall, time.process_time() - cpu))
+                errors.setdefault(label, matching_error(source, p2p[scored], perm[scored]).mean())
+        ratio = np.median([b[0] / a[0] for a, b in zip(runs["lbo.match"], runs["pyFM default"])])
+        for label, times in runs.items():
+            wall, cpu = np.median(np.array(times), axis=0)
+            extra = f"{ratio:17.2f}" if label == "lbo.match" else ""
+            print(f"{source.n_vertices:6d} {label:22s} {errors[label]:8.4f} {wall:9.2f} {cpu:8.2f} {extra}", flush=True)
+
+
 def main() -> None:
-    if "--record" in sys.argv[1:]:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--sizes", type=int, nargs="*", help="vertex counts of the real-size table (e.g. 25000 50000); without it, the 4k tables")
+    parser.add_argument("--repeats", type=int, default=2, help="interleaved runs of each method per size (median reported)")
+    parser.add_argument("--record", action="store_true", help="only the semi-local scaling table, also written to results/matching.json")
+    args = parser.parse_args()
+    if args.record:
         record()
+        return
+    if args.sizes:
+        large_pairs(args.sizes, args.repeats)
         return
     methods = {
         "lbo.match (defaults)": lambda s, t: match(s, t),
@@ -117,6 +208,7 @@ def main() -> None:
             base = seconds if base is None else base
             err = matching_error(source, p2p, perm).mean()
             print(f"{name:42s} {label:24s} {err:8.4f} {seconds:9.2f} {seconds / base:12.2f}", flush=True)
+
     scaling_table()
 
 

@@ -4,8 +4,12 @@
 the metric ``|K|^alpha g`` (:func:`~lbo_notebooks.spectrum.eigenbasis` with ``alpha``), WKS
 descriptors, a ``k x k`` functional map from the quadratic energy of
 :func:`~lbo_notebooks.functional_maps.estimate_map` (descriptors, Laplacian commutativity,
-descriptor commutativity and orientation), then ZoomOut to ``k_final``. Nothing uses vertex
-indices: the target's vertices may come in any order.
+descriptor commutativity and orientation), then ZoomOut to ``k_final`` on 2000 farthest-point
+samples of each shape, and one final nearest-neighbour search over every vertex. Nothing uses
+vertex indices: the target's vertices may come in any order. At 25,000 vertices the eigenbases
+are most of the time: ZoomOut on every vertex took 54 s of CPU there, on the samples 2 s
+(sampling included), for a mean error of 0.0018 instead of 0.0005 sqrt(area)
+(benchmarks/matching.py).
 
 :func:`matching_error` is the standard score: for every target vertex the geodesic distance *on
 the source* between the predicted and the true match, divided by ``sqrt(source area)``;
@@ -15,9 +19,12 @@ below each threshold).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._progress import LARGE_MESH, check_progress, progress_bar
 from .functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
 from .mesh import Mesh
 from .spectrum import eigenbasis
@@ -36,6 +43,16 @@ def _unit_area(mesh: Mesh) -> Mesh:
     return mesh.with_vertices((v - v.mean(axis=0)) / np.sqrt(mesh.area))
 
 
+#: Default number of farthest-point samples per shape on which ZoomOut iterates (see :func:`match`).
+N_SAMPLES = 2000
+
+
+def _check_count(name: str, value: Any, minimum: int, hint: str = "") -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}.{hint}")
+    return int(value)
+
+
 def match(
     source: Mesh,
     target: Mesh,
@@ -48,6 +65,8 @@ def match(
     commutativity_weight: float = COMMUTATIVITY_WEIGHT,
     orientation_weight: float = ORIENTATION_WEIGHT,
     zoomout_step: int = 2,
+    n_samples: int | None = N_SAMPLES,
+    progress: bool | None = None,
 ) -> NDArray[np.int64]:
     """Point-to-point correspondence from ``target`` to ``source`` by functional maps.
 
@@ -68,6 +87,18 @@ def match(
         Weights of :func:`~lbo_notebooks.functional_maps.estimate_map`.
     zoomout_step : int, default 2
         Functions added per ZoomOut iteration.
+    n_samples : int or None, default 2000
+        ZoomOut iterates on this many farthest-point samples of each shape (chosen along the
+        edges, :func:`~lbo_notebooks.geodesics.farthest_point_sampling` with ``select="graph"``)
+        and converts the final map to a point map once, on every vertex: each iteration then
+        searches nearest neighbours among the samples instead of among all vertices. Only when
+        both shapes have more than ``2.5 * n_samples`` vertices (5,000 by default); on smaller
+        shapes, and with ``None``, ZoomOut iterates on every vertex (at 3,000 vertices that was
+        as fast as 2,000 samples, and a little more accurate).
+    progress : bool or None, default None
+        A progress bar over the stages (eigenbases, descriptors, map, samples, ZoomOut).
+        ``None``: only for shapes of 10,000 vertices or more, and only in a notebook or a
+        terminal (never in a log file or under pytest).
 
     Returns
     -------
@@ -85,28 +116,67 @@ def match(
     """
     from .descriptors import wks
     from .functional_maps import estimate_map, zoomout
+    from .geodesics import farthest_point_sampling
 
+    # Every argument is checked before anything is computed.
     source, target = _check_mesh(source, "source"), _check_mesh(target, "target")
-    for name, value in (("k", k), ("k_final", k_final)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 2:
-            raise ValueError(f"{name} must be an integer >= 2, got {value!r}.")
+    k = _check_count("k", k, 2)
+    k_final = _check_count("k_final", k_final, 2)
     if k_final < k:
         raise ValueError(f"k_final ({k_final}) must be at least k ({k}); use k_final=k to skip ZoomOut.")
     n_min = min(source.n_vertices, target.n_vertices)
     if k_final >= n_min:
         raise ValueError(f"k_final ({k_final}) must be smaller than the vertex count of the smaller shape ({n_min}).")
-    s1, s2 = _unit_area(source), _unit_area(target)
-    e1 = eigenbasis(s1, k_final, alpha=alpha)
-    e2 = eigenbasis(s2, k_final, alpha=alpha)
-    d1 = wks(e1, n_energies=n_descriptors)
-    d2 = wks(e2, n_energies=n_descriptors)
-    C = estimate_map(
-        s1, s2, e1, e2, d1, d2, k=k,
-        laplacian_weight=laplacian_weight,
-        commutativity_weight=commutativity_weight,
-        orientation_weight=orientation_weight,
-    )
-    return zoomout(C, e1, e2, k_final=k_final, step=zoomout_step)[1]
+    if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
+        raise ValueError(f"alpha must be a number in [0, 1] (the exponent of the metric |K|^alpha g), got {alpha!r}.")
+    n_descriptors = _check_count("n_descriptors", n_descriptors, 1, " It is the number of WKS energies.")
+    for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
+        if isinstance(w, bool) or not (np.isscalar(w) and np.isfinite(w) and w >= 0):
+            raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
+    zoomout_step = _check_count("zoomout_step", zoomout_step, 1, " It is the number of functions ZoomOut adds per iteration.")
+    if n_samples is not None:
+        n_samples = _check_count(
+            "n_samples", n_samples, 2 * k_final,
+            f" ZoomOut fits maps of up to k_final={k_final} functions on the samples; use n_samples=None for every vertex.",
+        )
+    check_progress(progress)
+
+    sampled = n_samples is not None and n_min > 2.5 * n_samples
+    long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
+    with progress_bar(5 + sampled, "match", progress, long=long) as bar:
+        def stage(name: str) -> None:
+            bar.set_postfix_str(name, refresh=True)
+
+        s1, s2 = _unit_area(source), _unit_area(target)
+        stage("eigenbasis of the source")
+        e1 = eigenbasis(s1, k_final, alpha=alpha)
+        bar.update()
+        stage("eigenbasis of the target")
+        e2 = eigenbasis(s2, k_final, alpha=alpha)
+        bar.update()
+        stage("descriptors")
+        d1 = wks(e1, n_energies=n_descriptors)
+        d2 = wks(e2, n_energies=n_descriptors)
+        bar.update()
+        stage("functional map")
+        C = estimate_map(
+            s1, s2, e1, e2, d1, d2, k=k,
+            laplacian_weight=laplacian_weight,
+            commutativity_weight=commutativity_weight,
+            orientation_weight=orientation_weight,
+        )
+        bar.update()
+        samples = None
+        if sampled:
+            stage("samples")
+            # "exact" sets nothing up: with select="graph" the samples are chosen along the edges
+            # and no geodesic distance is computed.
+            samples = tuple(farthest_point_sampling(m, n_samples, method="exact", select="graph") for m in (s1, s2))
+            bar.update()
+        stage("ZoomOut")
+        p2p = zoomout(C, e1, e2, k_final=k_final, step=zoomout_step, samples=samples, progress=False)[1]
+        bar.update()
+    return p2p
 
 
 def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method: str = "heat") -> NDArray[np.float64]:
