@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import renamed
+from ._progress import progress_bar
 from .heat_method import HeatMethod
 from .mesh import Mesh, MeshError, per_mesh
 
@@ -103,13 +104,20 @@ def _check_sources(sources: ArrayLike, n: int, what: str = "source") -> NDArray[
 
 
 def _progress(iterable: Sequence[Any], total: int, show: bool | None, desc: str) -> Any:
-    if show is None:
-        show = total >= PROGRESS_THRESHOLD
-    if not show:
+    """``iterable`` under a bar, by the package's rule (:mod:`lbo_notebooks._progress`): ``None``
+    shows one only for at least ``PROGRESS_THRESHOLD`` steps and where someone watches (a notebook,
+    or stderr on a terminal), so logs and tests stay clean."""
+    if show is False or (show is None and total < PROGRESS_THRESHOLD):
         return iterable
-    from tqdm.auto import tqdm
+    bar = progress_bar(total, desc, show)
 
-    return tqdm(iterable, total=total, desc=desc, leave=False)
+    def steps() -> Any:
+        with bar:
+            for item in iterable:
+                yield item
+                bar.update()
+
+    return steps()
 
 
 class GeodesicSolver:
