@@ -1200,11 +1200,12 @@ def test_choices_of_07():
 
 
 def test_recap_07():
-    right = (500, "rigid motion", "no")
+    right = (500, "orthogonal map", "no")
     _status(ex.check_recap_07(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, 200, "projected rows"), (0, 300, "eigenfunctions' columns"), (0, 250_000, "side"),
                            (0, 7, "J [Φ, Fᵀ]"), (0, "five hundred", "expected"), (1, "scaling", "bends"),
-                           (1, "nothing", "Gram"), (2, "yes", "dashed")]:
+                           (1, "nothing", "Gram"), (1, "rigid motion", "mirror"),
+                           (2, "yes", "dashed")]:
         answers = list(right)
         answers[k] = wrong
         _status(ex.check_recap_07(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
@@ -1221,7 +1222,7 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
     cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
              (ex.check_classical_memory(37.25, 50_000, show=False), 40.0),
              (ex.check_gram_2d(0.5, Z, X, show=False), gram_error(Z[:, :2], X[:, :2])),
-             (ex.check_recap_07(200, "rigid motion", "no", show=False), 500)]
+             (ex.check_recap_07(200, "orthogonal map", "no", show=False), 500)]
     for feedback, answer in cases:
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]

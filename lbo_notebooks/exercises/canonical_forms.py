@@ -260,7 +260,9 @@ def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, sho
     rows with 25 eigenfunctions under 1%."""
     return _recap("07-recap", [q1, q2, q3], [
         _size(int(k), int(q)),
-        _pick({"rigid motion": None,
+        _pick({"orthogonal map": None,
+               "rigid motion": "almost: classical MDS cannot tell a shape from its mirror image, so reflections "
+                               "are allowed too.",
                "scaling": "geodesic distances do not change when a pose bends, so neither does their scale.",
                "nothing": "classical MDS of equal distances gives equal Gram matrices."}),
         _pick({"yes": "section 3: with rows the embedding lives in the span of the eigenfunctions; see the dashed line.",
