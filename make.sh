@@ -113,8 +113,18 @@ case "${1:-}" in
     if [ "${2:-}" = lab ]; then
       "$VENV/bin/python" scripts/student_edition.py
       root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)
+      # A student's JupyterLab without the grader's menus: the test extras install nbgrader (it
+      # builds the edition), whose "Validate" button would pass every notebook (the hidden tests
+      # are not in the edition). A config directory ahead of the environment's turns it off.
+      config=build/student-lab-config
+      mkdir -p "$config/labconfig"
+      printf '{"disabledExtensions": {"@jupyter/nbgrader": true}}\n' > "$config/labconfig/page_config.json"
+      printf '{"ServerApp": {"jpserver_extensions": {%s}}}\n' \
+        '"nbgrader.server_extensions.formgrader": false, "nbgrader.server_extensions.validate_assignment": false, "nbgrader.server_extensions.assignment_list": false, "nbgrader.server_extensions.course_list": false' \
+        > "$config/jupyter_server_config.json"
       log "starting JupyterLab on the student edition, build/student/ (Ctrl-C to stop)"
-      exec "$VENV/bin/jupyter" lab --notebook-dir=build/student "${root[@]}" "${@:3}"
+      JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" exec "$VENV/bin/jupyter" lab \
+        --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${root[@]}" "${@:3}"
     fi
     exec "$VENV/bin/python" scripts/student_edition.py "${@:2}" ;;
   binder)
