@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose
+from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose, pick, recap
 
 __all__ = [
     "check_classical_memory", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
@@ -216,26 +216,6 @@ def check_landmark_samples(answer: Any, *, show: bool = True) -> Feedback:
 
 # --- recap ------------------------------------------------------------------------------------------
 
-def _recap(exercise: str, answers: list[Any], judges: list[Callable[[Any], str | None]], show: bool) -> Feedback:
-    def body() -> str:
-        require_attempt(answers)
-        wrong = [f"Question {k}: {hint}" for k, (answer, judge) in enumerate(zip(answers, judges), 1)
-                 if (hint := judge(answer)) is not None]
-        if wrong:
-            raise Stop(WRONG, f"{len(answers) - len(wrong)} of {len(answers)} right. " + " ".join(wrong))
-        return f"Right, all {len(answers)}."
-    return run_check(exercise, show, body)
-
-
-def _pick(options: dict[str, str | None]) -> Callable[[Any], str | None]:
-    def judge(answer: Any) -> str | None:
-        key = answer.strip().lower() if isinstance(answer, str) else None
-        if key not in options:
-            return "answer with one of: " + ", ".join(f'"{o}"' for o in options) + "."
-        return options[key]
-    return judge
-
-
 def _size(k: int, q: int) -> Callable[[Any], str | None]:
     def judge(answer: Any) -> str | None:
         try:
@@ -258,13 +238,13 @@ def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, sho
     """Recap of notebook 07: (1) the side of the small eigenproblem with fields (k, q the defaults),
     (2) how the canonical forms of two isometric poses differ, (3) whether more samples get projected
     rows with 25 eigenfunctions under 1%."""
-    return _recap("07-recap", [q1, q2, q3], [
+    return recap("07-recap", [q1, q2, q3], [
         _size(int(k), int(q)),
-        _pick({"orthogonal map": None,
+        pick({"orthogonal map": None,
                "rigid motion": "almost: classical MDS cannot tell a shape from its mirror image, so reflections "
                                "are allowed too.",
                "scaling": "geodesic distances do not change when a pose bends, so neither does their scale.",
                "nothing": "classical MDS of equal distances gives equal Gram matrices."}),
-        _pick({"yes": "section 3: with rows the embedding lives in the span of the eigenfunctions; see the dashed line.",
+        pick({"yes": "section 3: with rows the embedding lives in the span of the eigenfunctions; see the dashed line.",
                "no": None}),
     ], show)

@@ -27,7 +27,7 @@ import numpy as np
 __all__ = [
     "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "Stop", "run_check",
     "require_attempt", "as_number", "call_attempt", "close_to", "same_values", "choose",
-    "unanswered", "is_placeholder", "result",
+    "unanswered", "is_placeholder", "result", "pick", "number_judge", "recap",
 ]
 
 CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
@@ -214,6 +214,53 @@ def choose(exercise: str, answer: Any, options: Mapping[str, str | None], show: 
 
 def same_values(m: np.ndarray, ref: np.ndarray, rtol: float = 1e-8) -> bool:
     return bool(np.abs(m - ref).max() <= rtol * max(np.abs(ref).max(), 1e-300))
+
+
+# --- several questions in one check --------------------------------------------------------------
+
+def pick(options: Mapping[str, str | None]) -> Callable[[Any], str | None]:
+    """A judge for one choice question, ``{choice: hint, or None for the right one}``: it returns the
+    hint of a wrong choice, ``None`` for the right one (choices compared lower-case, trimmed)."""
+    def judge(answer: Any) -> str | None:
+        key = str(answer).strip().lower() if isinstance(answer, (str, int, float)) else None
+        if key not in options:
+            return "answer with one of: " + ", ".join(f'"{o}"' for o in options) + "."
+        return options[key]
+    return judge
+
+
+def number_judge(target: float, near: list[tuple[float, str]], otherwise: str, rtol: float = 1e-3) -> Callable[[Any], str | None]:
+    """A judge for one number question: ``None`` at ``target`` (relative ``rtol``), else the hint of the
+    slip it matches, else ``otherwise``."""
+    def judge(answer: Any) -> str | None:
+        try:
+            value = as_number(answer)
+        except Stop as stop:
+            return stop.message
+        if close_to(value, target, rtol):
+            return None
+        return next((hint for slip, hint in near if close_to(value, slip, rtol)), otherwise)
+    return judge
+
+
+def recap(exercise: str, answers: list[Any], judges: list[Callable[[Any], str | None]], show: bool) -> Feedback:
+    """Several questions in one check (a notebook's recap): correct when all are, else the hints of
+    the wrong ones, never the right answers.
+
+    Examples
+    --------
+    >>> judges = [pick({"a": None, "b": "not b"}), number_judge(2.0, [(4.0, "twice too large")], "no")]
+    >>> recap("00-demo", ["a", 4.0], judges, show=False).message
+    '1 of 2 right. Question 2: twice too large'
+    """
+    def body() -> str:
+        require_attempt(answers)
+        wrong = [f"Question {k}: {hint}" for k, (answer, judge) in enumerate(zip(answers, judges), 1)
+                 if (hint := judge(answer)) is not None]
+        if wrong:
+            raise Stop(WRONG, f"{len(answers) - len(wrong)} of {len(answers)} right. " + " ".join(wrong))
+        return f"Right, all {len(answers)}."
+    return run_check(exercise, show, body)
 
 
 # --- revealing a solution on purpose -------------------------------------------------------------

@@ -7,12 +7,13 @@ see :mod:`lbo_notebooks.exercises` for how an exercise works.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
 from .feedback import (
+    pick, number_judge, recap,
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose,
 )
 
@@ -27,41 +28,6 @@ __all__ = [
 
 # --- notebooks 04-06 ---
 # 04 · the optimality theorem, 05 · the min-max principle, 06 · scale-invariant metrics.
-
-
-def _theory_pick(options: Mapping[str, str | None]) -> Callable[[Any], str | None]:
-    """A judge for one choice question: the hint of a wrong choice, None for the right one."""
-    def judge(answer: Any) -> str | None:
-        key = str(answer).strip().lower() if isinstance(answer, (str, int, float)) else None
-        if key not in options:
-            return "answer with one of: " + ", ".join(f'"{o}"' for o in options) + "."
-        return options[key]
-    return judge
-
-
-def _theory_number(target: float, near: list[tuple[float, str]], otherwise: str, rtol: float = 1e-3) -> Callable[[Any], str | None]:
-    """A judge for one number question: None if ``target`` (relative ``rtol``), else the hint of the nearest slip."""
-    def judge(answer: Any) -> str | None:
-        try:
-            value = as_number(answer)
-        except Stop as stop:
-            return stop.message
-        if close_to(value, target, rtol):
-            return None
-        return next((hint for slip, hint in near if close_to(value, slip, rtol)), otherwise)
-    return judge
-
-
-def _theory_recap(exercise: str, answers: list[Any], judges: list[Callable[[Any], str | None]], show: bool) -> Feedback:
-    """A recap of several questions in one check: correct when all are, else the hints of the wrong ones."""
-    def body() -> str:
-        require_attempt(answers)
-        wrong = [f"Question {k}: {hint}" for k, (answer, judge) in enumerate(zip(answers, judges), 1)
-                 if (hint := judge(answer)) is not None]
-        if wrong:
-            raise Stop(WRONG, f"{len(answers) - len(wrong)} of {len(answers)} right. " + " ".join(wrong))
-        return f"Right, all {len(answers)}."
-    return run_check(exercise, show, body)
 
 
 def _theory_ratio_one(exercise: str, value: Any, below: str, above: str, show: bool, rtol: float = 1e-6) -> Feedback:
@@ -241,14 +207,14 @@ def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show
 
 def check_recap_04(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 04: (1) which `values[...]` after 10 terms, (2) the bound for white noise, (3) ties."""
-    return _theory_recap("04-recap", [q1, q2, q3], [
-        _theory_number(10, [(9, "after 10 terms φ_0 .. φ_9 are used; the bound divides by the first one left out."),
+    return recap("04-recap", [q1, q2, q3], [
+        number_judge(10, [(9, "after 10 terms φ_0 .. φ_9 are used; the bound divides by the first one left out."),
                             (11, "indices start at 0: count again which eigenvalue is the first one left out.")],
                        "the first eigenvalue whose eigenfunction is left out, in 0-based indexing."),
-        _theory_pick({"tight": "noise has a huge Dirichlet energy; compare the bound with ‖f‖²_A itself.",
+        pick({"tight": "noise has a huge Dirichlet energy; compare the bound with ‖f‖²_A itself.",
                       "vacuous": None,
                       "violated": "the bound holds for every function, smooth or not."}),
-        _theory_pick({"yes": "section 5 found ties that are not eigenspaces (tilted eigenbases, polynomials on the icosphere).",
+        pick({"yes": "section 5 found ties that are not eigenspaces (tilted eigenbases, polynomials on the icosphere).",
                       "no": None}),
     ], show)
 
@@ -364,12 +330,12 @@ def check_consistent_minmax(value: Any, *, show: bool = True) -> Feedback:
 def check_recap_05(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 05: (1) the Courant–Fischer bound, (2) uniqueness, (3) a critical angle in degrees."""
     t_star = float(np.degrees(np.arctan(np.sqrt(2.0))))
-    return _theory_recap("05-recap", [q1, q2, q3], [
-        _theory_pick({"lam_n-1": "the bound is the eigenvalue whose index is the codimension.",
+    return recap("05-recap", [q1, q2, q3], [
+        pick({"lam_n-1": "the bound is the eigenvalue whose index is the codimension.",
                       "lam_n": None,
                       "lam_n+1": "the bound is the eigenvalue whose index is the codimension."}),
-        _theory_pick({"yes": "section 2 tilted the optimal plane and found a whole arc of maximisers.", "no": None}),
-        _theory_number(t_star, [(np.degrees(np.arctan(2.0)), "tan² t* is the ratio, not tan t*."),
+        pick({"yes": "section 2 tilted the optimal plane and found a whole arc of maximisers.", "no": None}),
+        number_judge(t_star, [(np.degrees(np.arctan(2.0)), "tan² t* is the ratio, not tan t*."),
                                 (np.degrees(np.arctan(np.sqrt(0.5))), "the ratio is (λ_2 − λ_1)/(λ_1 − λ_0), upside down?"),
                                 (np.arctan(np.sqrt(2.0)), "give degrees, not radians.")],
                        "tan² t* = (λ_2 − λ_1)/(λ_1 − λ_0); give t* in degrees."),
@@ -496,12 +462,12 @@ def check_consistent_invariance(answer: Any, *, show: bool = True) -> Feedback:
 
 def check_recap_06(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 06: (1) K of a sphere of radius 2, (2) what α changes, (3) which spectrum is steadier under poses."""
-    return _theory_recap("06-recap", [q1, q2, q3], [
-        _theory_number(0.25, [(0.5, "K is 1/R², not 1/R."), (4.0, "upside down: a bigger sphere is flatter.")],
+    return recap("06-recap", [q1, q2, q3], [
+        number_judge(0.25, [(0.5, "K is 1/R², not 1/R."), (4.0, "upside down: a bigger sphere is flatter.")],
                        "K = 1/R² on a sphere of radius R."),
-        _theory_pick({"w": "the Dirichlet energy is conformally invariant in 2-D: the cotangent weights do not change.",
+        pick({"w": "the Dirichlet energy is conformally invariant in 2-D: the cotangent weights do not change.",
                       "a": None,
                       "both": "the Dirichlet energy is conformally invariant in 2-D: one of the two does not change."}),
-        _theory_pick({"regular": None,
+        pick({"regular": None,
                       "scale-invariant": "section 6 measured it: the poses stretch the joints a little and |K| amplifies it."}),
     ], show)

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from .feedback import (
+    pick, recap,
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
     same_values, choose,
 )
@@ -44,20 +45,8 @@ def _array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
 
 
 def _recap(exercise: str, answers: list[Any], questions: list[Mapping[str, str | None]], show: bool) -> Feedback:
-    """Several multiple-choice questions in one check, each ``{choice: hint or None}`` (None: the right
-    one); the feedback gives the hints of the questions answered wrongly, never the right choice."""
-    def body() -> str:
-        require_attempt(answers)
-        hints = []
-        for q, (given, options) in enumerate(zip(answers, questions), 1):
-            if not isinstance(given, str) or given.strip().lower() not in options:
-                hints.append(f"Question {q}: answer with one of " + ", ".join(f'"{o}"' for o in options) + ".")
-            elif (hint := options[given.strip().lower()]) is not None:
-                hints.append(f"Question {q}: {hint}")
-        if hints:
-            raise Stop(WRONG, f"{len(answers) - len(hints)} of {len(answers)} right. " + " ".join(hints))
-        return f"Right, all {len(answers)}."
-    return run_check(exercise, show, body)
+    """Several multiple-choice questions in one check, each ``{choice: hint or None}``."""
+    return recap(exercise, answers, [pick(q) for q in questions], show)
 
 
 # --- 00 · start here -------------------------------------------------------------------------------
