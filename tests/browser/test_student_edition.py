@@ -9,7 +9,8 @@ makes the edition.
 What happens: the student edition is built with ``scripts/student_edition.py`` into a temporary
 copy of the repository's layout (``<tmp>/repo/build/student``; the repository's own
 ``build/student/``, where a student may be working, is never touched), JupyterLab is started on it,
-and for each of notebooks 01, 02 and 03 a fresh page
+every notebook of the series is run unanswered (no error, every check "not attempted"), and for
+each of notebooks 01, 02 and 03 a fresh page
 
 1. runs every cell (*Run > Run All Cells*), unanswered: no cell errors, every check cell shows
    exactly one feedback line and each says "not attempted";
@@ -145,17 +146,10 @@ def _answer_cell(page: Page, exercise: str) -> int:
     return _index_of_cell(page, f"feedback = exercises.{checks[exercise]}") - 1
 
 
-@pytest.mark.parametrize("stem", list(STUDENT_ANSWERS))
-def test_student_attempts_and_reads_the_feedback(student_page: Page, student_lab: Lab, offline: Offline, stem: str) -> None:
-    page = student_page
-    out = ARTIFACTS / "student" / stem
-    if out.exists():
-        shutil.rmtree(out)
-    out.mkdir(parents=True)
-
-    # 1. The whole notebook, unanswered: it runs, and every check says "not attempted".
-    _open(page, student_lab, f"{stem}.ipynb")
-    _kernel_ready(page, student_lab, 180)
+def _run_unanswered(page: Page, lab: Lab, stem: str, out: Path) -> None:
+    """Run All on an unanswered notebook of the edition: every cell runs, no error, every check "not attempted"."""
+    _open(page, lab, f"{stem}.ipynb")
+    _kernel_ready(page, lab, 180)
     _run_all(page)
     prompts = _wait_until_done(page, RUN_TIMEOUT)
     page.wait_for_timeout(1000)
@@ -170,6 +164,33 @@ def test_student_attempts_and_reads_the_feedback(student_page: Page, student_lab
     assert n_checks >= 4 and len(shown) == n_checks, f"{stem}: {n_checks} check cells, feedback shown {shown}"
     assert all(status == "not attempted" for _, status in shown), f"{stem}: unanswered checks say {shown}"
     assert "BEGIN SOLUTION" not in page.inner_text(".jp-Notebook")
+
+
+#: The notebooks of the series that test_student_attempts_and_reads_the_feedback does not open.
+OTHER_NOTEBOOKS = sorted(p.stem for p in (REPO / "notebooks").glob("[0-9][0-9]_*.ipynb") if p.stem not in STUDENT_ANSWERS)
+
+
+@pytest.mark.parametrize("stem", OTHER_NOTEBOOKS)
+def test_every_other_notebook_runs_unanswered(student_page: Page, student_lab: Lab, offline: Offline, stem: str) -> None:
+    out = ARTIFACTS / "student" / stem
+    if out.exists():
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+    _run_unanswered(student_page, student_lab, stem, out)
+    assert not student_page.locator(".jp-Dialog").all_inner_texts(), f"{stem}: unexpected dialog"
+    offline.check(f"student edition {stem}")
+
+
+@pytest.mark.parametrize("stem", list(STUDENT_ANSWERS))
+def test_student_attempts_and_reads_the_feedback(student_page: Page, student_lab: Lab, offline: Offline, stem: str) -> None:
+    page = student_page
+    out = ARTIFACTS / "student" / stem
+    if out.exists():
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+
+    # 1. The whole notebook, unanswered: it runs, and every check says "not attempted".
+    _run_unanswered(page, student_lab, stem, out)
 
     # 2. One exercise answered wrong: "wrong", with the hint aimed at that mistake.
     exercise, answer, hint_words = STUDENT_ANSWERS[stem]["wrong"]
