@@ -15,8 +15,6 @@ import time
 import warnings
 from pathlib import Path
 
-import numpy as np
-
 import sys
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time as _best  # noqa: E402
@@ -25,37 +23,11 @@ from lbo_notebooks import Mesh, shapes  # noqa: E402
 from lbo_notebooks.io import load_mesh, read_mesh_arrays, save_mesh
 
 
-def scan_like_arrays(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
-    """About 100k vertices: two icospheres(6) with holes punched out, plus a torus; 3 components.
-
-    Returns clean ``(vertices, faces)`` arrays (the vertices inside the holes are dropped).
-    """
-    rng = np.random.default_rng(seed)
-    sphere, torus = shapes.icosphere(6), shapes.torus(1.0, 0.3, n_major=160, n_minor=128)
-    vs, fs, offset = [], [], 0
-    for shift in ([0.0, 0.0, 0.0], [3.0, 0.0, 0.0]):
-        centres = rng.normal(size=(12, 3))
-        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
-        c = sphere.vertices[sphere.faces].mean(axis=1)
-        hole = (np.linalg.norm(c[:, None, :] - centres[None], axis=2) < 0.12).any(axis=1)
-        vs.append(sphere.vertices + shift)
-        fs.append(sphere.faces[~hole] + offset)
-        offset += sphere.n_vertices
-    vs.append(torus.vertices + [0.0, 3.0, 0.0])
-    fs.append(torus.faces + offset)
-    v, f = np.concatenate(vs), np.concatenate(fs)
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    return v[used], (np.cumsum(used) - 1)[f]
-
-
-
-
 def main() -> None:
     import open3d as o3d
 
     t0 = time.perf_counter()
-    mesh = Mesh(*scan_like_arrays())
+    mesh = shapes.scan_like()
     print(f"mesh: {mesh.summary()}  (built in {time.perf_counter() - t0:.1f} s)")
     tmp = Path(tempfile.mkdtemp())
     rows = []

@@ -16,19 +16,14 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time  # noqa: E402
 
-from lbo_notebooks import Mesh  # noqa: E402
+from lbo_notebooks import shapes  # noqa: E402
 from lbo_notebooks.io import read_mesh_arrays, save_mesh  # noqa: E402
 
 
 def main() -> None:
-    import importlib.util
-
     import plyfile
 
-    spec = importlib.util.spec_from_file_location("_io_bench", Path(__file__).resolve().parent / "io.py")
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    mesh = Mesh(*bench.scan_like_arrays(), check=False)
+    mesh = shapes.scan_like()
     folder = Path(tempfile.mkdtemp())
     print(f"mesh: {mesh.n_vertices} vertices, {mesh.n_faces} triangles")
     print(f"{'file':<12}{'MB':>6}{'plyfile plain s':>17}{'read_mesh_arrays s':>20}{'ratio':>8}")

@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 
 from .mesh import Mesh
 
-__all__ = ["icosphere", "ellipsoid", "torus", "rectangle", "disk", "bumpy_sphere", "creature", "creature_poses"]
+__all__ = ["icosphere", "ellipsoid", "torus", "rectangle", "disk", "bumpy_sphere", "scan_like", "creature", "creature_poses"]
 
 _CREATURE_NAMES = ("creature", "creature_poses", "creature_parts", "pose_distortion", "SPECIES", "POSES", "JOINTS", "PARTS")
 
@@ -210,3 +210,40 @@ def bumpy_sphere(subdivisions: int = 4, n_bumps: int = 7, height: float = 0.35, 
     radius = 1.0 + (heights * np.exp(-d2 / widths**2)).sum(axis=1)
     # A mild anisotropic stretch removes the remaining symmetry of the sphere.
     return Mesh(u * radius[:, None] * np.array([1.25, 1.0, 0.85]), sphere.faces)
+
+
+def scan_like(subdivisions: int = 6, n_holes: int = 12, seed: int = 0) -> Mesh:
+    """A mesh shaped like a raw scan's: three pieces, two of them holed spheres, one a torus.
+
+    Two icospheres side by side, each with ``n_holes`` round holes (the faces whose centres lie
+    within 0.12 of random unit directions from ``numpy.random.default_rng(seed)``), and a torus
+    above them; vertices left without faces are dropped. At the default 6 subdivisions it has about
+    100,000 vertices: a scan-sized input for loaders and benchmarks.
+
+    Examples
+    --------
+    >>> m = scan_like(3, n_holes=4)
+    >>> m.n_components, len(m.boundary_edges) > 0
+    (3, True)
+    """
+    subdivisions = _check_int("subdivisions", subdivisions, 0, 7)
+    n_holes = _check_int("n_holes", n_holes, 0)
+    rng = np.random.default_rng(seed)
+    sphere = icosphere(subdivisions)
+    ring = max(8, 2 ** (subdivisions + 1))
+    tube = torus(1.0, 0.3, n_major=int(1.25 * ring), n_minor=ring)
+    centroids = sphere.vertices[sphere.faces].mean(axis=1)
+    vertices, faces, offset = [], [], 0
+    for shift in ([0.0, 0.0, 0.0], [3.0, 0.0, 0.0]):
+        centres = rng.normal(size=(n_holes, 3))
+        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
+        hole = (np.linalg.norm(centroids[:, None, :] - centres[None], axis=2) < 0.12).any(axis=1)
+        vertices.append(sphere.vertices + shift)
+        faces.append(sphere.faces[~hole] + offset)
+        offset += sphere.n_vertices
+    vertices.append(tube.vertices + [0.0, 3.0, 0.0])
+    faces.append(tube.faces + offset)
+    v, f = np.concatenate(vertices), np.concatenate(faces)
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    return Mesh(v[used], (np.cumsum(used) - 1)[f])

@@ -444,35 +444,11 @@ def test_read_mesh_arrays_gives_the_raw_data_for_clean_mesh(tmp_path):
 
 
 # --- a scan-sized mesh --------------------------------------------------------------------------
-def scan_like_arrays(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
-    """About 100k vertices: two icospheres(6) with 12 holes each, and a torus; 3 components.
-
-    Clean ``(vertices, faces)`` arrays (the vertices inside the holes are dropped). benchmarks/io.py
-    times loading a mesh made the same way; tests do not import benchmarks.
-    """
-    rng = np.random.default_rng(seed)
-    sphere, torus = shapes.icosphere(6), shapes.torus(1.0, 0.3, n_major=160, n_minor=128)
-    vs, fs, offset = [], [], 0
-    for shift in ([0.0, 0.0, 0.0], [3.0, 0.0, 0.0]):
-        centres = rng.normal(size=(12, 3))
-        centres /= np.linalg.norm(centres, axis=1, keepdims=True)
-        c = sphere.vertices[sphere.faces].mean(axis=1)
-        hole = (np.linalg.norm(c[:, None, :] - centres[None], axis=2) < 0.12).any(axis=1)
-        vs.append(sphere.vertices + shift)
-        fs.append(sphere.faces[~hole] + offset)
-        offset += sphere.n_vertices
-    vs.append(torus.vertices + [0.0, 3.0, 0.0])
-    fs.append(torus.faces + offset)
-    v, f = np.concatenate(vs), np.concatenate(fs)
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    return v[used], (np.cumsum(used) - 1)[f]
-
-
 @pytest.fixture(scope="module")
 def scan_like(tmp_path_factory) -> tuple[Path, np.ndarray, np.ndarray]:
     """About 100k vertices, holes and 3 components, as binary PLY."""
-    v, f = scan_like_arrays()
+    scan = shapes.scan_like()
+    v, f = scan.vertices, scan.faces
     folder = tmp_path_factory.mktemp("scan")
     save_mesh(Mesh(v, f, check=False), folder / "scan.ply")
     return folder, v, f

@@ -53,3 +53,17 @@ def test_ellipsoid_axes_and_bumpy_determinism():
 def test_bad_arguments(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_scan_like_has_three_pieces_holes_and_no_stray_vertices():
+    m = shapes.scan_like(3, n_holes=4, seed=1)
+    assert m.n_components == 3 and len(m.boundary_edges) > 0          # pieces and holes, as in a raw scan
+    used = np.zeros(m.n_vertices, dtype=bool)
+    used[m.faces.ravel()] = True
+    assert used.all()                                                 # vertices inside the holes dropped
+    closed = shapes.scan_like(3, n_holes=0)
+    assert len(closed.boundary_edges) == 0 and closed.euler_characteristic == 2 + 2 + 0
+    again = shapes.scan_like(3, n_holes=4, seed=1)
+    assert np.array_equal(m.vertices, again.vertices) and np.array_equal(m.faces, again.faces)
+    with pytest.raises(ValueError, match="subdivisions"):
+        shapes.scan_like(-1)
