@@ -475,6 +475,7 @@ def test_choices_04_to_06():
     cases = [
         (ex.check_shifted_basis, "infinite", {"one": "zero energy", "above": "worst function", "below": "every n-dimensional"}),
         (ex.check_extra_function, "between", {"beats": "n + 1", "worse": "contains"}),
+        (ex.check_stationary_frame, "quadruple", {"same": "grow", "double": "first order", "eightfold": "second-order"}),
         (ex.check_lowest_family, "white", {"smooth": "rough", "near-optimal": "optimal ones"}),
         (ex.check_interlacing, "lam_0", {"lam_1": "constant"}),
         (ex.check_sphere_alpha, "equal", {"scaled": "|K|^α", "unrelated": "|K|^α"}),
@@ -580,7 +581,9 @@ def test_floor_fraction():
 
 @pytest.mark.parametrize("check, right, slips", [
     (ex.check_recap_04, (10, "vacuous", "no"), [(0, 9, "left out"), (0, 11, "count again"), (1, "tight", "huge"),
-                                                (1, "violated", "every function"), (2, "yes", "tilted")]),
+                                                (1, "violated", "every function"), (2, "yes", "conditions")]),
+    (ex.check_recap_04_ties, ("no", "lower", 2), [(0, "yes", "tilted"), (1, "exactly", "cancel"), (1, "upper", "overestimate"),
+                                                  (2, 1, "first-order"), (2, 4, "doubles")]),
     (ex.check_recap_05, ("lam_n", "no", np.degrees(np.arctan(np.sqrt(2)))),
      [(0, "lam_n+1", "codimension"), (1, "yes", "arc"), (2, np.degrees(np.arctan(2)), "ratio"),
       (2, np.arctan(np.sqrt(2)), "radians"), (2, 30.0, "(λ_2 − λ_1)/(λ_1 − λ_0)")]),

@@ -1,4 +1,5 @@
-"""Self-checks of notebooks 04 (optimality), 05 (min–max) and 06 (scale-invariant metrics).
+"""Self-checks of notebooks 04 (optimality: the theorem, then the worst-case constant and ties), 05 (min–max)
+and 06 (scale-invariant metrics).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works.
@@ -19,7 +20,8 @@ from .feedback import (
 
 __all__ = [
     "check_projection", "check_energy_bound", "check_shifted_basis", "check_consistent_optimality",
-    "check_extra_function", "check_worst_ratio", "check_recap_04", "check_plane_minimum",
+    "check_extra_function", "check_worst_ratio", "check_recap_04", "check_stationary_frame",
+    "check_recap_04_ties", "check_plane_minimum",
     "check_plane_range", "check_lowest_family", "check_dual_value", "check_interlacing",
     "check_consistent_minmax", "check_recap_05", "check_gauss_bonnet", "check_curvature_scaling",
     "check_metric_scaling", "check_best_alpha", "check_floor_fraction", "check_sphere_alpha",
@@ -206,7 +208,8 @@ def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show
 
 
 def check_recap_04(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 04: (1) which `values[...]` after 10 terms, (2) the bound for white noise, (3) ties."""
+    """Recap of notebook 04 (the theorem): (1) which `values[...]` after 10 terms, (2) the bound for white
+    noise, (3) whether the direct argument needs an orthonormal basis."""
     return recap("04-recap", [q1, q2, q3], [
         number_judge(10, [(9, "after 10 terms φ_0 .. φ_9 are used; the bound divides by the first one left out."),
                             (11, "indices start at 0: count again which eigenvalue is the first one left out.")],
@@ -214,8 +217,34 @@ def check_recap_04(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
         pick({"tight": "noise has a huge Dirichlet energy; compare the bound with ‖f‖²_A itself.",
                       "vacuous": None,
                       "violated": "the bound holds for every function, smooth or not."}),
-        pick({"yes": "section 5 found ties that are not eigenspaces (tilted eigenbases, polynomials on the icosphere).",
+        pick({"yes": "the direct argument only counts conditions: n of them cannot kill an (n + 1)-dimensional span, "
+                             "orthonormal basis or not (section 7 checks a non-orthonormal one).",
                       "no": None}),
+    ], show)
+
+
+def check_stationary_frame(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 04-stationary: how the excess total energy of a perturbed eigenframe grows when the noise doubles."""
+    return choose("04-stationary", answer, {
+        "same": "The excess is zero without noise and positive with it, so it must grow with ε: how fast, near a minimum?",
+        "double": "That would be first order in ε; at a minimum the first-order change of the energy vanishes.",
+        "quadruple": None,
+        "eightfold": "Near a minimum the leading change is the second-order term, not a third-order one.",
+    }, show)
+
+
+def check_recap_04_ties(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of the ties notebook (04, part 2): (1) only eigenspaces tie?, (2) what `complement_ratio` gives,
+    (3) the power of the tilt angle in a near-tie's excess."""
+    return recap("04-ties-recap", [q1, q2, q3], [
+        pick({"yes": "section 3 found an interval of tilted eigenbases that tie, none of them an eigenspace.",
+              "no": None}),
+        pick({"exactly": "it ignores the part of f inside V, which can cancel energy: exact only in special cases.",
+              "lower": None,
+              "upper": "ignoring the part of f inside V can only overestimate the energy of the worst function."}),
+        number_judge(2, [(1, "a first-order tilt does not change the error of the worst functions (they are A-orthogonal to V)."),
+                         (4, "that is the factor when the angle doubles, not the power.")],
+                     "the eigenspace minimises C(V), so the excess starts at the lowest order that does not vanish."),
     ], show)
 
 
