@@ -1296,3 +1296,16 @@ def test_messages_of_the_warm_up_never_give_the_answer():
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2, 3)), feedback.message
+
+
+def test_the_warm_up_recap_answers_are_the_graphs_own():
+    """Oracles for 02-graph-recap: an even cycle's largest eigenvalue is 4, doubled weights double
+    every eigenvalue; and for 02-cycle-pair: λ = 2 appears twice on the 12-cycle."""
+    for n in (6, 12, 40):
+        cycle = 2 * np.eye(n) - np.roll(np.eye(n), 1, axis=1) - np.roll(np.eye(n), -1, axis=1)
+        values = np.linalg.eigvalsh(cycle)
+        assert np.isclose(values.max(), 4.0, rtol=1e-12)
+        assert np.allclose(np.linalg.eigvalsh(2 * cycle), 2 * values, rtol=0, atol=1e-12 * 8)
+        _status(ex.check_recap_graph(2, values.max(), "lam_n", show=False), CORRECT)
+        if n == 12:
+            _status(ex.check_cycle_multiplicity(int(np.sum(np.isclose(values, 2.0))), show=False), CORRECT)
