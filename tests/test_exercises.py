@@ -1309,3 +1309,24 @@ def test_the_warm_up_recap_answers_are_the_graphs_own():
         _status(ex.check_recap_graph(2, values.max(), "lam_n", show=False), CORRECT)
         if n == 12:
             _status(ex.check_cycle_multiplicity(int(np.sum(np.isclose(values, 2.0))), show=False), CORRECT)
+
+
+def test_step_decay():
+    from lbo_notebooks.exercises.warm_up import _step_error_ratio
+
+    # The oracle, independently: the squared error is the tail of the step's cosine coefficients.
+    N = 200
+    x = (np.arange(N) + 0.5) / N
+    basis = np.cos(np.pi * np.outer(np.arange(N) + 0.5, np.arange(N)) / N)
+    c = np.linalg.qr(basis)[0].T @ (x > 0.4)           # orthonormal columns, same span per prefix
+    assert np.isclose(_step_error_ratio(), np.sum(c[20:] ** 2) / np.sum(c[40:] ** 2), rtol=1e-10)
+    _status(ex.check_step_decay(2, show=False), CORRECT, "1/n")
+    _status(ex.check_step_decay(_step_error_ratio(), show=False), CORRECT)
+    _status(ex.check_step_decay(4, show=False), WRONG, "kink")
+    _status(ex.check_step_decay(100, show=False), WRONG, "smooth")
+    _status(ex.check_step_decay(0.5, show=False), WRONG, "above 1")
+    _status(ex.check_step_decay(3, show=False), WRONG, "tail")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_step_decay(placeholder, show=False), NOT_ATTEMPTED)
+    message = ex.check_step_decay(3, show=False).message
+    assert not any(np.isclose(float(v), _step_error_ratio(), rtol=0.05) for v in re.findall(r"\d+\.?\d*", message))

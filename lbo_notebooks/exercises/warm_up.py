@@ -19,7 +19,7 @@ import numpy as np
 
 from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, pick, number_judge, recap
 
-__all__ = ["check_edge_energy", "check_cycle_multiplicity", "check_recap_graph"]
+__all__ = ["check_edge_energy", "check_cycle_multiplicity", "check_step_decay", "check_recap_graph"]
 
 
 def _path_energy(f: np.ndarray) -> float:
@@ -81,6 +81,44 @@ def check_cycle_multiplicity(count: Any, n: int = 12, value: float = 2.0, *, sho
             raise Stop(WRONG, f"Solve 2 − 2cos(2πk/n) = {value:g} for k in 0 … n − 1: there are solutions.")
         raise Stop(WRONG, f"Too many: solve 2 − 2cos(2πk/n) = {value:g} for the whole numbers k in 0 … n − 1 only.")
     return run_check("02-cycle-pair", show, body)
+
+
+def _step_error_ratio(n_beads: int = 200, jump: float = 0.4, n: int = 20) -> float:
+    """``‖f − P_n f‖² / ‖f − P_2n f‖²`` for the step ``x > jump`` on the path with ``n_beads`` beads
+    (eigenvectors: cosines at the midpoints)."""
+    x = (np.arange(n_beads) + 0.5) / n_beads
+    phi = np.cos(np.pi * np.outer(np.arange(n_beads) + 0.5, np.arange(n_beads)) / n_beads)
+    phi /= np.linalg.norm(phi, axis=0)
+    c = phi.T @ (x > jump).astype(float)
+    return float(np.sum(c[n:] ** 2) / np.sum(c[2 * n:] ** 2))
+
+
+def check_step_decay(factor: Any, *, show: bool = True) -> Feedback:
+    """Exercise 02-step-decay: by what factor does the step's squared error drop from n = 20 to n = 40 terms?
+
+    The step ``x > 0.4`` on the 200-bead path has coefficients of size about 1/k, so the squared error
+    (the tail of Σ c_k²) falls like 1/n. Accepted within 15% of the actual ratio.
+
+    Examples
+    --------
+    >>> check_step_decay(2, show=False).correct
+    True
+    >>> "1/n²" in check_step_decay(4, show=False).message
+    True
+    """
+    def body() -> str:
+        require_attempt(factor)
+        got, actual = as_number(factor), _step_error_ratio()
+        if close_to(got, actual, 0.15):
+            return "Right: coefficients of size 1/k leave a tail Σ_{k≥n} 1/k² ≈ 1/n, so doubling n only halves the error."
+        if got <= 1:
+            raise Stop(WRONG, "Give error(n = 20) / error(n = 40): more terms leave less out, so the factor is above 1.")
+        if close_to(got, 4.0, 0.2):
+            raise Stop(WRONG, "That is an error ∝ 1/n², the rate of a function with a kink (coefficients ∝ 1/k²); a jump's are only ∝ 1/k.")
+        if got > 6:
+            raise Stop(WRONG, "That is how a smooth signal behaves; a jump's coefficients shrink only like 1/k. What is Σ_{k≥n} 1/k², roughly?")
+        raise Stop(WRONG, "With coefficients of size 1/k the squared error is the tail Σ_{k≥n} 1/k²: how does that scale with n?")
+    return run_check("02-step-decay", show, body)
 
 
 def check_recap_graph(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
