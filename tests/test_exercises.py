@@ -1230,3 +1230,106 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message
+
+
+# --- the warm-up (02_graph_laplacian) and the recap of 02_laplace_beltrami -------------------------
+
+def test_edge_energy():
+    f = [0, 1, 4, 9, 16]
+    _status(ex.check_edge_energy(84, f, show=False), CORRECT, "squared differences")
+    _status(ex.check_edge_energy(84.0, np.array(f), show=False), CORRECT)
+    _status(ex.check_edge_energy(168, f, show=False), WRONG, "twice")
+    _status(ex.check_edge_energy(16, f, show=False), WRONG, "square each difference")
+    _status(ex.check_edge_energy(354, f, show=False), WRONG, "‖f‖²")
+    _status(ex.check_edge_energy(-84, f, show=False), WRONG, "never negative")
+    _status(ex.check_edge_energy(80, f, show=False), WRONG, "4 edges")
+    _status(ex.check_edge_energy("a lot", f, show=False), WRONG, "a number")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_edge_energy(placeholder, f, show=False), NOT_ATTEMPTED)
+
+
+def test_edge_energy_matches_the_graph_laplacian():
+    """The oracle: the path's L = D - Adj (second differences, free ends) gives the same energy."""
+    f = np.random.default_rng(3).normal(size=9)
+    L = np.diag(np.r_[1.0, 2 * np.ones(7), 1.0]) - np.eye(9, k=1) - np.eye(9, k=-1)
+    _status(ex.check_edge_energy(f @ L @ f, f, show=False), CORRECT)
+
+
+def test_cycle_multiplicity():
+    _status(ex.check_cycle_multiplicity(2, show=False), CORRECT, "n − k")
+    _status(ex.check_cycle_multiplicity(1, n=12, value=2.0, show=False), WRONG, "sine")
+    _status(ex.check_cycle_multiplicity(0, show=False), WRONG, "there are solutions")
+    _status(ex.check_cycle_multiplicity(4, show=False), WRONG, "too many")
+    _status(ex.check_cycle_multiplicity(1, n=12, value=4.0, show=False), CORRECT)   # k = n/2 stands alone
+    _status(ex.check_cycle_multiplicity(1, n=12, value=0.0, show=False), CORRECT)   # the constant
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_cycle_multiplicity(placeholder, show=False), NOT_ATTEMPTED)
+
+
+@pytest.mark.parametrize("check, right, slips", [
+    (ex.check_recap_graph, (2, 4, "lam_n"), [(0, 4, "linear"), (0, 1, "doubles"), (0, 0.5, "upside down"),
+                                            (1, 2, "largest"), (1, 0, "smallest"), (2, "lam_n-1", "left out"),
+                                            (2, "lam_n+1", "0-based")]),
+    (ex.check_recap_lbo, (0, 1, "b"), [(0, 0.5, "cos 90°"), (0, 1e300, "tangent"), (0, 0.3, "opposite"),
+                                       (1, 4, "mass"), (1, 0.25, "eigenvalues"), (1, 3, "angles"),
+                                       (2, "a", "Euclidean"), (2, "c", "multiplies")]),
+])
+def test_recaps_of_the_warm_up_and_02(check, right, slips):
+    _status(check(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in slips:
+        answers = list(right)
+        answers[k] = wrong
+        _status(check(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(check(right[0], right[1], "maybe", show=False), WRONG, "one of")
+    _status(check(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(check(right[0], ..., ..., show=False), WRONG, "every part")
+
+
+def test_recap_lbo_accepts_the_round_off_of_cot_90():
+    _status(ex.check_recap_lbo(1 / np.tan(np.pi / 2), 1, "B", show=False), CORRECT)
+
+
+def test_messages_of_the_warm_up_never_give_the_answer():
+    f = [0, 1, 4, 9, 16]
+    cases = [(ex.check_edge_energy(80, f, show=False), 84), (ex.check_edge_energy(168, f, show=False), 84),
+             (ex.check_cycle_multiplicity(5, show=False), 2.0),
+             (ex.check_recap_graph(3, 4, "lam_n", show=False), 2), (ex.check_recap_graph(2, 3, "lam_n", show=False), 4),
+             (ex.check_recap_lbo(0, 3, "b", show=False), 1.0)]
+    for feedback, answer in cases:
+        assert feedback.status == WRONG
+        numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
+        assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2, 3)), feedback.message
+
+
+def test_the_warm_up_recap_answers_are_the_graphs_own():
+    """Oracles for 02-graph-recap: an even cycle's largest eigenvalue is 4, doubled weights double
+    every eigenvalue; and for 02-cycle-pair: λ = 2 appears twice on the 12-cycle."""
+    for n in (6, 12, 40):
+        cycle = 2 * np.eye(n) - np.roll(np.eye(n), 1, axis=1) - np.roll(np.eye(n), -1, axis=1)
+        values = np.linalg.eigvalsh(cycle)
+        assert np.isclose(values.max(), 4.0, rtol=1e-12)
+        assert np.allclose(np.linalg.eigvalsh(2 * cycle), 2 * values, rtol=0, atol=1e-12 * 8)
+        _status(ex.check_recap_graph(2, values.max(), "lam_n", show=False), CORRECT)
+        if n == 12:
+            _status(ex.check_cycle_multiplicity(int(np.sum(np.isclose(values, 2.0))), show=False), CORRECT)
+
+
+def test_step_decay():
+    from lbo_notebooks.exercises.warm_up import _step_error_ratio
+
+    # The oracle, independently: the squared error is the tail of the step's cosine coefficients.
+    N = 200
+    x = (np.arange(N) + 0.5) / N
+    basis = np.cos(np.pi * np.outer(np.arange(N) + 0.5, np.arange(N)) / N)
+    c = np.linalg.qr(basis)[0].T @ (x > 0.4)           # orthonormal columns, same span per prefix
+    assert np.isclose(_step_error_ratio(), np.sum(c[20:] ** 2) / np.sum(c[40:] ** 2), rtol=1e-10)
+    _status(ex.check_step_decay(2, show=False), CORRECT, "1/n")
+    _status(ex.check_step_decay(_step_error_ratio(), show=False), CORRECT)
+    _status(ex.check_step_decay(4, show=False), WRONG, "kink")
+    _status(ex.check_step_decay(100, show=False), WRONG, "smooth")
+    _status(ex.check_step_decay(0.5, show=False), WRONG, "above 1")
+    _status(ex.check_step_decay(3, show=False), WRONG, "tail")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_step_decay(placeholder, show=False), NOT_ATTEMPTED)
+    message = ex.check_step_decay(3, show=False).message
+    assert not any(np.isclose(float(v), _step_error_ratio(), rtol=0.05) for v in re.findall(r"\d+\.?\d*", message))

@@ -14,14 +14,14 @@ import numpy as np
 
 from .feedback import (
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
-    same_values, choose,
+    same_values, choose, pick, number_judge, recap,
 )
 
 __all__ = [
     "check_edge_count", "check_area_factor", "check_stretch_growth", "check_smallest_angles",
     "check_leg_area", "check_stiffness", "check_mass", "check_convergence_factor",
     "check_coefficients", "check_consistent_mass", "check_eigenvalue_scaling",
-    "check_zero_eigenvalues",
+    "check_zero_eigenvalues", "check_recap_lbo",
 ]
 
 # --- 01 · the shape collection -------------------------------------------------------------------
@@ -387,3 +387,42 @@ def check_zero_eigenvalues(torus: Any, two_spheres: Any, *, show: bool = True) -
             raise Stop(WRONG, "The torus: the handle does not matter, only how many pieces the surface has; a zero eigenvalue means zero energy, a function constant on each piece.")
         raise Stop(WRONG, "Two disjoint spheres: a function constant on each sphere separately has zero energy too.")
     return run_check("02-kernel", show, body)
+
+
+def _zero_weight(answer: Any) -> str | None:
+    """Judge of recap question 1: the weight is zero (round-off of ``1 / np.tan(np.pi / 2)`` accepted)."""
+    try:
+        value = as_number(answer)
+    except Stop as stop:
+        return stop.message
+    if abs(value) <= 1e-9:
+        return None
+    if close_to(value, 0.5) or close_to(value, 1.0):
+        return "cot 90° = cos 90° / sin 90°: what is cos 90°?"
+    if not np.isfinite(value) or abs(value) > 1e6:
+        return "the cotangent, cos/sin, is finite at 90°; it is the tangent that blows up."
+    return "the triangle gives the edge ½ cot θ, θ the angle opposite it; what is cot 90°?"
+
+
+def check_recap_lbo(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 02 (the LBO): (1) the weight a triangle gives the edge opposite a right angle,
+    (2) the factor by which W changes when the mesh is scaled by 2, (3) the coefficients' formula.
+
+    Examples
+    --------
+    >>> check_recap_lbo(0, 1, "b", show=False).correct
+    True
+    >>> "angles" in check_recap_lbo(0, 4, "b", show=False).message
+    True
+    """
+    return recap("02-lbo-recap", [q1, q2, q3], [
+        _zero_weight,
+        number_judge(1.0, [(4.0, "W is made of cotangents of angles, and scaling keeps every angle; it is the mass A (areas) that grows by s²."),
+                           (2.0, "W is made of cotangents of angles, and scaling keeps every angle."),
+                           (0.25, "that is the factor of the eigenvalues (exercise 02-scaling); W alone is made of cotangents of angles."),
+                           (0.5, "W is made of cotangents of angles, and scaling keeps every angle.")],
+                     "W_ij = −½ (cot a + cot b) depends on the angles only: what does scaling do to an angle?"),
+        pick({"a": "`Phi.T @ f` is the Euclidean inner product, the classic bug: the eigenvectors are A-orthonormal.",
+              "b": None,
+              "c": "the A inner product multiplies by A, it does not divide by it."}),
+    ], show)
