@@ -46,6 +46,19 @@ def _solution_function(exercise: str, name: str):
 
 # --- 01 -------------------------------------------------------------------------------------------
 
+def test_recap_01():
+    right = ("faces", 2, "joint bands")
+    _status(ex.check_recap_01(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, "vertices", "same array"), (0, "both", "only one"), (1, 0, "torus"), (1, 1, "disc"),
+                           (1, 4, "genus-0"), (2, "everywhere", "rigidly"), (2, "tips", "blends")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_01(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_01("edges", 2, "joint bands", show=False), WRONG, "one of")
+    _status(ex.check_recap_01(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_01("faces", ..., ..., show=False), WRONG, "every part")
+
+
 def test_edge_count():
     ball = shapes.icosphere(2)
     _status(ex.check_edge_count(3 * ball.n_faces // 2, ball, show=False), CORRECT)
@@ -749,6 +762,22 @@ def test_neighbors_effect_and_cloud_pieces():
     _status(ex.check_cloud_pieces({1.5: ..., 2.0: ...}, show=False), NOT_ATTEMPTED)
     for placeholder in PLACEHOLDERS:
         _status(ex.check_cloud_pieces(placeholder, show=False), NOT_ATTEMPTED)
+
+
+def test_recap_03():
+    right = (4, "robust", "fused")
+    _status(ex.check_recap_03(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, 1, "its own constant"), (0, 0, "every piece"), (0, 3, "shape's own constant"),
+                           (0, 7, "per connected component"), (0, "four", "expected"),
+                           (1, "cotan", "two triangles"), (2, "separate", "join the sheets")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_03(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_03(4, "maybe", "fused", show=False), WRONG, "one of")
+    _status(ex.check_recap_03(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_03(4, ..., ..., show=False), WRONG, "every part")
+    fb = ex.check_recap_03(1, "robust", "fused", show=False)          # the message never names the count
+    assert "4" not in fb.message.replace("Question", ""), fb.message
 
 
 def test_03_messages_never_give_the_answer(messy_scan):
