@@ -1,5 +1,5 @@
 """Self-checks of the two spectral MDS notebooks: canonical forms (07_spectral_mds) and accuracy,
-cost and resolution (07_mds_at_scale).
+cost and resolution (07_spectral_mds_at_scale).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works. The one the student builds is the
