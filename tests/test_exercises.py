@@ -46,6 +46,19 @@ def _solution_function(exercise: str, name: str):
 
 # --- 01 -------------------------------------------------------------------------------------------
 
+def test_recap_01():
+    right = ("faces", 2, "joint bands")
+    _status(ex.check_recap_01(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, "vertices", "same array"), (0, "both", "only one"), (1, 0, "torus"), (1, 1, "disc"),
+                           (1, 4, "genus-0"), (2, "everywhere", "rigidly"), (2, "tips", "blends")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_01(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_01("edges", 2, "joint bands", show=False), WRONG, "one of")
+    _status(ex.check_recap_01(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_01("faces", ..., ..., show=False), WRONG, "every part")
+
+
 def test_edge_count():
     ball = shapes.icosphere(2)
     _status(ex.check_edge_count(3 * ball.n_faces // 2, ball, show=False), CORRECT)
@@ -754,6 +767,22 @@ def test_neighbors_effect_and_cloud_pieces():
         _status(ex.check_cloud_pieces(placeholder, show=False), NOT_ATTEMPTED)
 
 
+def test_recap_03():
+    right = (4, "robust", "fused")
+    _status(ex.check_recap_03(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, 1, "its own constant"), (0, 0, "every piece"), (0, 3, "shape's own constant"),
+                           (0, 7, "per connected component"), (0, "four", "expected"),
+                           (1, "cotan", "two triangles"), (2, "separate", "join the sheets")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_03(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_03(4, "maybe", "fused", show=False), WRONG, "one of")
+    _status(ex.check_recap_03(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_03(4, ..., ..., show=False), WRONG, "every part")
+    fb = ex.check_recap_03(1, "robust", "fused", show=False)          # the message never names the count
+    assert "4" not in fb.message.replace("Question", ""), fb.message
+
+
 def test_03_messages_never_give_the_answer(messy_scan):
     v, faces, _ = messy_scan
     for key in REPAIR:
@@ -1203,18 +1232,54 @@ def test_choices_of_07():
 
 
 def test_recap_07():
-    right = (500, "orthogonal map", "no")
+    right = (500, "orthogonal map", "canonical forms")
     _status(ex.check_recap_07(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, 200, "projected rows"), (0, 300, "eigenfunctions' columns"), (0, 250_000, "side"),
                            (0, 7, "J [Φ, Fᵀ]"), (0, "five hundred", "expected"), (1, "scaling", "bends"),
                            (1, "nothing", "Gram"), (1, "rigid motion", "mirror"),
-                           (2, "yes", "dashed")]:
+                           (2, "raw poses", "control"), (2, "both", "control")]:
         answers = list(right)
         answers[k] = wrong
         _status(ex.check_recap_07(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(ex.check_recap_07(500, "maybe", "no", show=False), WRONG, "one of")
+    _status(ex.check_recap_07(500, "maybe", "canonical forms", show=False), WRONG, "one of")
     _status(ex.check_recap_07(..., ..., ..., show=False), NOT_ATTEMPTED)
     _status(ex.check_recap_07(500, ..., ..., show=False), WRONG, "every part")
+
+
+def test_mu_range():
+    _status(ex.check_mu_range("less than half", show=False), CORRECT)
+    _status(ex.check_mu_range(" Less than half", show=False), CORRECT)
+    _status(ex.check_mu_range("about double", show=False), WRONG, "λᵢ²")
+    _status(ex.check_mu_range("more than tenfold", show=False), WRONG, "smooth already")
+    _status(ex.check_mu_range("a lot", show=False), WRONG, "one of")
+    _status(ex.check_mu_range(..., show=False), NOT_ATTEMPTED)
+
+
+def test_equal_size():
+    n, k, q = 2000, 200, 300
+    ref = np.sqrt(n * (k + q) / 2)
+    _status(ex.check_equal_size(ref, n, show=False), CORRECT, "√n")
+    _status(ex.check_equal_size(round(ref), n, show=False), CORRECT)          # a whole number of vertices is fine
+    for wrong, hint in [(np.sqrt(n * (k + q)), "two"), (np.sqrt(n * k / 2), "sampled fields"),
+                        (np.sqrt(n * q / 2), "eigenbasis"), (n * (k + q) / 2, "square root"),
+                        (n * (k + q), "solve"), (123.0, "set the floats")]:
+        _status(ex.check_equal_size(wrong, n, show=False), WRONG, hint)
+    _status(ex.check_equal_size("many", n, show=False), WRONG, "number of vertices")
+    for placeholder in PLACEHOLDERS:
+        _status(ex.check_equal_size(placeholder, n, show=False), NOT_ATTEMPTED)
+
+
+def test_recap_07_cost():
+    right = ("no", 2, "spectral")
+    _status(ex.check_recap_07_cost(*right, show=False), CORRECT, "all 3")
+    for k, wrong, hint in [(0, "yes", "dashed"), (1, 1, "spectral MDS's memory"), (1, 3, "entries"),
+                           (1, "two", "expected"), (2, "classical", "coarser mesh")]:
+        answers = list(right)
+        answers[k] = wrong
+        _status(ex.check_recap_07_cost(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_07_cost("maybe", 2, "spectral", show=False), WRONG, "one of")
+    _status(ex.check_recap_07_cost(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_07_cost("no", ..., ..., show=False), WRONG, "every part")
 
 
 def test_messages_of_07_never_give_the_answer(rows_embedding):
@@ -1225,7 +1290,8 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
     cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
              (ex.check_classical_memory(37.25, 50_000, show=False), 40.0),
              (ex.check_gram_2d(0.5, Z, X, show=False), gram_error(Z[:, :2], X[:, :2])),
-             (ex.check_recap_07(200, "orthogonal map", "no", show=False), 500)]
+             (ex.check_recap_07(200, "orthogonal map", "canonical forms", show=False), 500),
+             (ex.check_equal_size(1000.0, 2000, show=False), np.sqrt(2000 * 500 / 2))]   # (the cost recap's answer, 2, is a question's number: its hints name no value)
     for feedback, answer in cases:
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]

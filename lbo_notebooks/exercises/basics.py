@@ -21,10 +21,33 @@ __all__ = [
     "check_edge_count", "check_area_factor", "check_stretch_growth", "check_smallest_angles",
     "check_leg_area", "check_stiffness", "check_mass", "check_convergence_factor",
     "check_coefficients", "check_consistent_mass", "check_eigenvalue_scaling",
-    "check_zero_eigenvalues", "check_recap_lbo",
+    "check_zero_eigenvalues", "check_recap_01", "check_recap_lbo",
 ]
 
 # --- 01 · the shape collection -------------------------------------------------------------------
+
+def check_recap_01(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 01: (1) what all poses of a creature share, (2) the Euler characteristic of
+    every creature mesh, (3) where the stretch of a pose lies.
+
+    Examples
+    --------
+    >>> check_recap_01("faces", 2, "joint bands", show=False).correct
+    True
+    """
+    return recap("01-recap", [q1, q2, q3], [
+        pick({"faces": None,
+               "vertices": "a pose moves the vertices; what is the very same array in every pose?",
+               "both": "a pose moves the vertices; only one of the two arrays is shared."}),
+        number_judge(2.0, [(0.0, "that is a torus (genus 1); the creatures are genus 0."),
+                           (1.0, "that is a disc; the creatures are closed surfaces of genus 0.")],
+                     "V − E + F of a closed genus-0 surface."),
+        pick({"joint bands": None,
+               "everywhere": "a vertex whose whole one-ring is outside the bands moves rigidly with its bone: its edges "
+                             "keep their length.",
+               "tips": "the stretch goes where a joint's weight blends from 0 to 1; is that at the tips of the limbs?"}),
+    ], show)
+
 
 def check_edge_count(n_edges: Any, mesh: Any, *, show: bool = True) -> Feedback:
     """Exercise 01-edges: the number of edges of a closed triangle mesh, from its faces alone.

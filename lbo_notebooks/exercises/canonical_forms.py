@@ -1,9 +1,11 @@
-"""Self-checks of notebook 07 (spectral MDS, canonical forms).
+"""Self-checks of the two spectral MDS notebooks: canonical forms (07_spectral_mds) and accuracy,
+cost and resolution (07_spectral_mds_at_scale).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works. The one the student builds is the
 small step of spectral MDS: from the eigenbasis ``Phi`` and the k x k coefficients ``alpha`` of
-``D2 ~ Phi alpha Phi.T`` to the embedding, through a k x k eigenproblem (notebook 07, section 2).
+``D2 ~ Phi alpha Phi.T`` to the embedding, through a k x k eigenproblem (the canonical-forms
+notebook, section 2).
 """
 
 from __future__ import annotations
@@ -13,11 +15,12 @@ from typing import Any
 
 import numpy as np
 
-from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose, pick, recap
+from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose, pick,
+                       number_judge, recap)
 
 __all__ = [
     "check_classical_memory", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
-    "check_landmark_samples", "check_recap_07",
+    "check_landmark_samples", "check_recap_07", "check_mu_range", "check_equal_size", "check_recap_07_cost",
 ]
 
 
@@ -235,9 +238,9 @@ def _size(k: int, q: int) -> Callable[[Any], str | None]:
 
 
 def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
-    """Recap of notebook 07: (1) the side of the small eigenproblem with fields (k, q the defaults),
-    (2) how the canonical forms of two isometric poses differ, (3) whether more samples get projected
-    rows with 25 eigenfunctions under 1%."""
+    """Recap of the canonical-forms notebook: (1) the side of the small eigenproblem with fields
+    (k, q the defaults), (2) how the canonical forms of two isometric poses differ, (3) which of
+    canonical forms and raw poses separate the two species by their shape distributions."""
     return recap("07-recap", [q1, q2, q3], [
         _size(int(k), int(q)),
         pick({"orthogonal map": None,
@@ -245,6 +248,72 @@ def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, sho
                                "are allowed too.",
                "scaling": "geodesic distances do not change when a pose bends, so neither does their scale.",
                "nothing": "classical MDS of equal distances gives equal Gram matrices."}),
-        pick({"yes": "section 3: with rows the embedding lives in the span of the eigenfunctions; see the dashed line.",
+        pick({"canonical forms": None,
+               "raw poses": "a raw pose mixes the pose into the shape: section 3's control shows a pose farther from "
+                            "its own species than the two species are apart.",
+               "both": "look at section 3's control: one of the two fails."}),
+    ], show)
+
+
+# --- the second notebook: accuracy, cost and resolution --------------------------------------------
+
+def check_mu_range(answer: Any, *, show: bool = True) -> Feedback:
+    """Exercise 07-mu: how much the Gram error of the paper's form (biharmonic energy) changes when
+    the smoothness weight grows 500-fold: "less than half", "about double" or "more than tenfold"."""
+    return choose("07-mu", answer, {
+        "less than half": None,
+        "about double": "The biharmonic penalty on coefficient i grows like λᵢ²: it weighs the rough eigenfunctions far "
+                        "more than the smooth ones that carry most of a distance field.",
+        "more than tenfold": "μ trades fitting the samples against smoothness, but the distance fields are smooth "
+                             "already: what does a stronger penalty take away from them?",
+    }, show)
+
+
+def check_equal_size(n_c: Any, n: int, k: int = 200, q: int = 300, *, show: bool = True) -> Feedback:
+    """Exercise 07-equal-size: the number of vertices ``n_c`` at which classical MDS's two n_c x n_c
+    matrices hold as many floats as spectral MDS's n x (k + q) arrays Φ and F.
+
+    Examples
+    --------
+    >>> check_equal_size((2000 * 500 / 2) ** 0.5, 2000, show=False).correct
+    True
+    >>> "two" in check_equal_size((2000 * 500) ** 0.5, 2000, show=False).message
+    True
+    """
+    def body() -> str:
+        require_attempt(n_c)
+        got = as_number(n_c, "a number of vertices")
+        floats = float(n) * (k + q)
+        ref = np.sqrt(floats / 2)
+        if close_to(got, ref, 0.01):
+            return ("Right: 2 n_c² = n (k + q), so n_c grows only like √n: the same floats buy classical MDS "
+                    "a far coarser mesh.")
+        for slip, hint in (
+            (np.sqrt(floats), "Classical MDS keeps *two* n_c × n_c matrices (D² and B): 2 n_c² = n (k + q)."),
+            (np.sqrt(n * k / 2), "Spectral MDS keeps the sampled fields F (q × n) beside Φ (n × k): count both."),
+            (np.sqrt(n * q / 2), "Spectral MDS keeps the eigenbasis Φ (n × k) beside F (q × n): count both."),
+            (floats / 2, "n_c² is the number of entries of one matrix; take the square root to get vertices."),
+            (floats, "That is the number of floats spectral MDS keeps; solve 2 n_c² = that for n_c."),
+        ):
+            if close_to(got, slip, 0.01):
+                raise Stop(WRONG, hint)
+        raise Stop(WRONG, "Set the floats of two n_c × n_c matrices equal to those of the n × (k + q) arrays, and solve for n_c.")
+    return run_check("07-equal-size", show, body)
+
+
+def check_recap_07_cost(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of the accuracy-and-cost notebook: (1) whether more samples get projected rows with 25
+    eigenfunctions under 1%, (2) the exponent of classical MDS's memory in n, (3) which canonical form
+    is closer to the full-resolution answer at equal array size."""
+    return recap("07-cost-recap", [q1, q2, q3], [
+        pick({"yes": "with rows the embedding lives in the span of the eigenfunctions; see the dashed floor in the plot of "
+                       "eigenfunctions and samples.",
                "no": None}),
+        number_judge(2.0, [(1.0, "that is how spectral MDS's memory grows (n × (k + q) arrays); classical MDS keeps "
+                                 "n × n matrices."),
+                           (3.0, "count the entries of an n × n matrix.")],
+                     "count the entries of an n × n matrix."),
+        pick({"spectral": None,
+               "classical": "at equal array size classical MDS must run on a much coarser mesh, and a canonical form "
+                            "carries the errors of the mesh it was computed on."}),
     ], show)

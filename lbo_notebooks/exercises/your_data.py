@@ -11,11 +11,12 @@ from typing import Any
 
 import numpy as np
 
-from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, choose
+from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, choose, number_judge,
+                       pick, recap)
 
 __all__ = [
     "check_repair_counts", "check_operator_choice", "check_cloud_eigenvalue",
-    "check_largest_component", "check_neighbors_effect", "check_cloud_pieces",
+    "check_largest_component", "check_neighbors_effect", "check_cloud_pieces", "check_recap_03",
 ]
 
 # --- 03 · your own data --------------------------------------------------------------------------
@@ -262,3 +263,26 @@ def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, *, show: bool = True)
             raise Stop(WRONG, f"Radius {radius}: the gap is wider than the outer points' neighbourhoods reach, so no patch joins the spheres.")
         return "Right: the spheres separate once the gap is wider than an outer point's neighbourhood reaches."
     return run_check("03-gap", show, body)
+
+
+def check_recap_03(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 03: (1) the zero eigenvalues of a scan in four pieces, (2) the operator
+    ``eigenbasis`` picks for a mesh with an edge of three faces, (3) what a point cloud makes of two
+    sheets closer than its neighbourhoods reach.
+
+    Examples
+    --------
+    >>> check_recap_03(4, "robust", "fused", show=False).correct
+    True
+    """
+    return recap("03-recap", [q1, q2, q3], [
+        number_judge(4.0, [(1.0, "each connected component carries its own constant function with zero energy."),
+                           (0.0, "a constant function has zero energy on every piece."),
+                           (3.0, "the shape's own constant counts too: one zero per connected component.")],
+                     "one zero eigenvalue per connected component."),
+        pick({"robust": None,
+               "cotan": "the cotangent weight ½ (cot α + cot β) is written for an edge between two triangles."}),
+        pick({"fused": None,
+               "separate": "a neighbourhood is the nearest points, whatever sheet they lie on: the local patches "
+                           "join the sheets."}),
+    ], show)
