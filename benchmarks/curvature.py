@@ -5,7 +5,7 @@ Two questions, on procedural shapes of about 2.5k, 4k (a creature, when availabl
 1. The metric mass matrix: the first alpha pays for the angle defects, Voronoi areas and the
    regularised |K| (cached on the mesh); every further alpha only rescales. Baseline: the regular
    ``mass_matrix`` on a fresh mesh.
-2. The eigen-solve: 300 eigenpairs for alpha = 0, 0.4, 1 (notebook 06's budget). Baseline:
+2. The eigen-solve: 300 eigenpairs for alpha = 0, 0.4, 1 (notebook 08's budget). Baseline:
    alpha = 0. The metric makes the mass matrix less uniform, which changes how fast ARPACK
    converges, not the size of the problem.
 

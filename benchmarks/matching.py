@@ -11,7 +11,7 @@ w_orient=1e-1 (L-BFGS), nearest-neighbour point map; then, as a second row, its 
 form, ZoomOut to 80).
 
 A second table matches pairs with a rescaled part using eigenbases of the metric |K|^alpha g
-(alpha = 0, 0.4, 1), everything else in ``match`` unchanged (notebook 09, section 4).
+(alpha = 0, 0.4, 1), everything else in ``match`` unchanged (notebook 12).
 
 Error: mean geodesic error on the source / sqrt(area) (heat-method distances). Times are wall
 times of the whole pipeline including eigenbases, on a shared machine: read the ratios.
@@ -21,7 +21,7 @@ Run:
     python benchmarks/matching.py --record   # the semi-local scaling table only, also written to results/matching.json
 
 ``--record`` stores the semi-local scaling table with its date, machine load and BLAS threads;
-notebook 09 quotes those numbers as recorded and asserts its prose against the file.
+notebook 12 quotes those numbers as recorded and asserts its prose against the file.
 
 Real sizes (``--sizes``): one dog standing -> walking pair per size, target shuffled, ``match``
 with its defaults and pyFM's default pipeline run in turn ``--repeats`` times; medians of wall

@@ -496,7 +496,7 @@ def part_accuracy(quick: bool) -> list[dict]:
 
 
 def tuning_shapes(quick: bool) -> dict[str, Mesh]:
-    """Shapes the SMDS defaults were chosen on: none of them is reported by notebook 07 or part 1."""
+    """Shapes the SMDS defaults were chosen on: none of them is reported by notebooks 09 and 10."""
     from lbo_notebooks.creatures import creature
 
     scale = 0.4 if quick else 1.0

@@ -14,7 +14,7 @@ less on load, is printed beside it. Run:
 
     python benchmarks/notebooks.py              # table; exit code 1 only if a notebook fails
     python benchmarks/notebooks.py --strict     # also exit 1 when anything is over budget
-    python benchmarks/notebooks.py notebooks/02_laplace_beltrami.ipynb --json build/nb.json
+    python benchmarks/notebooks.py notebooks/03_laplace_beltrami.ipynb --json build/nb.json
 """
 
 from __future__ import annotations

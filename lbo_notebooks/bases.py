@@ -351,7 +351,7 @@ def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "v
     metric : sparse matrix, (W, A) tuple, or callable
         The other metric's mass matrix (the stiffness stays the cotangent ``W``: in 2-D a conformal
         change of metric only changes the mass), a full ``(W, A)`` pair, or a function
-        ``metric(mesh)`` returning either. Notebook 06's scale-invariant metric plugs in as
+        ``metric(mesh)`` returning either. Notebook 08's scale-invariant metric plugs in as
         ``lambda m: curvature.metric_mass_matrix(m, alpha)``.
 
     Examples

@@ -150,7 +150,7 @@ def eigenbasis(
     mass_kind : {"voronoi", "barycentric", "consistent"}
         Mass matrix kind when ``mesh`` is a :class:`Mesh`.
     alpha : float in [0, 1]
-        Exponent of the metric ``|K|^alpha g`` (notebook 06). ``0`` is exactly the regular metric;
+        Exponent of the metric ``|K|^alpha g`` (notebook 08). ``0`` is exactly the regular metric;
         otherwise ``W`` is unchanged and the mass is
         :func:`~lbo_notebooks.curvature.metric_mass_matrix` (``1``: scale-invariant spectrum).
     shift : float, optional

@@ -2,7 +2,7 @@
 # Binder parity: build a fresh virtual environment from binder/ ONLY, then run every notebook in it.
 #
 #   scripts/binder_parity.sh                 # all notebooks
-#   scripts/binder_parity.sh notebooks/02_laplace_beltrami.ipynb
+#   scripts/binder_parity.sh notebooks/03_laplace_beltrami.ipynb
 #   KEEP=1 scripts/binder_parity.sh          # keep the temporary environment (its path is printed)
 #
 # What Binder (repo2docker) does with this repository, reproduced here so the Binder configuration

@@ -3,7 +3,7 @@
 One command (from the repository root, with the project's environment)::
 
     python scripts/build_site.py                   # -> build/site/index.html
-    python scripts/build_site.py --out /tmp/site notebooks/02_laplace_beltrami.ipynb
+    python scripts/build_site.py --out /tmp/site notebooks/03_laplace_beltrami.ipynb
 
 The site publishes exactly the series: ``00_start_here`` and the notebooks its map of the series
 lists (``| NN | [name](NN_name.ipynb) | topic |``), in that order. Any other ``.ipynb`` in

@@ -16,7 +16,7 @@ Use from a notebook-editing script::
 
     import sys; sys.path.insert(0, "scripts")
     from exercise_cells import exercise
-    nb.cells[i:i] = exercise("04-projection", "build it yourself", "Write ...", answer_src, "exercises.check_...(...)")
+    nb.cells[i:i] = exercise("05-projection", "build it yourself", "Write ...", answer_src, "exercises.check_...(...)")
 """
 
 from __future__ import annotations

@@ -21,7 +21,7 @@ indent, as ``scripts/strip_notebook.py`` writes it).
 
     python3 scripts/tag_verification_cells.py              # every notebooks/*.ipynb
     python3 scripts/tag_verification_cells.py --check      # list what would change; exit 1 if anything
-    python3 scripts/tag_verification_cells.py notebooks/02_laplace_beltrami.ipynb
+    python3 scripts/tag_verification_cells.py notebooks/03_laplace_beltrami.ipynb
 """
 
 from __future__ import annotations

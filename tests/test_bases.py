@@ -101,7 +101,7 @@ def test_polynomials_skip_dependent_products_on_the_sphere():
 
 def test_polynomials_on_the_sphere_are_nearly_optimal():
     # Spherical harmonics are polynomials: on a sphere the polynomial basis ties with the eigenbasis
-    # (up to discretisation) at cluster boundaries, which is why notebook 04 uses a bumpy shape.
+    # (up to discretisation) at cluster boundaries, which is why notebook 05 uses a bumpy shape.
     m = shapes.icosphere(3)
     s = eigenbasis(m, 17)
     B = bases.polynomial_basis(m, 16)

@@ -48,15 +48,15 @@ def _solution_function(exercise: str, name: str):
 
 def test_recap_01():
     right = ("faces", 2, "joint bands")
-    _status(ex.check_recap_01(*right, show=False), CORRECT, "all 3")
+    _status(ex.check_recap_shapes(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, "vertices", "same array"), (0, "both", "only one"), (1, 0, "torus"), (1, 1, "disc"),
                            (1, 4, "genus-0"), (2, "everywhere", "rigidly"), (2, "tips", "blends")]:
         answers = list(right)
         answers[k] = wrong
-        _status(ex.check_recap_01(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(ex.check_recap_01("edges", 2, "joint bands", show=False), WRONG, "one of")
-    _status(ex.check_recap_01(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_01("faces", ..., ..., show=False), WRONG, "every part")
+        _status(ex.check_recap_shapes(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_shapes("edges", 2, "joint bands", show=False), WRONG, "one of")
+    _status(ex.check_recap_shapes(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_shapes("faces", ..., ..., show=False), WRONG, "every part")
 
 
 def test_edge_count():
@@ -165,7 +165,7 @@ def test_stiffness_hints(attempt, hint):
 def test_stiffness_reference_and_unanswered():
     _status(ex.check_stiffness(operators.stiffness_matrix, show=False), CORRECT)
     _status(ex.check_stiffness(lambda m: operators.stiffness_matrix(m).toarray(), show=False), CORRECT)
-    _status(ex.check_stiffness(_solution_function("02-stiffness", "my_stiffness"), show=False), CORRECT)
+    _status(ex.check_stiffness(_solution_function("03-stiffness", "my_stiffness"), show=False), CORRECT)
     for attempt in (..., None, _stub, _empty):
         _status(ex.check_stiffness(attempt, show=False), NOT_ATTEMPTED)
 
@@ -192,7 +192,7 @@ def test_mass_hints(attempt, hint):
 def test_mass_reference_and_unanswered():
     _status(ex.check_mass(operators.mass_matrix, show=False), CORRECT, "mixed Voronoi")
     _status(ex.check_mass(lambda m: operators.mass_matrix(m, "barycentric"), show=False), CORRECT, "barycentric")
-    _status(ex.check_mass(_solution_function("02-mass", "my_mass"), show=False), CORRECT)
+    _status(ex.check_mass(_solution_function("03-mass", "my_mass"), show=False), CORRECT)
     for attempt in (..., None, _stub, _empty):
         _status(ex.check_mass(attempt, show=False), NOT_ATTEMPTED)
 
@@ -263,15 +263,15 @@ def test_messages_never_give_the_answer():
 
 
 def test_feedback_object():
-    fb = ex.Feedback("02-mass", WRONG, "Twice too large: use `np.cross`.")
-    assert not fb.correct and fb.attempted and str(fb) == "02-mass · wrong: Twice too large: use `np.cross`."
+    fb = ex.Feedback("03-mass", WRONG, "Twice too large: use `np.cross`.")
+    assert not fb.correct and fb.attempted and str(fb) == "03-mass · wrong: Twice too large: use `np.cross`."
     html = fb._repr_html_()
     assert 'data-status="wrong"' in html and "<code>np.cross</code>" in html and "#b42318" in html
-    assert 'exercises.solution("02-mass")' in html                              # the way to a solution, on purpose
-    assert "exercises.solution" not in ex.Feedback("02-mass", CORRECT, "Right.")._repr_html_()
+    assert 'exercises.solution("03-mass")' in html                              # the way to a solution, on purpose
+    assert "exercises.solution" not in ex.Feedback("03-mass", CORRECT, "Right.")._repr_html_()
     assert ex.Feedback("x", NOT_ATTEMPTED, "").attempted is False
     bundle = fb._bundle()
-    assert bundle[ex.MIME_TYPE] == {"exercise": "02-mass", "status": "wrong"} and bundle["text/plain"] == str(fb)
+    assert bundle[ex.MIME_TYPE] == {"exercise": "03-mass", "status": "wrong"} and bundle["text/plain"] == str(fb)
     with pytest.raises(ValueError, match="status must be one of"):
         ex.Feedback("x", "maybe", "")
 
@@ -301,14 +301,14 @@ def test_jupyter_shows_one_coloured_line_once(monkeypatch):
 
 
 def test_solution_is_revealed_on_request(capsys, monkeypatch):
-    text = ex.solution("02-stiffness", show=False)
+    text = ex.solution("03-stiffness", show=False)
     assert "def my_stiffness" in text and "np.cross" in text and "BEGIN SOLUTION" not in text
     assert capsys.readouterr().out == ""
     assert ex.solution("01-area") is None                            # shown once, not again as the value
     assert "1.6**2" in capsys.readouterr().out
     assert "No solution found" in ex.solution("99-nothing", show=False)
     monkeypatch.setattr(ex.feedback, "_instructor_notebooks", lambda: None)
-    assert "not part of this edition" in ex.solution("02-stiffness", show=False)
+    assert "not part of this edition" in ex.solution("03-stiffness", show=False)
 
 
 def test_every_check_in_the_notebooks_exists():
@@ -386,7 +386,7 @@ def test_instructor_answers_are_put_back_by_grade_id(tmp_path):
     assert edition.MIME_TYPE == ex.MIME_TYPE                        # the script reads what the checks write
 
 
-# --- notebooks 04-06 ---
+# --- notebooks 05-08 ---
 
 @pytest.fixture(scope="module")
 def blob_spectrum():
@@ -424,7 +424,7 @@ def test_projection_hints(blob_spectrum, attempt, hint):
 
 def test_projection_reference_and_unanswered(blob_spectrum):
     _, s = blob_spectrum
-    _status(ex.check_projection(_solution_function("04-projection", "my_project"), s, show=False), CORRECT)
+    _status(ex.check_projection(_solution_function("05-projection", "my_project"), s, show=False), CORRECT)
     _status(ex.check_projection(lambda s, f, n: s.reconstruct(f, n), s, show=False), CORRECT)
     for placeholder in PLACEHOLDERS:
         _status(ex.check_projection(placeholder, s, show=False), NOT_ATTEMPTED)
@@ -593,14 +593,14 @@ def test_floor_fraction():
 
 
 @pytest.mark.parametrize("check, right, slips", [
-    (ex.check_recap_04, (10, "vacuous", "no"), [(0, 9, "left out"), (0, 11, "count again"), (1, "tight", "huge"),
+    (ex.check_recap_optimality, (10, "vacuous", "no"), [(0, 9, "left out"), (0, 11, "count again"), (1, "tight", "huge"),
                                                 (1, "violated", "every function"), (2, "yes", "conditions")]),
-    (ex.check_recap_04_ties, ("no", "lower", 2), [(0, "yes", "tilted"), (1, "exactly", "cancel"), (1, "upper", "overestimate"),
+    (ex.check_recap_ties, ("no", "lower", 2), [(0, "yes", "tilted"), (1, "exactly", "cancel"), (1, "upper", "overestimate"),
                                                   (2, 1, "first-order"), (2, 4, "doubles")]),
-    (ex.check_recap_05, ("lam_n", "no", np.degrees(np.arctan(np.sqrt(2)))),
+    (ex.check_recap_min_max, ("lam_n", "no", np.degrees(np.arctan(np.sqrt(2)))),
      [(0, "lam_n+1", "codimension"), (1, "yes", "arc"), (2, np.degrees(np.arctan(2)), "ratio"),
       (2, np.arctan(np.sqrt(2)), "radians"), (2, 30.0, "(λ_2 − λ_1)/(λ_1 − λ_0)")]),
-    (ex.check_recap_06, (0.25, "A", "regular"), [(0, 0.5, "1/R²"), (0, 4, "upside down"), (1, "w", "conformally"),
+    (ex.check_recap_scale_invariant, (0.25, "A", "regular"), [(0, 0.5, "1/R²"), (0, 4, "upside down"), (1, "w", "conformally"),
                                                  (1, "both", "conformally"), (2, "scale-invariant", "section 6")]),
 ])
 def test_recaps_04_06(check, right, slips):
@@ -621,9 +621,9 @@ def test_messages_04_to_06_never_give_the_answer():
              (ex.check_dual_value(3.3, M, show=False), 2.5),
              (ex.check_curvature_scaling(0.5, scale=3, show=False), 1 / 9),
              (ex.check_metric_scaling({0.4: 0.5}, scale=3, show=False), 3.0 ** -1.2),
-             (ex.check_recap_05("lam_n", "no", 30.0, show=False), np.degrees(np.arctan(np.sqrt(2)))),
-             (ex.check_recap_06(0.3, "A", "regular", show=False), 0.25),
-             (ex.check_recap_04(3, "vacuous", "no", show=False), 10)]
+             (ex.check_recap_min_max("lam_n", "no", 30.0, show=False), np.degrees(np.arctan(np.sqrt(2)))),
+             (ex.check_recap_scale_invariant(0.3, "A", "regular", show=False), 0.25),
+             (ex.check_recap_optimality(3, "vacuous", "no", show=False), 10)]
     for feedback, answer in cases:
         assert feedback.status == WRONG
         numbers = [float(x) for x in re.findall(r"\d+\.?\d*", feedback.message)]
@@ -648,13 +648,13 @@ def _notebook_namespace(stem: str, upto: str) -> dict:
 
 @pytest.fixture(scope="module")
 def messy_scan():
-    """The messy scan notebook 03 writes (its arrays and file), without running the rest."""
-    ns = _notebook_namespace("03_your_own_data", "lbo.load_mesh(scan_path)")
+    """The messy scan notebook 04 writes (its arrays and file), without running the rest."""
+    ns = _notebook_namespace("04_your_own_data", "lbo.load_mesh(scan_path)")
     return ns["v"], ns["faces"], ns["scan_path"]
 
 
 REPAIR = dict(polygons_split=1, vertices_welded=1, degenerate_faces=5, duplicate_faces=5,
-              unreferenced_vertices=10, non_manifold_edges=3, n_components=4)   # notebook 03's solution
+              unreferenced_vertices=10, non_manifold_edges=3, n_components=4)   # notebook 04's solution
 
 
 @pytest.mark.parametrize("change, hint", [
@@ -689,11 +689,11 @@ def test_repair_counts_reference_and_unanswered(messy_scan):
 def operator_candidates(messy_scan):
     import warnings
 
-    ns = _notebook_namespace("03_your_own_data", "lbo.load_mesh(scan_path)")
+    ns = _notebook_namespace("04_your_own_data", "lbo.load_mesh(scan_path)")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         ns["scan"] = ns["lbo"].load_mesh(messy_scan[2], clean=True)
-    nb = json.loads((NOTEBOOKS / "03_your_own_data.ipynb").read_text())
+    nb = json.loads((NOTEBOOKS / "04_your_own_data.ipynb").read_text())
     exec(next("".join(c["source"]) for c in nb["cells"] if "candidates = {" in "".join(c["source"])), ns)
     return ns["candidates"]
 
@@ -769,17 +769,17 @@ def test_neighbors_effect_and_cloud_pieces():
 
 def test_recap_03():
     right = (4, "robust", "fused")
-    _status(ex.check_recap_03(*right, show=False), CORRECT, "all 3")
+    _status(ex.check_recap_your_data(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, 1, "its own constant"), (0, 0, "every piece"), (0, 3, "shape's own constant"),
                            (0, 7, "per connected component"), (0, "four", "expected"),
                            (1, "cotan", "two triangles"), (2, "separate", "join the sheets")]:
         answers = list(right)
         answers[k] = wrong
-        _status(ex.check_recap_03(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(ex.check_recap_03(4, "maybe", "fused", show=False), WRONG, "one of")
-    _status(ex.check_recap_03(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_03(4, ..., ..., show=False), WRONG, "every part")
-    fb = ex.check_recap_03(1, "robust", "fused", show=False)          # the message never names the count
+        _status(ex.check_recap_your_data(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_your_data(4, "maybe", "fused", show=False), WRONG, "one of")
+    _status(ex.check_recap_your_data(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_your_data(4, ..., ..., show=False), WRONG, "every part")
+    fb = ex.check_recap_your_data(1, "robust", "fused", show=False)          # the message never names the count
     assert "4" not in fb.message.replace("Question", ""), fb.message
 
 
@@ -797,15 +797,15 @@ def test_the_student_edition_is_the_series_the_site_publishes(tmp_path):
     edition = _script("student_edition")
     site = _script("build_site")
     assert edition.series(NOTEBOOKS) == site.series_notebooks(NOTEBOOKS)[0]
-    for name in ("00_start_here", "02_laplace_beltrami"):
+    for name in ("00_start_here", "03_laplace_beltrami"):
         (tmp_path / f"{name}.ipynb").write_bytes((NOTEBOOKS / f"{name}.ipynb").read_bytes())
-    for stray in ("scratch", "02_laplace_beltrami-Copy1", "02_laplace_beltrami.new", "42_draft"):
+    for stray in ("scratch", "03_laplace_beltrami-Copy1", "03_laplace_beltrami.new", "42_draft"):
         (tmp_path / f"{stray}.ipynb").write_text('{"cells": []}')
-    assert [p.stem for p in edition.series(tmp_path)] == ["00_start_here", "02_laplace_beltrami"]
+    assert [p.stem for p in edition.series(tmp_path)] == ["00_start_here", "03_laplace_beltrami"]
     (tmp_path / "00_start_here.ipynb").unlink()
-    assert [p.stem for p in edition.series(tmp_path)] == ["02_laplace_beltrami", "42_draft"]
+    assert [p.stem for p in edition.series(tmp_path)] == ["03_laplace_beltrami", "42_draft"]
 
-# --- notebooks 00, 08, 09 ---------------------------------------------------------------------------
+# --- notebooks 00, 11, 12 ---------------------------------------------------------------------------
 
 def test_sphere_eigenvalues():
     _status(ex.check_sphere_eigenvalues([0, 2, 2, 2, 6, 6, 6, 6, 6], show=False), CORRECT)
@@ -880,7 +880,7 @@ def test_rpca_limits():
 
 @pytest.fixture(scope="module")
 def rpca_problem():
-    """A small regularized-PCA problem: a bumpy sphere and a bent copy as two 'poses' (as in notebook 08, §1)."""
+    """A small regularized-PCA problem: a bumpy sphere and a bent copy as two 'poses' (as in notebook 11, §1)."""
     from lbo_notebooks.rpca import RegularizedPCA
 
     small = shapes.bumpy_sphere(2)
@@ -948,7 +948,7 @@ def _objective_variant(kind):
 
 
 def _trace_identity(P, X, W, A, mu):
-    """The other side of notebook 08's identity: trace(Xᵀ A X) − trace(Pᵀ (A X Xᵀ A − μ W) P)."""
+    """The other side of notebook 11's identity: trace(Xᵀ A X) − trace(Pᵀ (A X Xᵀ A − μ W) P)."""
     B = P.T @ (A @ X)
     return np.trace(X.T @ (A @ X)) - (np.sum(B**2) - mu * np.sum(P * (W @ P)))
 
@@ -965,7 +965,7 @@ def test_rpca_objective_reference_and_unanswered(rpca_problem):
     args = (solver.data, W, A, result.basis, result.mu)
     _status(ex.check_rpca_objective(_objective_variant("right"), *args, show=False), CORRECT)
     _status(ex.check_rpca_objective(_trace_identity, *args, show=False), CORRECT)            # equal for A-orthonormal P
-    _status(ex.check_rpca_objective(_solution_function("08-objective", "my_objective"), *args, show=False), CORRECT)
+    _status(ex.check_rpca_objective(_solution_function("11-objective", "my_objective"), *args, show=False), CORRECT)
     _status(ex.check_rpca_objective(lambda P, X, W, A, mu: 1.0, *args, show=False), WRONG, "each term")
     _status(ex.check_rpca_objective(lambda P, X, W, A, mu: "big", *args, show=False), WRONG, "a number")
     for attempt in (..., None, lambda P, X, W, A, mu: None, lambda *a: _stub(None)):
@@ -973,24 +973,24 @@ def test_rpca_objective_reference_and_unanswered(rpca_problem):
 
 
 def test_recaps_08_09():
-    _status(ex.check_recap_08("b", "a", "c", show=False), CORRECT)
-    _status(ex.check_recap_08(" B", "a", "c", show=False), CORRECT)
-    fb = ex.check_recap_08("b", "b", "a", show=False)
+    _status(ex.check_recap_rpca("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_rpca(" B", "a", "c", show=False), CORRECT)
+    fb = ex.check_recap_rpca("b", "b", "a", show=False)
     _status(fb, WRONG, "1 of 3 right", "question 2", "question 3", "centring")
     assert "question 1" not in fb.message.lower()
-    _status(ex.check_recap_08("b", "d", "c", show=False), WRONG, "question 2: answer with one of")
-    _status(ex.check_recap_08("b", 1, "c", show=False), WRONG, "question 2: answer with one of")
-    _status(ex.check_recap_08(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_08("b", ..., "c", show=False), WRONG, "every part")
-    _status(ex.check_recap_09("b", "a", "c", show=False), CORRECT)
-    _status(ex.check_recap_09("c", "b", "c", show=False), WRONG, "question 1", "question 2")
-    _status(ex.check_recap_09("b", "a", "b", show=False), WRONG, "question 3", "not invariant")
-    _status(ex.check_recap_09(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_rpca("b", "d", "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_rpca("b", 1, "c", show=False), WRONG, "question 2: answer with one of")
+    _status(ex.check_recap_rpca(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_rpca("b", ..., "c", show=False), WRONG, "every part")
+    _status(ex.check_recap_toolbox("b", "a", "c", show=False), CORRECT)
+    _status(ex.check_recap_toolbox("c", "b", "c", show=False), WRONG, "question 1", "question 2")
+    _status(ex.check_recap_toolbox("b", "a", "b", show=False), WRONG, "question 3", "not invariant")
+    _status(ex.check_recap_toolbox(..., ..., ..., show=False), NOT_ATTEMPTED)
 
 
 @pytest.fixture(scope="module")
 def two_spectra():
-    """Two spectra on one triangulation (a bumpy sphere and a stretched copy), as the two poses of notebook 09."""
+    """Two spectra on one triangulation (a bumpy sphere and a stretched copy), as the two poses of notebook 12."""
     from lbo_notebooks import eigenbasis
 
     one = shapes.bumpy_sphere(2)
@@ -1005,7 +1005,7 @@ def test_hks(two_spectra):
     decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
     _status(ex.check_hks(descriptors.hks, s, show=False), CORRECT)
     _status(ex.check_hks(lambda s, t: (s.vectors**2) @ np.exp(-np.outer(s.values, t)), s, show=False), CORRECT)  # raw lam_0
-    _status(ex.check_hks(_solution_function("09-hks", "my_hks"), s, show=False), CORRECT)
+    _status(ex.check_hks(_solution_function("12-hks", "my_hks"), s, show=False), CORRECT)
     for attempt, hint in [
         (lambda s, t: s.vectors @ decay(s, t), "square the eigenfunctions"),
         (lambda s, t: (s.vectors**2) @ np.exp(np.outer(s.values, t)), "exp(+λ t)"),
@@ -1048,7 +1048,7 @@ def test_functional_map(two_spectra):
     mine = lambda p2p, s1, s2, k: s2.vectors[:, :k].T @ (s2.mass @ s1.vectors[p2p, :k])  # noqa: E731
     _status(ex.check_functional_map(reference, one, two, show=False), CORRECT)
     _status(ex.check_functional_map(mine, one, two, show=False), CORRECT)
-    _status(ex.check_functional_map(_solution_function("09-fmap", "my_functional_map"), one, two, show=False), CORRECT)
+    _status(ex.check_functional_map(_solution_function("12-fmap", "my_functional_map"), one, two, show=False), CORRECT)
     for attempt, hint in [
         (lambda p, s1, s2, k: mine(p, s1, s2, k).T, "transposed"),
         (lambda p, s1, s2, k: s2.vectors[:, :k].T @ s1.vectors[p, :k], "Euclidean inner product"),
@@ -1151,7 +1151,7 @@ def test_small_scaling_reference_and_library(rows_embedding):
     from lbo_notebooks.mds import gram_error
 
     assert gram_error(_scaling(phi, alpha, 3), X) < 1e-8    # the k x k route is the library's embedding
-    _status(ex.check_small_scaling(_solution_function("07-scaling", "my_scaling"), phi, alpha, X, show=False), CORRECT, "k × k")
+    _status(ex.check_small_scaling(_solution_function("09-scaling", "my_scaling"), phi, alpha, X, show=False), CORRECT, "k × k")
     _status(ex.check_small_scaling(_scaling, phi, alpha, X, show=False), CORRECT)
     for placeholder in PLACEHOLDERS:
         _status(ex.check_small_scaling(placeholder, phi, alpha, X, show=False), NOT_ATTEMPTED)
@@ -1233,17 +1233,17 @@ def test_choices_of_07():
 
 def test_recap_07():
     right = (500, "orthogonal map", "canonical forms")
-    _status(ex.check_recap_07(*right, show=False), CORRECT, "all 3")
+    _status(ex.check_recap_canonical_forms(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, 200, "projected rows"), (0, 300, "eigenfunctions' columns"), (0, 250_000, "side"),
                            (0, 7, "J [Φ, Fᵀ]"), (0, "five hundred", "expected"), (1, "scaling", "bends"),
                            (1, "nothing", "Gram"), (1, "rigid motion", "mirror"),
                            (2, "raw poses", "control"), (2, "both", "control")]:
         answers = list(right)
         answers[k] = wrong
-        _status(ex.check_recap_07(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(ex.check_recap_07(500, "maybe", "canonical forms", show=False), WRONG, "one of")
-    _status(ex.check_recap_07(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_07(500, ..., ..., show=False), WRONG, "every part")
+        _status(ex.check_recap_canonical_forms(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_canonical_forms(500, "maybe", "canonical forms", show=False), WRONG, "one of")
+    _status(ex.check_recap_canonical_forms(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_canonical_forms(500, ..., ..., show=False), WRONG, "every part")
 
 
 def test_mu_range():
@@ -1271,15 +1271,15 @@ def test_equal_size():
 
 def test_recap_07_cost():
     right = ("no", 2, "spectral")
-    _status(ex.check_recap_07_cost(*right, show=False), CORRECT, "all 3")
+    _status(ex.check_recap_mds_at_scale(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in [(0, "yes", "dashed"), (1, 1, "spectral MDS's memory"), (1, 3, "entries"),
                            (1, "two", "expected"), (2, "classical", "coarser mesh")]:
         answers = list(right)
         answers[k] = wrong
-        _status(ex.check_recap_07_cost(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(ex.check_recap_07_cost("maybe", 2, "spectral", show=False), WRONG, "one of")
-    _status(ex.check_recap_07_cost(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_recap_07_cost("no", ..., ..., show=False), WRONG, "every part")
+        _status(ex.check_recap_mds_at_scale(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
+    _status(ex.check_recap_mds_at_scale("maybe", 2, "spectral", show=False), WRONG, "one of")
+    _status(ex.check_recap_mds_at_scale(..., ..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_recap_mds_at_scale("no", ..., ..., show=False), WRONG, "every part")
 
 
 def test_messages_of_07_never_give_the_answer(rows_embedding):
@@ -1290,7 +1290,7 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
     cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
              (ex.check_classical_memory(37.25, 50_000, show=False), 40.0),
              (ex.check_gram_2d(0.5, Z, X, show=False), gram_error(Z[:, :2], X[:, :2])),
-             (ex.check_recap_07(200, "orthogonal map", "canonical forms", show=False), 500),
+             (ex.check_recap_canonical_forms(200, "orthogonal map", "canonical forms", show=False), 500),
              (ex.check_equal_size(1000.0, 2000, show=False), np.sqrt(2000 * 500 / 2))]   # (the cost recap's answer, 2, is a question's number: its hints name no value)
     for feedback, answer in cases:
         assert feedback.status == WRONG
@@ -1298,7 +1298,7 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message
 
 
-# --- the warm-up (02_graph_laplacian) and the recap of 02_laplace_beltrami -------------------------
+# --- the warm-up (02_graph_laplacian) and the recap of 03_laplace_beltrami -------------------------
 
 def test_edge_energy():
     f = [0, 1, 4, 9, 16]

@@ -106,13 +106,13 @@ def test_shared_colour_range_has_one_colour_bar_in_the_last_panel(dog, sphere):
 def test_panels_with_one_colour_scale_share_one_colour_bar_and_no_scene_is_narrowed(dog):
     x = dog.vertices[:, 0]
     width = lambda s: s.domain.x[1] - s.domain.x[0]
-    # Groups: the first two panels share a range, the last two another (notebook 09's HKS and phi_8).
+    # Groups: the first two panels share a range, the last two another (notebook 12's HKS and phi_8).
     fig = plotting.plot_meshes([dog] * 4, [x, 2 * x, x**2, 3 * x**2], shared_colour_range=["a", "a", "b", "b"])
     assert [t.showscale for t in fig.data] == [False, True, False, True]
     assert (fig.data[0].cmin, fig.data[0].cmax) == (fig.data[1].cmin, fig.data[1].cmax) == (2 * x.min(), 2 * x.max())
     assert (fig.data[2].cmin, fig.data[2].cmax) == ((x**2).min(), 3 * (x**2).max())
     np.testing.assert_allclose([width(s) for s in _scenes(fig)], width(fig.layout.scene), rtol=1e-12)
-    # The same cmin and cmax given for every panel: one scale, so one bar (notebook 08).
+    # The same cmin and cmax given for every panel: one scale, so one bar (notebook 11).
     fig = plotting.plot_meshes([dog] * 3, [x, 2 * x, 3 * x], cmin=0.0, cmax=1.0)
     assert [t.showscale for t in fig.data] == [False, False, True]
     # Separate ranges: a bar each, and still equal scenes.
@@ -378,7 +378,7 @@ def test_auto_up_for_the_other_built_in_shapes_and_a_flat_scan():
 @pytest.mark.parametrize("n, bars", [(1, "none"), (2, "each"), (3, "shared"), (4, "each"), (4, "none"), (6, "each")])
 def test_every_shape_fills_at_least_half_of_its_panel(dog, n, bars):
     """Projected through each scene's camera (for the nominal figure width), every shape spans at
-    least half of its scene's width or height (notebook 09 drew 100-pixel dogs in 450-pixel panels)."""
+    least half of its scene's width or height (notebook 12 drew 100-pixel dogs in 450-pixel panels)."""
     meshes = [dog, dog.with_vertices(dog.vertices[:, [0, 2, 1]] * [1, 1, -1]), creature_poses("dog", n_vertices=1000)["sitting"]]
     meshes = (meshes * n)[:n]
     values = None if bars == "none" else [m.vertices[:, 0] for m in meshes]

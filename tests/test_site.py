@@ -116,7 +116,7 @@ def test_build_executes_and_lists_only_the_series(site, tmp_path, monkeypatch, c
 
 
 def test_pages_show_no_hidden_tests_and_fold_the_solutions(site):
-    nb = _read("03_your_own_data")
+    nb = _read("04_your_own_data")
     answers = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("solution")]
     checks = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("grade")]
     assert answers and checks and all("BEGIN HIDDEN TESTS" in c.source for c in checks)

@@ -1,4 +1,4 @@
-"""Self-checks of notebooks 01 (the shape collection) and 02 (the Laplace–Beltrami operator).
+"""Self-checks of notebooks 01 (the shape collection) and 03 (the Laplace–Beltrami operator).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works.
@@ -21,18 +21,18 @@ __all__ = [
     "check_edge_count", "check_area_factor", "check_stretch_growth", "check_smallest_angles",
     "check_leg_area", "check_stiffness", "check_mass", "check_convergence_factor",
     "check_coefficients", "check_consistent_mass", "check_eigenvalue_scaling",
-    "check_zero_eigenvalues", "check_recap_01", "check_recap_lbo",
+    "check_zero_eigenvalues", "check_recap_shapes", "check_recap_lbo",
 ]
 
 # --- 01 · the shape collection -------------------------------------------------------------------
 
-def check_recap_01(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+def check_recap_shapes(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 01: (1) what all poses of a creature share, (2) the Euler characteristic of
     every creature mesh, (3) where the stretch of a pose lies.
 
     Examples
     --------
-    >>> check_recap_01("faces", 2, "joint bands", show=False).correct
+    >>> check_recap_shapes("faces", 2, "joint bands", show=False).correct
     True
     """
     return recap("01-recap", [q1, q2, q3], [
@@ -154,7 +154,7 @@ def check_leg_area(predicted: Any, n_vertices: int, species: str = "dog", *, sho
     return run_check("01-legs", show, body)
 
 
-# --- 02 · the Laplace–Beltrami operator ----------------------------------------------------------
+# --- 03 · the Laplace–Beltrami operator ----------------------------------------------------------
 
 @lru_cache(maxsize=1)
 def _test_meshes() -> tuple[Any, ...]:
@@ -222,7 +222,7 @@ def _diagnose_stiffness(m: np.ndarray, ref: np.ndarray) -> str | None:
 
 
 def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-stiffness: the student's ``stiffness(mesh)`` against ``operators.stiffness_matrix``.
+    """Exercise 03-stiffness: the student's ``stiffness(mesh)`` against ``operators.stiffness_matrix``.
 
     Run on three small meshes (a right triangle, an irregular closed surface, an open sheet with
     obtuse triangles); the hint names the first thing that differs.
@@ -245,7 +245,7 @@ def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
                 where = "the right triangle" if mesh.n_faces == 1 else f"a mesh of {mesh.n_vertices} vertices"
                 raise Stop(WRONG, f"{hint} (first seen on {where}.)")
         return "Right: it matches `operators.stiffness_matrix` on a triangle, a closed surface and an open sheet."
-    return run_check("02-stiffness", show, body)
+    return run_check("03-stiffness", show, body)
 
 
 def _pure_voronoi(mesh: Any) -> np.ndarray:
@@ -261,7 +261,7 @@ def _pure_voronoi(mesh: Any) -> np.ndarray:
 
 
 def check_mass(mass: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-mass: the student's lumped ``mass(mesh)`` against the Voronoi or barycentric mass.
+    """Exercise 03-mass: the student's lumped ``mass(mesh)`` against the Voronoi or barycentric mass.
 
     Either lumped mass is accepted (the message says which one was built).
 
@@ -311,11 +311,11 @@ def check_mass(mass: Any, *, show: bool = True) -> Feedback:
                         else f"The total is right but the shares are not (on {where}): a third of each triangle to each corner (barycentric), or the mixed Voronoi rule.")
         which = "mixed Voronoi" if matches["voronoi"] else "barycentric"
         return f"Right: that is the {which} mass matrix (both lumped masses are accepted; the library's default is mixed Voronoi)."
-    return run_check("02-mass", show, body)
+    return run_check("03-mass", show, body)
 
 
 def check_convergence_factor(factor: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-convergence: by what factor does an O(h²) error drop when h is halved?"""
+    """Exercise 03-convergence: by what factor does an O(h²) error drop when h is halved?"""
     def body() -> str:
         require_attempt(factor)
         got = as_number(factor)
@@ -328,11 +328,11 @@ def check_convergence_factor(factor: Any, *, show: bool = True) -> Feedback:
         if close_to(got, 8.0, 0.1) or close_to(got, 16.0, 0.1):
             raise Stop(WRONG, "That would be a higher order than h²: error ∝ h^p drops by 2^p when h halves, with p = 2 here.")
         raise Stop(WRONG, "If error ≈ C h^p and h becomes h/2, by what factor does the error change? Here p = 2.")
-    return run_check("02-convergence", show, body)
+    return run_check("03-convergence", show, body)
 
 
 def check_coefficients(coefficients: Any, spectrum: Any, f: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-coefficients: the coefficients of ``f`` in the eigenbasis, written by hand.
+    """Exercise 03-coefficients: the coefficients of ``f`` in the eigenbasis, written by hand.
 
     Examples
     --------
@@ -370,12 +370,12 @@ def check_coefficients(coefficients: Any, spectrum: Any, f: Any, *, show: bool =
         if near(phi.T @ (g / mass.diagonal())):
             raise Stop(WRONG, "You divided by the mass; the A inner product multiplies by it.")
         raise Stop(WRONG, "Not Φᵀ A f: take the A inner product ⟨φ_i, f⟩_A = φ_iᵀ A f for each eigenfunction φ_i.")
-    return run_check("02-coefficients", show, body)
+    return run_check("03-coefficients", show, body)
 
 
 def check_consistent_mass(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-consistent: do the consistent-mass eigenvalues of the sphere lie above or below ℓ(ℓ+1)?"""
-    return choose("02-consistent", answer, {
+    """Exercise 03-consistent: do the consistent-mass eigenvalues of the sphere lie above or below ℓ(ℓ+1)?"""
+    return choose("03-consistent", answer, {
         "above": None,
         "below": "Look at the computed values again: the lumped ones are below, the consistent ones are not.",
         "equal": "Neither discretisation is exact on a sphere made of flat triangles.",
@@ -383,7 +383,7 @@ def check_consistent_mass(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_eigenvalue_scaling(factor: Any, scale: float = 2.0, *, show: bool = True) -> Feedback:
-    """Exercise 02-scaling: the factor by which every eigenvalue changes when the shape is scaled by ``scale``."""
+    """Exercise 03-scaling: the factor by which every eigenvalue changes when the shape is scaled by ``scale``."""
     def body() -> str:
         require_attempt(factor)
         got = as_number(factor)
@@ -396,11 +396,11 @@ def check_eigenvalue_scaling(factor: Any, scale: float = 2.0, *, show: bool = Tr
         if close_to(got, 1.0, 1e-3):
             raise Stop(WRONG, "Scaling is not an isometry: lengths change, and so does the spectrum.")
         raise Stop(WRONG, "What are the units of λ in W φ = λ A φ? (W is unitless on a surface; A is an area.)")
-    return run_check("02-scaling", show, body)
+    return run_check("03-scaling", show, body)
 
 
 def check_zero_eigenvalues(torus: Any, two_spheres: Any, *, show: bool = True) -> Feedback:
-    """Exercise 02-kernel: the number of zero eigenvalues of a torus and of two disjoint spheres."""
+    """Exercise 03-kernel: the number of zero eigenvalues of a torus and of two disjoint spheres."""
     def body() -> str:
         require_attempt([torus, two_spheres])
         t, s = as_number(torus, "a whole number"), as_number(two_spheres, "a whole number")
@@ -409,7 +409,7 @@ def check_zero_eigenvalues(torus: Any, two_spheres: Any, *, show: bool = True) -
         if t != 1:
             raise Stop(WRONG, "The torus: the handle does not matter, only how many pieces the surface has; a zero eigenvalue means zero energy, a function constant on each piece.")
         raise Stop(WRONG, "Two disjoint spheres: a function constant on each sphere separately has zero energy too.")
-    return run_check("02-kernel", show, body)
+    return run_check("03-kernel", show, body)
 
 
 def _zero_weight(answer: Any) -> str | None:
@@ -428,7 +428,7 @@ def _zero_weight(answer: Any) -> str | None:
 
 
 def check_recap_lbo(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 02 (the LBO): (1) the weight a triangle gives the edge opposite a right angle,
+    """Recap of notebook 03 (the LBO): (1) the weight a triangle gives the edge opposite a right angle,
     (2) the factor by which W changes when the mesh is scaled by 2, (3) the coefficients' formula.
 
     Examples
@@ -438,11 +438,11 @@ def check_recap_lbo(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback
     >>> "angles" in check_recap_lbo(0, 4, "b", show=False).message
     True
     """
-    return recap("02-lbo-recap", [q1, q2, q3], [
+    return recap("03-lbo-recap", [q1, q2, q3], [
         _zero_weight,
         number_judge(1.0, [(4.0, "W is made of cotangents of angles, and scaling keeps every angle; it is the mass A (areas) that grows by s²."),
                            (2.0, "W is made of cotangents of angles, and scaling keeps every angle."),
-                           (0.25, "that is the factor of the eigenvalues (exercise 02-scaling); W alone is made of cotangents of angles."),
+                           (0.25, "that is the factor of the eigenvalues (exercise 03-scaling); W alone is made of cotangents of angles."),
                            (0.5, "W is made of cotangents of angles, and scaling keeps every angle.")],
                      "W_ij = −½ (cot a + cot b) depends on the angles only: what does scaling do to an angle?"),
         pick({"a": "`Phi.T @ f` is the Euclidean inner product, the classic bug: the eigenvectors are A-orthonormal.",

@@ -1,5 +1,5 @@
-"""Self-checks of the two spectral MDS notebooks: canonical forms (07_spectral_mds) and accuracy,
-cost and resolution (07_spectral_mds_at_scale).
+"""Self-checks of the two spectral MDS notebooks: canonical forms (09_spectral_mds) and accuracy,
+cost and resolution (10_spectral_mds_at_scale).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works. The one the student builds is the
@@ -20,14 +20,14 @@ from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_num
 
 __all__ = [
     "check_classical_memory", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
-    "check_landmark_samples", "check_recap_07", "check_mu_range", "check_equal_size", "check_recap_07_cost",
+    "check_landmark_samples", "check_recap_canonical_forms", "check_mu_range", "check_equal_size", "check_recap_mds_at_scale",
 ]
 
 
-# --- 07-memory -----------------------------------------------------------------------------------
+# --- 09-memory -----------------------------------------------------------------------------------
 
 def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feedback:
-    """Exercise 07-memory: the memory classical MDS needs on ``n`` vertices, in GB (10⁹ bytes).
+    """Exercise 09-memory: the memory classical MDS needs on ``n`` vertices, in GB (10⁹ bytes).
 
     Two n x n float64 matrices (the squared distances and B), 8 bytes per entry.
 
@@ -56,10 +56,10 @@ def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feed
             if close_to(got, slip, 0.02):
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "Count the entries of two n × n matrices, times 8 bytes, and divide by 10⁹.")
-    return run_check("07-memory", show, body)
+    return run_check("09-memory", show, body)
 
 
-# --- 07-scaling: build it yourself ------------------------------------------------------------------
+# --- 09-scaling: build it yourself ------------------------------------------------------------------
 
 def _top(S: np.ndarray, dim: int) -> tuple[np.ndarray, np.ndarray]:
     """The ``dim`` largest eigenpairs of a symmetric matrix, descending."""
@@ -105,7 +105,7 @@ def _scaling_slips(phi: np.ndarray, alpha: np.ndarray, dim: int) -> tuple[np.nda
 
 
 def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, show: bool = True) -> Feedback:
-    """Exercise 07-scaling: the student's ``scaling(phi, alpha, dim)``, spectral MDS's k x k step.
+    """Exercise 09-scaling: the student's ``scaling(phi, alpha, dim)``, spectral MDS's k x k step.
 
     ``phi`` (n x k, A-orthonormal eigenvectors) and ``alpha`` (k x k, ``D2 ~ Phi alpha Phi.T``)
     are those :func:`~lbo_notebooks.mds.spectral_mds` used (``sampled="rows"``), and
@@ -164,14 +164,14 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
                               "the top eigenpairs S = U G Uᵀ, then X = Q U_m G_m^½.")
         return ("Right: the library's embedding, from a k × k eigenproblem. B = −½ J Φ α Φᵀ J = Q S Qᵀ with S = −½ R α Rᵀ, "
                 "and nothing n × n was formed.")
-    return run_check("07-scaling", show, body)
+    return run_check("09-scaling", show, body)
 
 
 # --- closing exercises ------------------------------------------------------------------------------
 
 def check_fmm_gap(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 07-fmm: SMDS with fast-marching samples, against heat classical MDS: closer, same or farther."""
-    return choose("07-fmm", answer, {
+    """Exercise 09-fmm: SMDS with fast-marching samples, against heat classical MDS: closer, same or farther."""
+    return choose("09-fmm", answer, {
         "closer": "What is the reference computed from? Changing the sampled distances to another method changes "
                   "what is being approximated, not only how well.",
         "same": "The sampled distances enter D² directly: another geodesic method gives other numbers.",
@@ -180,7 +180,7 @@ def check_fmm_gap(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = True) -> Feedback:
-    """Exercise 07-two-d: the Gram error of 2-D spectral MDS against 2-D classical MDS.
+    """Exercise 10-two-d: the Gram error of 2-D spectral MDS against 2-D classical MDS.
 
     Both methods keep the top eigenpairs of one matrix, so their 2-D embeddings are the first two
     columns of the 3-D ones (up to signs); the reference is computed from those.
@@ -204,12 +204,12 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
             if close_to(got, slip, 1e-3):
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "Use `gram_error(Z, X)` with Z the 2-D spectral MDS (`spectral_mds(..., dim=2)`) and X the 2-D classical MDS.")
-    return run_check("07-two-d", show, body)
+    return run_check("10-two-d", show, body)
 
 
 def check_landmark_samples(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 07-landmarks: landmark MDS with twice SMDS's samples: more, as, or less accurate than SMDS."""
-    return choose("07-landmarks", answer, {
+    """Exercise 09-landmarks: landmark MDS with twice SMDS's samples: more, as, or less accurate than SMDS."""
+    return choose("09-landmarks", answer, {
         "more": "Landmark MDS uses only the samples' distances to place each vertex, by triangulation; it interpolates "
                 "nothing. Does doubling the samples make up for that?",
         "as": "Twice as many samples is a lot, but landmark MDS uses them differently: it interpolates nothing.",
@@ -237,11 +237,11 @@ def _size(k: int, q: int) -> Callable[[Any], str | None]:
     return judge
 
 
-def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
+def check_recap_canonical_forms(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
     """Recap of the canonical-forms notebook: (1) the side of the small eigenproblem with fields
     (k, q the defaults), (2) how the canonical forms of two isometric poses differ, (3) which of
     canonical forms and raw poses separate the two species by their shape distributions."""
-    return recap("07-recap", [q1, q2, q3], [
+    return recap("09-recap", [q1, q2, q3], [
         _size(int(k), int(q)),
         pick({"orthogonal map": None,
                "rigid motion": "almost: classical MDS cannot tell a shape from its mirror image, so reflections "
@@ -258,9 +258,9 @@ def check_recap_07(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, sho
 # --- the second notebook: accuracy, cost and resolution --------------------------------------------
 
 def check_mu_range(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 07-mu: how much the Gram error of the paper's form (biharmonic energy) changes when
+    """Exercise 10-mu: how much the Gram error of the paper's form (biharmonic energy) changes when
     the smoothness weight grows 500-fold: "less than half", "about double" or "more than tenfold"."""
-    return choose("07-mu", answer, {
+    return choose("10-mu", answer, {
         "less than half": None,
         "about double": "The biharmonic penalty on coefficient i grows like λᵢ²: it weighs the rough eigenfunctions far "
                         "more than the smooth ones that carry most of a distance field.",
@@ -270,7 +270,7 @@ def check_mu_range(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_equal_size(n_c: Any, n: int, k: int = 200, q: int = 300, *, show: bool = True) -> Feedback:
-    """Exercise 07-equal-size: the number of vertices ``n_c`` at which classical MDS's two n_c x n_c
+    """Exercise 10-equal-size: the number of vertices ``n_c`` at which classical MDS's two n_c x n_c
     matrices hold as many floats as spectral MDS's n x (k + q) arrays Φ and F.
 
     Examples
@@ -298,14 +298,14 @@ def check_equal_size(n_c: Any, n: int, k: int = 200, q: int = 300, *, show: bool
             if close_to(got, slip, 0.01):
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "Set the floats of two n_c × n_c matrices equal to those of the n × (k + q) arrays, and solve for n_c.")
-    return run_check("07-equal-size", show, body)
+    return run_check("10-equal-size", show, body)
 
 
-def check_recap_07_cost(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+def check_recap_mds_at_scale(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of the accuracy-and-cost notebook: (1) whether more samples get projected rows with 25
     eigenfunctions under 1%, (2) the exponent of classical MDS's memory in n, (3) which canonical form
     is closer to the full-resolution answer at equal array size."""
-    return recap("07-cost-recap", [q1, q2, q3], [
+    return recap("10-cost-recap", [q1, q2, q3], [
         pick({"yes": "with rows the embedding lives in the span of the eigenfunctions; see the dashed floor in the plot of "
                        "eigenfunctions and samples.",
                "no": None}),

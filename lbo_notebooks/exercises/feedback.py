@@ -43,8 +43,8 @@ class Feedback:
     Attributes
     ----------
     exercise : str
-        The exercise's id, e.g. ``"02-stiffness"`` (its cells in the notebook carry the grade ids
-        ``"02-stiffness-answer"`` and ``"02-stiffness-check"``).
+        The exercise's id, e.g. ``"03-stiffness"`` (its cells in the notebook carry the grade ids
+        ``"03-stiffness-answer"`` and ``"03-stiffness-check"``).
     status : {"correct", "wrong", "not attempted"}
     message : str
         One or two sentences, with inline code in backticks.
@@ -285,7 +285,7 @@ def solution(exercise: str, *, show: bool = True) -> str | None:
     Parameters
     ----------
     exercise : str
-        The exercise id shown by its check, e.g. ``"02-mass"``.
+        The exercise id shown by its check, e.g. ``"03-mass"``.
     show : bool
         Display the solution (as Markdown in Jupyter, as text elsewhere).
 
@@ -297,7 +297,7 @@ def solution(exercise: str, *, show: bool = True) -> str | None:
 
     Examples
     --------
-    >>> "BEGIN SOLUTION" not in solution("02-scaling", show=False)
+    >>> "BEGIN SOLUTION" not in solution("03-scaling", show=False)
     True
     """
     folder = _instructor_notebooks()

@@ -1,4 +1,4 @@
-"""Self-checks of notebooks 04 (optimality: the theorem, then the worst-case constant and ties), 05 (min–max)
+"""Self-checks of notebooks 05 and 06 (optimality: the theorem, then the worst-case constant and ties), 07 (min–max)
 and 06 (scale-invariant metrics).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
@@ -20,16 +20,16 @@ from .feedback import (
 
 __all__ = [
     "check_projection", "check_energy_bound", "check_shifted_basis", "check_consistent_optimality",
-    "check_extra_function", "check_worst_ratio", "check_recap_04", "check_stationary_frame",
-    "check_recap_04_ties", "check_plane_minimum",
+    "check_extra_function", "check_worst_ratio", "check_recap_optimality", "check_stationary_frame",
+    "check_recap_ties", "check_plane_minimum",
     "check_plane_range", "check_lowest_family", "check_dual_value", "check_interlacing",
-    "check_consistent_minmax", "check_recap_05", "check_gauss_bonnet", "check_curvature_scaling",
+    "check_consistent_minmax", "check_recap_min_max", "check_gauss_bonnet", "check_curvature_scaling",
     "check_metric_scaling", "check_best_alpha", "check_floor_fraction", "check_sphere_alpha",
-    "check_consistent_invariance", "check_recap_06",
+    "check_consistent_invariance", "check_recap_scale_invariant",
 ]
 
-# --- notebooks 04-06 ---
-# 04 · the optimality theorem, 05 · the min-max principle, 06 · scale-invariant metrics.
+# --- notebooks 05-08 ---
+# 05–06 · the optimality theorem, 07 · the min-max principle, 08 · scale-invariant metrics.
 
 
 def _theory_ratio_one(exercise: str, value: Any, below: str, above: str, show: bool, rtol: float = 1e-6) -> Feedback:
@@ -55,10 +55,10 @@ def _vector(x: Any, what: str) -> np.ndarray:
     return value
 
 
-# --- 04 · the optimality theorem -------------------------------------------------------------------
+# --- 05–06 · the optimality theorem -------------------------------------------------------------------
 
 def check_projection(project: Any, spectrum: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-projection: the student's ``project(spectrum, f, n)``, the A-orthogonal projection P_n f.
+    """Exercise 05-projection: the student's ``project(spectrum, f, n)``, the A-orthogonal projection P_n f.
 
     Tried with two functions and two values of n against ``Φ_n Φ_nᵀ A f``; the hint names the slip
     (Euclidean inner product, coefficients instead of the projection, wrong n, a transpose, ...).
@@ -122,11 +122,11 @@ def check_projection(project: Any, spectrum: Any, *, show: bool = True) -> Feedb
                 raise Stop(WRONG, "That is the error f − P_n f; return the projection P_n f itself.")
             raise Stop(WRONG, f"Not the A-orthogonal projection (first seen with n = {n}): coefficients c = Φ_nᵀ A f, then Φ_n c.")
         return "Right: P_n f = Φ_n Φ_nᵀ A f, and its error f − P_n f is A-orthogonal to φ_0 .. φ_(n-1)."
-    return run_check("04-projection", show, body)
+    return run_check("05-projection", show, body)
 
 
 def check_energy_bound(value: Any, spectrum: Any, f: Any, n: int, *, show: bool = True) -> Feedback:
-    """Exercise 04-bound: the theorem's bound f^T W f / λ_n for ``f`` after ``n`` terms (0-based λ)."""
+    """Exercise 05-bound: the theorem's bound f^T W f / λ_n for ``f`` after ``n`` terms (0-based λ)."""
     def body() -> str:
         require_attempt(value)
         got = as_number(value)
@@ -148,12 +148,12 @@ def check_energy_bound(value: Any, spectrum: Any, f: Any, n: int, *, show: bool 
             if close_to(got, slip, 1e-6):
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "The bound is fᵀ W f / λ_n: the Dirichlet energy (W = `spectrum.stiffness`) over `values[n]`.")
-    return run_check("04-bound", show, body)
+    return run_check("05-bound", show, body)
 
 
 def check_shifted_basis(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-shifted: C(V) λ_n for V = span(φ_1 .. φ_n), the eigenbasis without the constant."""
-    return choose("04-shifted", answer, {
+    """Exercise 06-shifted: C(V) λ_n for V = span(φ_1 .. φ_n), the eigenbasis without the constant."""
+    return choose("06-shifted", answer, {
         "below": "Nothing is below 1: the theorem holds for every n-dimensional V.",
         "one": "Equality needs the *right* n functions. Which function of zero energy is missing from V, and what is its error?",
         "above": "Think of the worst function: one of zero energy that V cannot represent at all. What is error / energy for it?",
@@ -162,17 +162,17 @@ def check_shifted_basis(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_consistent_optimality(value: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-consistent: C(V) λ_n of the consistent-mass eigenbasis for its own (W, A): exactly 1."""
+    """Exercise 06-consistent: C(V) λ_n of the consistent-mass eigenbasis for its own (W, A): exactly 1."""
     return _theory_ratio_one(
-        "04-consistent", value,
+        "06-consistent", value,
         "Below 1 is impossible (the theorem): is λ_n `values[n]`, with n the number of basis functions?",
         "The eigenbasis is optimal for the pair it solves: pass the consistent spectrum's own `stiffness` and `mass` "
         "to `worst_case_ratio`, and multiply by its `values[n]`.", show)
 
 
 def check_extra_function(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-extra: where V = span(Φ_n, g) sits, between Φ_n and Φ_(n+1)."""
-    return choose("04-extra", answer, {
+    """Exercise 05-extra: where V = span(Φ_n, g) sits, between Φ_n and Φ_(n+1)."""
+    return choose("05-extra", answer, {
         "beats": "V has n + 1 functions: the theorem for n + 1 says no (n + 1)-dimensional space beats Φ_(n+1).",
         "between": None,
         "worse": "V contains span Φ_n: projecting onto a larger space never increases the error.",
@@ -180,7 +180,7 @@ def check_extra_function(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-worst: the error / energy of the worst function of ``basis``, which must equal C(V)."""
+    """Exercise 06-worst: the error / energy of the worst function of ``basis``, which must equal C(V)."""
     from ..optimality import worst_case_ratio
 
     def body() -> str:
@@ -204,13 +204,13 @@ def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show
         if got > c:
             raise Stop(WRONG, "Above C(V), which is a supremum: check the error ‖f − P_V f‖²_A (A-norm) and the energy fᵀ W f.")
         raise Stop(WRONG, "Below C(V): use the function `worst_case_ratio(..., return_vector=True)` returns, and the A-norm of f − P_V f.")
-    return run_check("04-worst", show, body)
+    return run_check("06-worst", show, body)
 
 
-def check_recap_04(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 04 (the theorem): (1) which `values[...]` after 10 terms, (2) the bound for white
+def check_recap_optimality(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 05 (the theorem): (1) which `values[...]` after 10 terms, (2) the bound for white
     noise, (3) whether the direct argument needs an orthonormal basis."""
-    return recap("04-recap", [q1, q2, q3], [
+    return recap("05-recap", [q1, q2, q3], [
         number_judge(10, [(9, "after 10 terms φ_0 .. φ_9 are used; the bound divides by the first one left out."),
                             (11, "indices start at 0: count again which eigenvalue is the first one left out.")],
                        "the first eigenvalue whose eigenfunction is left out, in 0-based indexing."),
@@ -224,8 +224,8 @@ def check_recap_04(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
 
 
 def check_stationary_frame(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 04-stationary: how the excess total energy of a perturbed eigenframe grows when the noise doubles."""
-    return choose("04-stationary", answer, {
+    """Exercise 06-stationary: how the excess total energy of a perturbed eigenframe grows when the noise doubles."""
+    return choose("06-stationary", answer, {
         "same": "The excess is zero without noise and positive with it, so it must grow with ε: how fast, near a minimum?",
         "double": "That would be first order in ε; at a minimum the first-order change of the energy vanishes.",
         "quadruple": None,
@@ -233,10 +233,10 @@ def check_stationary_frame(answer: Any, *, show: bool = True) -> Feedback:
     }, show)
 
 
-def check_recap_04_ties(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+def check_recap_ties(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of the ties notebook (04, part 2): (1) only eigenspaces tie?, (2) what `complement_ratio` gives,
     (3) the power of the tilt angle in a near-tie's excess."""
-    return recap("04-ties-recap", [q1, q2, q3], [
+    return recap("06-ties-recap", [q1, q2, q3], [
         pick({"yes": "section 3 found an interval of tilted eigenbases that tie, none of them an eigenspace.",
               "no": None}),
         pick({"exactly": "it ignores the part of f inside V, which can cancel energy: exact only in special cases.",
@@ -248,7 +248,7 @@ def check_recap_04_ties(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feed
     ], show)
 
 
-# --- 05 · the min-max principle -------------------------------------------------------------------
+# --- 07 · the min-max principle -------------------------------------------------------------------
 
 def _compressed(M: np.ndarray, normal: np.ndarray) -> np.ndarray:
     """Eigenvalues of M restricted to the plane orthogonal to ``normal`` (ascending)."""
@@ -258,7 +258,7 @@ def _compressed(M: np.ndarray, normal: np.ndarray) -> np.ndarray:
 
 
 def check_plane_minimum(value: Any, M: Any, normal: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-plane: the minimum of R(x) = xᵀ M x / xᵀ x on the plane orthogonal to ``normal``.
+    """Exercise 07-plane: the minimum of R(x) = xᵀ M x / xᵀ x on the plane orthogonal to ``normal``.
 
     Examples
     --------
@@ -289,11 +289,11 @@ def check_plane_minimum(value: Any, M: Any, normal: Any, *, show: bool = True) -
         if got > high * (1 + 1e-6) or got < lam[0] * (1 - 1e-6) - 1e-12 * abs(lam[-1]):
             raise Stop(WRONG, "No vector gives that value of R = xᵀMx / xᵀx: did you use xᵀMx without dividing by xᵀx (a vector that is not unit length)?")
         raise Stop(WRONG, "Write the plane as two orthonormal vectors orthogonal to u (columns of B); the minimum is the smaller eigenvalue of the 2×2 matrix Bᵀ M B.")
-    return run_check("05-plane", show, body)
+    return run_check("07-plane", show, body)
 
 
 def check_plane_range(answer: Any, M: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-range: the interval of min-over-a-plane values, (lowest, highest), over all planes."""
+    """Exercise 07-range: the interval of min-over-a-plane values, (lowest, highest), over all planes."""
     def body() -> str:
         require_attempt(answer)
         if not isinstance(answer, (list, tuple)) or len(answer) != 2:
@@ -309,12 +309,12 @@ def check_plane_range(answer: Any, M: Any, *, show: bool = True) -> Feedback:
         if not close_to(low, lam[0], 1e-6):
             raise Stop(WRONG, "The lowest: can a plane contain v_0? What is the minimum on it then?")
         raise Stop(WRONG, "The highest: every plane meets span(v_0, v_1) in a line (two planes through 0 in 3-D always do); what is R there at most?")
-    return run_check("05-range", show, body)
+    return run_check("07-range", show, body)
 
 
 def check_lowest_family(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-family: which family of random constraints leaves the lowest minima."""
-    return choose("05-family", answer, {
+    """Exercise 07-family: which family of random constraints leaves the lowest minima."""
+    return choose("07-family", answer, {
         "white": None,
         "smooth": "Smooth constraints remove smooth, low-energy functions. What do rough constraints remove?",
         "near-optimal": "Constraints near φ_0 .. φ_(n-1) are nearly the optimal ones of Courant–Fischer: they come closest to λ_n.",
@@ -322,7 +322,7 @@ def check_lowest_family(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_dual_value(value: Any, M: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-dual: the exact min over planes of the max of R on the plane (for the 3×3 M)."""
+    """Exercise 07-dual: the exact min over planes of the max of R on the plane (for the 3×3 M)."""
     def body() -> str:
         require_attempt(value)
         got = as_number(value)
@@ -336,30 +336,30 @@ def check_dual_value(value: Any, M: Any, *, show: bool = True) -> Feedback:
         if close_to(got, lam[0], 1e-6):
             raise Stop(WRONG, "A plane's maximum is at least R on the line where it meets span(v_1, v_2).")
         raise Stop(WRONG, "The maximum on a plane is the larger eigenvalue of Bᵀ M B (B: two orthonormal vectors spanning it); minimise it over planes.")
-    return run_check("05-dual", show, body)
+    return run_check("07-dual", show, body)
 
 
 def check_interlacing(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-interlacing: the lower bound of the minimum over a codimension-2 subspace."""
-    return choose("05-interlacing", answer, {
+    """Exercise 07-interlacing: the lower bound of the minimum over a codimension-2 subspace."""
+    return choose("07-interlacing", answer, {
         "lam_0": None,
         "lam_1": "Find a codimension-2 subspace that contains the constant function: what is its minimum?",
     }, show)
 
 
 def check_consistent_minmax(value: Any, *, show: bool = True) -> Feedback:
-    """Exercise 05-consistent: min of R on the optimal subspace over λ_10, consistent mass: exactly 1."""
+    """Exercise 07-consistent: min of R on the optimal subspace over λ_10, consistent mass: exactly 1."""
     return _theory_ratio_one(
-        "05-consistent", value,
+        "07-consistent", value,
         "Below 1 on the optimal subspace: use the consistent spectrum throughout (its `stiffness`, `mass`, and `optimal_subspace(sc, 10)`), "
         "and divide by `sc.values[10]`.",
         "Above λ_n is impossible (Courant–Fischer): divide by `values[10]` for 10 constraints.", show)
 
 
-def check_recap_05(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 05: (1) the Courant–Fischer bound, (2) uniqueness, (3) a critical angle in degrees."""
+def check_recap_min_max(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 07: (1) the Courant–Fischer bound, (2) uniqueness, (3) a critical angle in degrees."""
     t_star = float(np.degrees(np.arctan(np.sqrt(2.0))))
-    return recap("05-recap", [q1, q2, q3], [
+    return recap("07-recap", [q1, q2, q3], [
         pick({"lam_n-1": "the bound is the eigenvalue whose index is the codimension.",
                       "lam_n": None,
                       "lam_n+1": "the bound is the eigenvalue whose index is the codimension."}),
@@ -371,10 +371,10 @@ def check_recap_05(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     ], show)
 
 
-# --- 06 · scale-invariant metrics -----------------------------------------------------------------
+# --- 08 · scale-invariant metrics -----------------------------------------------------------------
 
 def check_gauss_bonnet(torus: Any, disk: Any, *, show: bool = True) -> Feedback:
-    """Exercise 06-gauss-bonnet: Σ K_i a_i for a torus and a disk (2πχ)."""
+    """Exercise 08-gauss-bonnet: Σ K_i a_i for a torus and a disk (2πχ)."""
     def body() -> str:
         require_attempt([torus, disk])
         t, d = as_number(torus), as_number(disk)
@@ -387,11 +387,11 @@ def check_gauss_bonnet(torus: Any, disk: Any, *, show: bool = True) -> Feedback:
         if abs(t) > tol:
             raise Stop(WRONG, "The torus: count V − E + F of a square grid wrapped around both ways (each square is two triangles).")
         raise Stop(WRONG, "The disk: χ = V − E + F of a flat triangulated disk (one triangle will do), times 2π.")
-    return run_check("06-gauss-bonnet", show, body)
+    return run_check("08-gauss-bonnet", show, body)
 
 
 def check_curvature_scaling(factor: Any, scale: float = 3.0, *, show: bool = True) -> Feedback:
-    """Exercise 06-curvature: the factor by which Gaussian curvature changes when a shape is scaled by ``scale``."""
+    """Exercise 08-curvature: the factor by which Gaussian curvature changes when a shape is scaled by ``scale``."""
     def body() -> str:
         require_attempt(factor)
         got = as_number(factor)
@@ -404,11 +404,11 @@ def check_curvature_scaling(factor: Any, scale: float = 3.0, *, show: bool = Tru
         if close_to(got, 1.0, 1e-6):
             raise Stop(WRONG, "The angle defect does not change, but K is the defect per unit area.")
         raise Stop(WRONG, "K_i = δ_i / a_i: how do the angle defect δ_i and the vertex area a_i change?")
-    return run_check("06-curvature", show, body)
+    return run_check("08-curvature", show, body)
 
 
 def check_metric_scaling(factors: Any, scale: float = 3.0, *, show: bool = True) -> Feedback:
-    """Exercise 06-scaling: ``{alpha: factor}``, how the eigenvalues of |K|^alpha g change under scaling by ``scale``."""
+    """Exercise 08-scaling: ``{alpha: factor}``, how the eigenvalues of |K|^alpha g change under scaling by ``scale``."""
     def body() -> str:
         require_attempt(factors)
         if not isinstance(factors, Mapping) or not factors:
@@ -428,11 +428,11 @@ def check_metric_scaling(factors: Any, scale: float = 3.0, *, show: bool = True)
                 raise Stop(WRONG, f"alpha = {alpha}: only α = 1 cancels the area's s² completely.")
             raise Stop(WRONG, f"alpha = {alpha}: W does not change; A_α = diag(ρ^α a) with a → s² a and ρ → s⁻² ρ.")
         return "Right: A_α grows by s^(2(1−α)), so λ scales by s^(−2(1−α)); α = 1 is exactly invariant."
-    return run_check("06-scaling", show, body)
+    return run_check("08-scaling", show, body)
 
 
 def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 06-best: which α rebuilds the most curved 10% of the horse best (0, 0.4 or 1)."""
+    """Exercise 08-best: which α rebuilds the most curved 10% of the horse best (0, 0.4 or 1)."""
     options = {"0": "The regular basis spreads its functions evenly by area; the curved 10% has little area.",
                "0.4": "A compromise is rarely the best at one extreme: which metric gives the curved tips the most area?",
                "1": None}
@@ -448,11 +448,11 @@ def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
         if options[key] is not None:
             raise Stop(WRONG, options[key])
         return "Right: |K| g gives the curved tips most of its area, so its eigenbasis spends its functions there."
-    return run_check("06-best", show, body)
+    return run_check("08-best", show, body)
 
 
 def check_floor_fraction(fraction: Any, mesh: Any, floor: float = 1.0, *, show: bool = True) -> Feedback:
-    """Exercise 06-floor: the fraction of vertices at the curvature floor ``floor``."""
+    """Exercise 08-floor: the fraction of vertices at the curvature floor ``floor``."""
     from ..curvature import metric_curvature
 
     def body() -> str:
@@ -469,12 +469,12 @@ def check_floor_fraction(fraction: Any, mesh: Any, floor: float = 1.0, *, show: 
         if got == 0 and ref > 0:
             raise Stop(WRONG, "None at the floor? Compare with a tolerance (`np.isclose`, or `<=` the floor times 1 + 1e-12), not `==`: the floor is computed in floating point.")
         raise Stop(WRONG, f"Compare `curvature.metric_curvature(mesh, floor={floor:g})` with the floor value {floor:g} · 4π / area (vertices at the floor equal it).")
-    return run_check("06-floor", show, body)
+    return run_check("08-floor", show, body)
 
 
 def check_sphere_alpha(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 06-sphere: how the α = 1 eigenvalues of the unit sphere compare with the regular ones."""
-    return choose("06-sphere", answer, {
+    """Exercise 08-sphere: how the α = 1 eigenvalues of the unit sphere compare with the regular ones."""
+    return choose("08-sphere", answer, {
         "equal": None,
         "scaled": "What is |K|^α on the unit sphere, and so what does g_α = |K|^α g become?",
         "unrelated": "What is |K|^α on the unit sphere, and so what does g_α = |K|^α g become?",
@@ -482,16 +482,16 @@ def check_sphere_alpha(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_consistent_invariance(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 06-consistent: is the consistent (per-triangle) α = 1 metric scale-invariant too?"""
-    return choose("06-consistent", answer, {
+    """Exercise 08-consistent: is the consistent (per-triangle) α = 1 metric scale-invariant too?"""
+    return choose("08-consistent", answer, {
         "yes": None,
         "no": "Scaling by s: what happens to a triangle's area, to its ρ_t, and so to ρ_t × area?",
     }, show)
 
 
-def check_recap_06(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 06: (1) K of a sphere of radius 2, (2) what α changes, (3) which spectrum is steadier under poses."""
-    return recap("06-recap", [q1, q2, q3], [
+def check_recap_scale_invariant(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 08: (1) K of a sphere of radius 2, (2) what α changes, (3) which spectrum is steadier under poses."""
+    return recap("08-recap", [q1, q2, q3], [
         number_judge(0.25, [(0.5, "K is 1/R², not 1/R."), (4.0, "upside down: a bigger sphere is flatter.")],
                        "K = 1/R² on a sphere of radius R."),
         pick({"w": "the Dirichlet energy is conformally invariant in 2-D: the cotangent weights do not change.",

@@ -1,4 +1,4 @@
-"""Self-checks of notebooks 00 (start here), 08 (regularized PCA) and 09 (the spectral toolbox).
+"""Self-checks of notebooks 00 (start here), 11 (regularized PCA) and 12 (the spectral toolbox).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works.
@@ -21,12 +21,12 @@ from .feedback import (
 __all__ = [
     "check_sphere_eigenvalues", "check_mesh_size", "check_eigenfunction", "check_load_error",
     "check_rpca_limits", "check_dirichlet_energies", "check_validation_choice", "check_mu_scaling",
-    "check_rpca_objective", "check_recap_08", "check_hks", "check_functional_map",
+    "check_rpca_objective", "check_recap_rpca", "check_hks", "check_functional_map",
     "check_truncation_bound", "check_alpha_choice", "check_mirror_maps", "check_zoomout",
-    "check_recap_09",
+    "check_recap_toolbox",
 ]
 
-# --- notebooks 00, 08, 09 ---
+# --- notebooks 00, 11, 12 ---
 
 
 def _array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
@@ -185,13 +185,13 @@ def check_load_error(error: Any, *, show: bool = True) -> Feedback:
     return run_check("00-missing", show, body)
 
 
-# --- 08 · regularized PCA --------------------------------------------------------------------------
+# --- 11 · regularized PCA --------------------------------------------------------------------------
 
 _BASES = ("pca (6)", "pca + smooth", "eigenbasis")
 
 
 def check_rpca_limits(at_zero: Any, at_one: Any, best: Any, *, show: bool = True) -> Feedback:
-    """Exercise 08-limits: the bases at β → 0 and β → 1 (of m = 100 functions), and where the best β lies."""
+    """Exercise 11-limits: the bases at β → 0 and β → 1 (of m = 100 functions), and where the best β lies."""
     def body() -> str:
         require_attempt([at_zero, at_one, best])
         answers = {}
@@ -214,11 +214,11 @@ def check_rpca_limits(at_zero: Any, at_one: Any, best: Any, *, show: bool = True
             raise Stop(WRONG, "The limits are right. For the best β: each end ignores one of the two terms. Can "
                                "the validation pose be rebuilt from the training data alone, or from smoothness alone?")
         return "Right: the PCA directions then the smoothest complement, the eigenbasis, and a weight in between."
-    return run_check("08-limits", show, body)
+    return run_check("11-limits", show, body)
 
 
 def check_dirichlet_energies(energies: Any, basis: Any, stiffness: Any, mass: Any, *, show: bool = True) -> Feedback:
-    """Exercise 08-energy: the Dirichlet energies ``p_jᵀ W p_j`` of the columns of ``basis``.
+    """Exercise 11-energy: the Dirichlet energies ``p_jᵀ W p_j`` of the columns of ``basis``.
 
     Examples
     --------
@@ -254,12 +254,12 @@ def check_dirichlet_energies(energies: Any, basis: Any, stiffness: Any, mass: An
         if near(np.abs(WP).sum(axis=0)) or near(WP.sum(axis=0)):
             raise Stop(WRONG, "W p_j is a vector; the energy is the number p_jᵀ (W p_j).")
         raise Stop(WRONG, "Not p_jᵀ W p_j for each column p_j of the basis (`np.einsum(\"ij,ij->j\", ...)` does all columns at once).")
-    return run_check("08-energy", show, body)
+    return run_check("11-energy", show, body)
 
 
 def check_validation_choice(chosen_beta: Any, beats_by_four: Any, errors: Mapping[float, Any], err_lbo: Any,
                             unseen: list[str], pose: str = "tail_raised", *, show: bool = True) -> Feedback:
-    """Exercise 08-validation: β chosen on another validation pose, and whether it still beats the eigenbasis 4×.
+    """Exercise 11-validation: β chosen on another validation pose, and whether it still beats the eigenbasis 4×.
 
     ``errors`` maps each swept β to the errors on the ``unseen`` poses, ``err_lbo`` the eigenbasis' errors.
     """
@@ -286,11 +286,11 @@ def check_validation_choice(chosen_beta: Any, beats_by_four: Any, errors: Mappin
         if bool(beats_by_four) != truth:
             raise Stop(WRONG, "The β is right; compare its errors with a quarter of the eigenbasis' (`err_lbo`) on the two other poses.")
         return f"Right: the choice made on {pose}, and its verdict on the two poses it did not see."
-    return run_check("08-validation", show, body)
+    return run_check("11-validation", show, body)
 
 
 def check_mu_scaling(factor: Any, scale: float = 2.0, *, show: bool = True) -> Feedback:
-    """Exercise 08-scale: the factor by which μ (for a fixed β) changes when the shape is scaled by ``scale``.
+    """Exercise 11-scale: the factor by which μ (for a fixed β) changes when the shape is scaled by ``scale``.
 
     Examples
     --------
@@ -313,7 +313,7 @@ def check_mu_scaling(factor: Any, scale: float = 2.0, *, show: bool = True) -> F
         if close_to(got, s**3, 1e-3) or close_to(got, s**5, 1e-3):
             raise Stop(WRONG, "Check the powers: X → sX and A → s²A in s_B (the top eigenvalue of Xᵀ A X), and the area in λ_ref.")
         raise Stop(WRONG, "μ = β/(1−β) · s_B/λ_ref: find how s_B (top eigenvalue of Xᵀ A X) and λ_ref = 4πm/area scale.")
-    return run_check("08-scale", show, body)
+    return run_check("11-scale", show, body)
 
 
 def _rpca_objective(P: np.ndarray, X: np.ndarray, W: Any, A: Any, mu: float) -> float:
@@ -322,7 +322,7 @@ def _rpca_objective(P: np.ndarray, X: np.ndarray, W: Any, A: Any, mu: float) -> 
 
 
 def check_rpca_objective(objective: Any, X: Any, W: Any, A: Any, P: Any, mu: float, *, show: bool = True) -> Feedback:
-    """Exercise 08-objective: the student's ``objective(P, X, W, A, mu)`` against the regularized-PCA objective.
+    """Exercise 11-objective: the student's ``objective(P, X, W, A, mu)`` against the regularized-PCA objective.
 
     Called on ``P`` and on its first half of columns with ``3 mu``; the hint names the usual slip.
     """
@@ -353,12 +353,12 @@ def check_rpca_objective(objective: Any, X: Any, W: Any, A: Any, P: Any, mu: flo
             raise Stop(WRONG, "Not Σ_i ‖P Pᵀ A x_i − x_i‖²_A + μ Σ_j p_jᵀ W p_j: check each term on its own "
                                "(with μ = 0 only the fit is left).")
         return "Right: the fit in the A-norm plus μ times the Dirichlet energies, on two bases and two weights."
-    return run_check("08-objective", show, body)
+    return run_check("11-objective", show, body)
 
 
-def check_recap_08(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Exercise 08-recap: three multiple-choice questions on notebook 08, each answered with a letter."""
-    return _recap("08-recap", [q1, q2, q3], [
+def check_recap_rpca(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Exercise 11-recap: three multiple-choice questions on notebook 11, each answered with a letter."""
+    return _recap("11-recap", [q1, q2, q3], [
         {"a": "PCA on the coordinates then smoothed is not optimal for the combined objective; section 1 derives a closed form.",
          "b": None,
          "c": "Which term is maximised and which penalised? The eigenvalue problem keeps the *top* eigenvectors of a difference."},
@@ -371,10 +371,10 @@ def check_recap_08(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     ], show)
 
 
-# --- 09 · the spectral toolbox ---------------------------------------------------------------------
+# --- 12 · the spectral toolbox ---------------------------------------------------------------------
 
 def check_hks(hks_function: Any, spectrum: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-hks: the student's ``hks_function(spectrum, times)`` against :func:`descriptors.hks`.
+    """Exercise 12-hks: the student's ``hks_function(spectrum, times)`` against :func:`descriptors.hks`.
 
     Examples
     --------
@@ -419,11 +419,11 @@ def check_hks(hks_function: Any, spectrum: Any, *, show: bool = True) -> Feedbac
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "Not Σ_i e^(−λ_i t) φ_i(x)²: try it on one vertex and one time by hand, "
                            "with `spectrum.values` and `spectrum.vectors`.")
-    return run_check("09-hks", show, body)
+    return run_check("12-hks", show, body)
 
 
 def check_functional_map(fmap: Any, source: Any, target: Any, k: int = 20, *, show: bool = True) -> Feedback:
-    """Exercise 09-fmap: the student's ``fmap(p2p, source, target, k)`` against ``functional_maps.map_from_points``.
+    """Exercise 12-fmap: the student's ``fmap(p2p, source, target, k)`` against ``functional_maps.map_from_points``.
 
     Tried on a random permutation ``p2p`` (``p2p[j]``: the source vertex of target vertex ``j``),
     so that a map used the wrong way round shows.
@@ -464,11 +464,11 @@ def check_functional_map(fmap: Any, source: Any, target: Any, k: int = 20, *, sh
                 raise Stop(WRONG, hint)
         raise Stop(WRONG, "Not Φ₂ᵀ A₂ Π Φ₁: pull the first k source eigenfunctions back (Φ₁[p2p]), then take their A₂ inner "
                            "products with the first k target eigenfunctions.")
-    return run_check("09-fmap", show, body)
+    return run_check("12-fmap", show, body)
 
 
 def check_truncation_bound(bound: Any, spectrum: Any, f: Any, k: int, *, show: bool = True) -> Feedback:
-    """Exercise 09-bound: the optimality bound on the share of ‖f‖²_A lost by the first ``k`` eigenfunctions."""
+    """Exercise 12-bound: the optimality bound on the share of ‖f‖²_A lost by the first ``k`` eigenfunctions."""
     from ..optimality import dirichlet_energy
 
     def body() -> str:
@@ -495,11 +495,11 @@ def check_truncation_bound(bound: Any, spectrum: Any, f: Any, k: int, *, show: b
         if close_to(got, 1 - float(c @ c) / norm2, 1e-3):
             raise Stop(WRONG, "That is the share actually lost (the projection); the question asks for the theorem's bound, from the energy alone.")
         raise Stop(WRONG, "The bound is ‖∇f‖²/λ_k = fᵀ W f / λ_k; divide it by fᵀ A f.")
-    return run_check("09-bound", show, body)
+    return run_check("12-bound", show, body)
 
 
 def check_alpha_choice(alpha: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-alpha: which α of the metric |K|^α g matches the dog with a 1.6 times larger head best (0, 0.4 or 1)?"""
+    """Exercise 12-alpha: which α of the metric |K|^α g matches the dog with a 1.6 times larger head best (0, 0.4 or 1)?"""
     def body() -> str:
         require_attempt(alpha)
         got = as_number(alpha, "one of 0, 0.4, 1")
@@ -511,11 +511,11 @@ def check_alpha_choice(alpha: Any, *, show: bool = True) -> Feedback:
         if close_to(got, 0.4, 1e-9):
             raise Stop(WRONG, "α = 0.4 compensates the rescaling only in part: K scales by 1/s², lengths² by s². Which α cancels them?")
         raise Stop(WRONG, "Answer 0, 0.4 or 1.")
-    return run_check("09-alpha", show, body)
+    return run_check("12-alpha", show, body)
 
 
 def check_mirror_maps(with_orientation: Any, without_orientation: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-mirror: which map ``match`` finds from the dog to its mirror, with and without the orientation term."""
+    """Exercise 12-mirror: which map ``match`` finds from the dog to its mirror, with and without the orientation term."""
     options = ("i -> i", "same position")
 
     def body() -> str:
@@ -533,21 +533,21 @@ def check_mirror_maps(with_orientation: Any, without_orientation: Any, *, show: 
         if given[0] == "i -> i":
             raise Stop(WRONG, "With the orientation term: vertex i of the mirror is the *reflection* of vertex i, a map that reverses orientation.")
         raise Stop(WRONG, "Without the orientation term only intrinsic quantities count: how do the mirror's descriptors at vertex i compare with the dog's?")
-    return run_check("09-mirror", show, body)
+    return run_check("12-mirror", show, body)
 
 
 def check_zoomout(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-zoomout: without ZoomOut (``k_final=30``), is the mean error larger, the same or smaller?"""
-    return choose("09-zoomout", answer, {
+    """Exercise 12-zoomout: without ZoomOut (``k_final=30``), is the mean error larger, the same or smaller?"""
+    return choose("12-zoomout", answer, {
         "larger": None,
         "same": "ZoomOut adds 50 more frequencies to the map, and the point map is read off them: does that change nothing?",
         "smaller": "Refinement with more (smooth, well-captured) functions sharpens the point map; why would it make it worse?",
     }, show)
 
 
-def check_recap_09(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Exercise 09-recap: three multiple-choice questions on notebook 09, each answered with a letter."""
-    return _recap("09-recap", [q1, q2, q3], [
+def check_recap_toolbox(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Exercise 12-recap: three multiple-choice questions on notebook 12, each answered with a letter."""
+    return _recap("12-recap", [q1, q2, q3], [
         {"a": "Each eigenfunction is defined up to sign, and inside a cluster only up to rotation: compare φ_8 in section 1.",
          "b": None,
          "c": "The eigenfunctions change with the pose (signs, mixing); the HKS uses only squares and eigenvalues."},

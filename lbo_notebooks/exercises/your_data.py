@@ -1,4 +1,4 @@
-"""Self-checks of notebook 03 (your own data: repair, operators, point clouds).
+"""Self-checks of notebook 04 (your own data: repair, operators, point clouds).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works.
@@ -16,10 +16,10 @@ from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_num
 
 __all__ = [
     "check_repair_counts", "check_operator_choice", "check_cloud_eigenvalue",
-    "check_largest_component", "check_neighbors_effect", "check_cloud_pieces", "check_recap_03",
+    "check_largest_component", "check_neighbors_effect", "check_cloud_pieces", "check_recap_your_data",
 ]
 
-# --- 03 · your own data --------------------------------------------------------------------------
+# --- 04 · your own data --------------------------------------------------------------------------
 
 _REPAIR_PARTS = ("polygons_split", "vertices_welded", "degenerate_faces", "duplicate_faces",
                  "unreferenced_vertices", "non_manifold_edges", "n_components")
@@ -44,7 +44,7 @@ _REPAIR_HINTS: dict[str, Callable[[int, int], str | None]] = {
 
 
 def check_repair_counts(prediction: Any, mesh: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-repair: predicted counts of what ``clean=True`` repairs, against ``clean_mesh``'s report.
+    """Exercise 04-repair: predicted counts of what ``clean=True`` repairs, against ``clean_mesh``'s report.
 
     ``prediction`` is a dict with the keys ``polygons_split``, ``vertices_welded``, ``degenerate_faces``,
     ``duplicate_faces``, ``unreferenced_vertices``, ``non_manifold_edges`` and ``n_components``;
@@ -78,7 +78,7 @@ def check_repair_counts(prediction: Any, mesh: Any, *, show: bool = True) -> Fee
         key, got, true = wrong[0]
         others = f" ({len(wrong) - 1} other count{'s' if len(wrong) > 2 else ''} also off.)" if len(wrong) > 1 else ""
         raise Stop(WRONG, f"{key}: {_REPAIR_HINTS[key](got, true)}{others}")
-    return run_check("03-repair", show, body)
+    return run_check("04-repair", show, body)
 
 
 def _operator_hint(name: str, mesh: Any, defects: list[str], answer: str) -> str:
@@ -101,7 +101,7 @@ def _operator_hint(name: str, mesh: Any, defects: list[str], answer: str) -> str
 
 
 def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool = True) -> Feedback:
-    """Exercise 03-operator: which Laplacian ``eigenbasis(mesh, k)`` uses for each mesh, ``"cotan"`` or ``"robust"``.
+    """Exercise 04-operator: which Laplacian ``eigenbasis(mesh, k)`` uses for each mesh, ``"cotan"`` or ``"robust"``.
 
     ``choice`` maps each name of ``meshes`` to ``"cotan"`` or ``"robust"``; the truth is whether
     :func:`lbo_notebooks.robust.cotan_defects` finds a defect.
@@ -131,7 +131,7 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
         return ("Right: what makes `eigenbasis` leave the cotangent Laplacian is local (an edge with more than two faces, "
                 "a pinched vertex, needle or zero-area triangles: what `lbo.robust.cotan_defects` checks); holes and "
                 "separate pieces are no defects.")
-    return run_check("03-operator", show, body)
+    return run_check("04-operator", show, body)
 
 
 def _sphere_eigenvalue(k: int) -> float:
@@ -140,7 +140,7 @@ def _sphere_eigenvalue(k: int) -> float:
 
 
 def check_cloud_eigenvalue(relative_error: Any, values: Any, k: int = 9, *, show: bool = True) -> Feedback:
-    """Exercise 03-cloud: the signed relative error ``(λ_k - exact) / exact`` of eigenvalue ``k`` of the unit sphere.
+    """Exercise 04-cloud: the signed relative error ``(λ_k - exact) / exact`` of eigenvalue ``k`` of the unit sphere.
 
     ``values`` are the computed eigenvalues (``values[0]`` the zero one); the exact value is
     ℓ(ℓ+1) for the ℓ with ℓ² ≤ k < (ℓ+1)².
@@ -180,11 +180,11 @@ def check_cloud_eigenvalue(relative_error: Any, values: Any, k: int = 9, *, show
             raise Stop(WRONG, "You compared with the wrong ℓ: ℓ(ℓ+1) is repeated 2ℓ+1 times, and index 0 is ℓ = 0. "
                         "Count again which ℓ this index falls in.")
         raise Stop(WRONG, "Find ℓ for this index (ℓ(ℓ+1) is repeated 2ℓ+1 times, from index 0), then compute (computed - exact) / exact.")
-    return run_check("03-cloud", show, body)
+    return run_check("04-cloud", show, body)
 
 
 def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-largest: zero eigenvalues of the scan's largest piece, and the worst relative error of the next 15.
+    """Exercise 04-largest: zero eigenvalues of the scan's largest piece, and the worst relative error of the next 15.
 
     The check loads ``path`` with ``clean=True, keep_largest_component=True`` and compares
     eigenvalues 1 to 15 with ℓ(ℓ+1) of the unit sphere (the worst ``|λ/exact - 1|``, within 2%).
@@ -217,12 +217,12 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
             raise Stop(WRONG, "Much too large: with one piece the spectrum starts at index 0, so compare values[1:16] with "
                         "exact[1:16] (index for index), and leave out the zero eigenvalue.")
         raise Stop(WRONG, "Take max |λ_k / ℓ(ℓ+1) - 1| over k = 1, ..., 15, with the eigenvalues of the largest piece.")
-    return run_check("03-largest", show, body)
+    return run_check("04-largest", show, body)
 
 
 def check_neighbors_effect(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-neighbors: with ``n_neighbors=10``, do the cloud's eigenvalues get "closer" to ℓ(ℓ+1) or "further"?"""
-    return choose("03-neighbors", answer, {
+    """Exercise 04-neighbors: with ``n_neighbors=10``, do the cloud's eigenvalues get "closer" to ℓ(ℓ+1) or "further"?"""
+    return choose("04-neighbors", answer, {
         "further": None,
         "closer": "Run the cell after the check and compare the worst relative errors for 10 and 30 neighbours.",
         "same": "The neighbourhoods change, and so does the operator: run it and compare the errors.",
@@ -230,7 +230,7 @@ def check_neighbors_effect(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, *, show: bool = True) -> Feedback:
-    """Exercise 03-gap: ``{radius: number of pieces}`` the point cloud of two concentric spheres shows.
+    """Exercise 04-gap: ``{radius: number of pieces}`` the point cloud of two concentric spheres shows.
 
     The inner sphere is ``shapes.icosphere(3)`` (radius 1), the outer the same points scaled by
     the radius; the pieces are the zero eigenvalues of the point-cloud Laplacian.
@@ -262,20 +262,20 @@ def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, *, show: bool = True)
                             "The outer sphere's points are sparser, so their neighbourhoods reach further: can they reach the inner sphere?")
             raise Stop(WRONG, f"Radius {radius}: the gap is wider than the outer points' neighbourhoods reach, so no patch joins the spheres.")
         return "Right: the spheres separate once the gap is wider than an outer point's neighbourhood reaches."
-    return run_check("03-gap", show, body)
+    return run_check("04-gap", show, body)
 
 
-def check_recap_03(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 03: (1) the zero eigenvalues of a scan in four pieces, (2) the operator
+def check_recap_your_data(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of notebook 04: (1) the zero eigenvalues of a scan in four pieces, (2) the operator
     ``eigenbasis`` picks for a mesh with an edge of three faces, (3) what a point cloud makes of two
     sheets closer than its neighbourhoods reach.
 
     Examples
     --------
-    >>> check_recap_03(4, "robust", "fused", show=False).correct
+    >>> check_recap_your_data(4, "robust", "fused", show=False).correct
     True
     """
-    return recap("03-recap", [q1, q2, q3], [
+    return recap("04-recap", [q1, q2, q3], [
         number_judge(4.0, [(1.0, "each connected component carries its own constant function with zero energy."),
                            (0.0, "a constant function has zero energy on every piece."),
                            (3.0, "the shape's own constant counts too: one zero per connected component.")],

@@ -1,6 +1,6 @@
 """Figures and sliders made for one lesson each: the Rayleigh quotient on the sphere with a
-rotating plane (notebook 05), the recorded MDS benchmark (notebook 07) and the alpha / n
-reconstruction sliders (notebook 06). Built on :mod:`lbo_notebooks.plotting.meshes`.
+rotating plane (notebook 07), the recorded MDS benchmark (notebook 10) and the alpha / n
+reconstruction sliders (notebook 08). Built on :mod:`lbo_notebooks.plotting.meshes`.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from .meshes import mesh_slider, MeshSlider
 __all__ = ["rayleigh_sphere_figure", "PlaneSlider", "plane_slider", "plot_mds_scaling", "reconstruction_sliders"]
 
 
-# --- min-max (notebook 05): the Rayleigh quotient on the unit sphere of R^3 ------------------------
+# --- min-max (notebook 07): the Rayleigh quotient on the unit sphere of R^3 ------------------------
 def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *, resolution: int = 60) -> Any:
     """Plotly figure: the unit sphere coloured by ``x.T M x``, with a plane's great circle.
 
@@ -106,7 +106,7 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
     return PlaneSlider(matrix, angles)
 
 
-# --- recorded MDS benchmark (notebook 07) -------------------------------------------------------
+# --- recorded MDS benchmark (notebook 10) -------------------------------------------------------
 def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     """Time and peak memory of spectral vs classical MDS against n, from ``benchmarks/mds.py`` rows.
 
@@ -153,7 +153,7 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     return fig
 
 
-# --- reconstruction sliders (notebook 06) -------------------------------------------------------
+# --- reconstruction sliders (notebook 08) -------------------------------------------------------
 def reconstruction_sliders(
     mesh: Mesh,
     target: ArrayLike,

@@ -117,7 +117,7 @@ ALLOWED_FAILURES = [
     (re.compile(r"/mathjax/fonts/HTML-CSS/TeX/otf/MathJax_AMS-Regular\.otf$"), "MathJax 2 AMS font probe"),
 ]
 RESOURCE_FAILURE = "console error: Failed to load resource:"
-SITE_NOTEBOOKS = ["00_start_here", "02_laplace_beltrami"]
+SITE_NOTEBOOKS = ["00_start_here", "03_laplace_beltrami"]
 ARTIFACTS = Path(os.environ.get("LBO_BROWSER_ARTIFACTS", REPO / "artifacts" / "browser"))
 RUN_TIMEOUT = float(os.environ.get("LBO_BROWSER_TIMEOUT", "900"))  # seconds for Run All Cells
 VIEWPORT = {"width": 1400, "height": 1000}

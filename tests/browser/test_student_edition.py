@@ -10,7 +10,7 @@ What happens: the student edition is built with ``scripts/student_edition.py`` i
 copy of the repository's layout (``<tmp>/repo/build/student``; the repository's own
 ``build/student/``, where a student may be working, is never touched), JupyterLab is started on it,
 every notebook of the series is run unanswered (no error, every check "not attempted"), and for
-each of notebooks 01, 02 and 03 a fresh page
+each of notebooks 01, 03 and 04 a fresh page
 
 1. runs every cell (*Run > Run All Cells*), unanswered: no cell errors, every check cell shows
    exactly one feedback line and each says "not attempted";
@@ -51,16 +51,16 @@ STUDENT_ANSWERS = {
         "wrong": ("01-edges", "n_edges = 3 * dog.n_faces", ["factor of two"]),
         "right": ("01-area", "area_factor = 1.6 ** 2"),
     },
-    "02_laplace_beltrami": {
-        "wrong": ("02-convergence", "error_drop = 2", ["first order"]),
-        "right": ("02-scaling", "eigenvalue_factor = 1 / 4"),
+    "03_laplace_beltrami": {
+        "wrong": ("03-convergence", "error_drop = 2", ["first order"]),
+        "right": ("03-scaling", "eigenvalue_factor = 1 / 4"),
     },
-    "03_your_own_data": {
-        "wrong": ("03-cloud", "relative_error = cloud_spectrum.values[9] / (9 * 10) - 1", ["is not ℓ", "2ℓ+1"]),
-        "right": ("03-operator", 'operator = {"holes": "cotan", "two_pieces": "cotan", "fins": "robust", "pinched": "robust"}'),
+    "04_your_own_data": {
+        "wrong": ("04-cloud", "relative_error = cloud_spectrum.values[9] / (9 * 10) - 1", ["is not ℓ", "2ℓ+1"]),
+        "right": ("04-operator", 'operator = {"holes": "cotan", "two_pieces": "cotan", "fins": "robust", "pinched": "robust"}'),
     },
 }
-REVEAL = ("03_your_own_data", "03-repair", "unreferenced_vertices")   # notebook, exercise, a word of its solution
+REVEAL = ("04_your_own_data", "04-repair", "unreferenced_vertices")   # notebook, exercise, a word of its solution
 FEEDBACK = ".jp-OutputArea-output .lbo-feedback"
 
 
@@ -140,9 +140,9 @@ def _answer_and_check(page: Page, exercise: str, answer: str, out: Path) -> dict
 
 def _answer_cell(page: Page, exercise: str) -> int:
     """The answer cell of an exercise: the code cell before the one that runs its check."""
-    checks = {"01-edges": "check_edge_count(", "01-area": "check_area_factor(", "02-convergence": "check_convergence_factor(",
-              "02-scaling": "check_eigenvalue_scaling(", "03-cloud": "check_cloud_eigenvalue(",
-              "03-operator": "check_operator_choice(", "03-repair": "check_repair_counts("}
+    checks = {"01-edges": "check_edge_count(", "01-area": "check_area_factor(", "03-convergence": "check_convergence_factor(",
+              "03-scaling": "check_eigenvalue_scaling(", "04-cloud": "check_cloud_eigenvalue(",
+              "04-operator": "check_operator_choice(", "04-repair": "check_repair_counts("}
     return _index_of_cell(page, f"feedback = exercises.{checks[exercise]}") - 1
 
 
