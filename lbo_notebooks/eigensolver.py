@@ -17,8 +17,6 @@ raises instead of silently dropping one.
 
 from __future__ import annotations
 
-import ctypes
-import os
 from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 
@@ -26,12 +24,13 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._platform import default_workers, return_freed_memory
 from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .sparse_factor import SymmetricFactor, fill_reducing_order, symmetric_lu
 
-__all__ = ["SliceFactor", "count_below", "default_workers", "plan_sets", "slice_eigsh"]
+__all__ = ["SliceFactor", "count_below", "plan_sets", "slice_eigsh"]
 
 # Eigenvalues per window: the orthogonalisation cost (n * basis^2 per window) against one
 # factorisation per window (in time about 40 block solves at 50k vertices, in memory about 125
@@ -277,29 +276,6 @@ def slice_eigsh(
         return _stitch(W, A, order, k, v0, tol, shifts, counts, plans, sets, top_count)
 
 
-def _return_freed_memory() -> None:
-    """Ask glibc to hand freed heap pages back to the system (a factorisation leaves many behind)."""
-    try:
-        ctypes.CDLL("libc.so.6").malloc_trim(0)
-    except (OSError, AttributeError):  # not glibc (macOS, Windows, musl): nothing to do
-        pass
-
-
-def default_workers() -> int:
-    """Threads for the slices: the usable cores, at most 2 (each holds a factorisation and a Krylov basis).
-
-    Examples
-    --------
-    >>> default_workers() in (1, 2)
-    True
-    """
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except AttributeError:  # not on Linux
-        cores = os.cpu_count() or 1
-    return max(1, min(2, cores))
-
-
 def plan_sets(k: int, slice_size: int, workers: int) -> int:
     """Number of Lanczos sets for ``k`` eigenpairs: about ``k / slice_size``, a multiple of ``workers``.
 
@@ -416,7 +392,7 @@ def _submit_sets(
         for j in finished:
             del alive[j]
         if finished:
-            _return_freed_memory()
+            return_freed_memory()
 
     above: int | None = None  # the set placed last, the nearest above
     top_count: int | None = None
@@ -428,7 +404,7 @@ def _submit_sets(
         )
         if factor is None:  # one cluster fills the rest of the bracket: the neighbours cover it
             continue
-        _return_freed_memory()  # SuperLU's work space, freed when the factorisation ended
+        return_freed_memory()  # SuperLU's work space, freed when the factorisation ended
         alive[j] = factor
         placed[j] = SliceFactor(shift=factor.shift, n_below=factor.n_below, lu=None)
         # Local density of eigenvalues (per unit of lam) from the counts above and at this shift.
@@ -454,7 +430,7 @@ def _submit_sets(
                 top_count = SliceFactor.of(W, A, plans[j].high, order).n_below
             except ValueError:  # the top of the window is an eigenvalue: certify from a gap later
                 top_count = None
-            _return_freed_memory()
+            return_freed_memory()
         above = j
     if not plans:  # no shift fitted anywhere between -shift and the top: nothing to slice
         raise RuntimeError("spectrum slicing could not place a shift; use solver='arpack'.")

@@ -32,10 +32,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._platform import default_workers
 from .blas_threads import one_blas_thread
-from .eigensolver import default_workers
-from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
 from .mesh import Mesh, MeshError, per_mesh
+from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
 

@@ -17,6 +17,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import renamed, warn
 from .inner_product import (
     a_orthonormalize,
     check_functions,
@@ -28,11 +29,10 @@ from .inner_product import (
     start_vector,
     use_dense,
 )
-from ._deprecation import renamed, warn
-from .mesh import Mesh
+from .mesh import Mesh, check_coordinate_range
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 from .sparse_factor import mesh_order
-from .units import check_coordinate_range, unit_area_exponent
+from .units import unit_area_exponent
 
 __all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
 

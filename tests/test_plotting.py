@@ -2,7 +2,7 @@ import matplotlib
 import numpy as np
 import pytest
 
-from lbo_notebooks import eigenbasis, plotting, shapes
+from lbo_notebooks import creatures, eigenbasis, plotting, shapes
 
 matplotlib.use("Agg")
 
@@ -66,7 +66,7 @@ from lbo_notebooks.plotting.meshes import _MARGIN, _NOMINAL_WIDTH  # noqa: E402 
 
 @pytest.fixture(scope="module")
 def dog():
-    return shapes.creature("dog", n_vertices=1000)
+    return creatures.creature("dog", n_vertices=1000)
 
 
 def _scenes(fig):
