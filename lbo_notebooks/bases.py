@@ -8,7 +8,8 @@ one call at the largest ``k`` serves a whole curve over ``k``.
 
 The competitors:
 
-* :func:`eigen_basis` — the Laplace–Beltrami eigenbasis itself (the optimum);
+* :func:`lbo_basis` — the Laplace–Beltrami eigenbasis itself (the optimum), as an array (a
+  :class:`~lbo_notebooks.Spectrum` is :func:`~lbo_notebooks.eigenbasis`);
 * :func:`random_smooth_basis` — heat-smoothed random noise;
 * :func:`pca_basis` — principal components of a set of sample functions;
 * :func:`umbrella_basis` — eigenvectors of the combinatorial (umbrella) graph Laplacian;
@@ -29,13 +30,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
-from ._deprecation import renamed
+from ._deprecation import moved, renamed
 from .inner_product import a_orthonormalize, check_operators
 from .sparse_factor import symmetric_lu
 from .spectrum import eigenbasis
 
 __all__ = [
-    "eigen_basis",
+    "lbo_basis",
     "random_smooth_basis",
     "random_smooth_functions",
     "sample_functions",
@@ -84,13 +85,13 @@ def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np
 
 
 @renamed({"n": "k", "mass": "mass_kind"})
-def eigen_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
+def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The first k Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
 
     Examples
     --------
     >>> from lbo_notebooks import shapes
-    >>> eigen_basis(shapes.icosphere(2), 9).shape
+    >>> lbo_basis(shapes.icosphere(2), 9).shape
     (162, 9)
     """
     k, _ = _check(mesh, k, mass_kind)
@@ -393,7 +394,7 @@ def competitor_bases(
     ['LBO eigenbasis', 'PCA of samples', 'identity mass']
     """
     bases = {
-        "LBO eigenbasis": eigen_basis(mesh, k, mass_kind=mass_kind),
+        "LBO eigenbasis": lbo_basis(mesh, k, mass_kind=mass_kind),
         "random smooth": random_smooth_basis(mesh, k, mass_kind=mass_kind, seed=seed),
         "PCA of samples": pca_basis(mesh, k, mass_kind=mass_kind, seed=seed),
         "umbrella Laplacian": umbrella_basis(mesh, k, mass_kind=mass_kind),
@@ -403,3 +404,7 @@ def competitor_bases(
     if metric is not None:
         bases["other metric"] = metric_basis(mesh, k, metric, mass_kind=mass_kind)
     return bases
+
+
+# Old spelling: eigen_basis (an array) read too much like eigenbasis (a Spectrum).
+__getattr__ = moved(__name__, {"eigen_basis": "lbo_notebooks.bases:lbo_basis"})

@@ -64,7 +64,7 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
             f"{what} need a connected mesh, but this one has {k} connected components (vertex counts "
             f"{sorted(sizes.tolist(), reverse=True)[:5]}{' ...' if k > 5 else ''}); distances between "
             "components are infinite. Keep the largest component: "
-            "mesh, _ = lbo_notebooks.io.clean_mesh(mesh, keep_largest_component=True) (or load it with "
+            "mesh, _ = lbo_notebooks.clean_mesh(mesh, keep_largest_component=True) (or load it with "
             "load_mesh(path, clean=True, keep_largest_component=True))."
         )
 

@@ -120,7 +120,7 @@ def _factor(matrix: sp.spmatrix, order: NDArray[np.intp] | None = None) -> Any:
     except RuntimeError as err:  # SuperLU: "Factor is exactly singular"
         raise MeshError(
             f"could not factorise this mesh's Laplacian ({err}): some vertices touch only degenerate "
-            "(zero-area) faces. Repair it: lbo_notebooks.io.clean_mesh(mesh) or load_mesh(path, clean=True)."
+            "(zero-area) faces. Repair it: lbo_notebooks.clean_mesh(mesh) or load_mesh(path, clean=True)."
         ) from err
 
 

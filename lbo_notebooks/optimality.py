@@ -11,7 +11,7 @@ Dirichlet energy better than the first n eigenfunctions of the Laplace–Beltram
 
 The exact ``C(V)`` minimises the energy over the part of ``f`` that lies *in* ``V`` (a Schur
 complement). Using ``W`` itself on the A-orthogonal complement of ``V`` instead is a classic trap:
-it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See docs/maths.md,
+it gives only a lower bound (:func:`~lbo_notebooks.minmax.complement_ratio`, kept to show the difference). See docs/maths.md,
 section "Optimality".
 """
 
@@ -26,9 +26,8 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import renamed
+from ._deprecation import moved, renamed
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
-from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
 from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
@@ -36,10 +35,8 @@ __all__ = [
     "representation_error",
     "error_bound",
     "dirichlet_energy",
-    "a_orthonormalize",
     "kernel_basis",
     "worst_case_ratio",
-    "complement_ratio",
     "witness_function",
 ]
 
@@ -287,7 +284,7 @@ def worst_case_ratio(
     of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,
     ``a = A 1``, ``s = 1 @ A @ 1``; the rank-one term makes the right side definite and does not
     change the ratio. (Using ``W`` instead of ``S`` on the complement is the trap:
-    :func:`complement_ratio`.)
+    :func:`~lbo_notebooks.minmax.complement_ratio`.)
 
     Parameters
     ----------
@@ -375,3 +372,7 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c
     return fix_signs(f / np.sqrt(float(f @ (spectrum.mass @ f))), spectrum.mass)
+
+
+# Old spelling: complement_ratio belongs with min-max (lbo_notebooks.minmax).
+__getattr__ = moved(__name__, {"complement_ratio": "lbo_notebooks.minmax:complement_ratio"})

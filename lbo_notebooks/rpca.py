@@ -60,9 +60,9 @@ from .inner_product import (
     check_operators,
     default_shift,
     fix_signs,
-    principal_angles,
-    reconstruct,
-    reconstruction_error,
+    principal_angles,  # noqa: F401  old spelling rpca.principal_angles (home: inner_product)
+    reconstruct,  # noqa: F401  old spelling (home: inner_product)
+    reconstruction_error,  # noqa: F401  old spelling (home: inner_product)
     start_vector,
     use_dense,
 )
@@ -75,9 +75,6 @@ __all__ = [
     "regularized_pca",
     "mu_from_beta",
     "beta_from_mu",
-    "reconstruct",
-    "reconstruction_error",
-    "principal_angles",
 ]
 
 Method = Literal["auto", "dense", "sparse"]

@@ -17,14 +17,13 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import renamed, warn
+from ._deprecation import moved, renamed, warn
 from .inner_product import (
     a_orthonormalize,
     check_functions,
     check_operators,
     cholesky_qr,
     default_shift,
-    fix_signs,
     fix_signs_in_place,
     start_vector,
     use_dense,
@@ -34,7 +33,7 @@ from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 from .sparse_factor import mesh_order
 from .units import unit_area_exponent
 
-__all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
+__all__ = ["Spectrum", "eigenbasis"]
 
 Operators = tuple[sp.spmatrix, sp.spmatrix]
 
@@ -49,7 +48,7 @@ class Spectrum:
         Eigenvalues, ascending; ``values[0]`` is 0 (up to round-off) on a connected surface.
     vectors : ndarray, shape (n, k)
         Eigenvectors, A-orthonormal (``vectors.T @ mass @ vectors == I``), signs fixed by
-        :func:`fix_signs`.
+        :func:`~lbo_notebooks.inner_product.fix_signs`.
     stiffness, mass : scipy.sparse.csr_matrix
         The operators the spectrum was computed from.
 
@@ -344,3 +343,7 @@ def _arpack_is_complete(
     except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
         return False
     return count == int(np.count_nonzero(values < point))
+
+
+# Old spelling: fix_signs belongs to the A-inner-product algebra (lbo_notebooks.inner_product).
+__getattr__ = moved(__name__, {"fix_signs": "lbo_notebooks.inner_product:fix_signs"})

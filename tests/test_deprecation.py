@@ -136,8 +136,7 @@ def test_moved_names():
     for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider"):
         with pytest.warns(DeprecationWarning, match=f"lbo_notebooks.plotting.{name}"):
             assert getattr(minmax, name) is getattr(plotting, name)
-    # complement_ratio moved to minmax and stays importable from optimality, as the same object
-    assert optimality.complement_ratio is minmax.complement_ratio
+    # principal_angles lives in inner_product; rpca still imports it (not in rpca.__all__)
     assert rpca.principal_angles is lbo.inner_product.principal_angles
 
 
@@ -152,6 +151,10 @@ def test_moved_names():
         ("creatures", "vertex_strain", "distortion"),
         ("curvature", "jittered_torus", "shapes"),
         ("units", "check_coordinate_range", "mesh"),
+        ("optimality", "complement_ratio", "minmax"),
+        ("io", "CleanReport", "repair"),
+        ("io", "clean_mesh", "repair"),
+        ("spectrum", "fix_signs", "inner_product"),
     ],
 )
 def test_names_moved_to_their_layer(old_module, name, new_module):
@@ -162,6 +165,11 @@ def test_names_moved_to_their_layer(old_module, name, new_module):
     with pytest.warns(DeprecationWarning, match=f"use lbo_notebooks.{new_module}.{name} instead"):
         assert getattr(old, name) is getattr(new, name)
     assert name not in old.__all__ and name in new.__all__
+
+
+def test_eigen_basis_is_now_lbo_basis(sphere):
+    a, b = _same_with_warning(lambda: bases.lbo_basis(sphere, 5), lambda: bases.eigen_basis(sphere, 5), "bases.lbo_basis")
+    np.testing.assert_array_equal(a, b)
 
 
 

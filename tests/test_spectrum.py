@@ -3,7 +3,7 @@ import pytest
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectrum import fix_signs
+from lbo_notebooks.inner_product import fix_signs
 
 # l(l+1) with multiplicity 2l+1: the first 36 eigenvalues of the unit sphere (l = 0..5).
 L = np.repeat(np.arange(6), 2 * np.arange(6) + 1)
