@@ -11,8 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..mesh import Mesh
-
-from .meshes import mesh_slider, MeshSlider
+from .sliders import mesh_slider
 
 __all__ = ["rayleigh_sphere_figure", "PlaneSlider", "plane_slider", "plot_mds_scaling", "reconstruction_sliders"]
 
