@@ -18,7 +18,7 @@ codimension n, so its minimum quotient is at most ``lam[n]``.
 
 from __future__ import annotations
 
-from typing import Any, Literal, Sequence, overload
+from typing import Literal, overload
 
 import numpy as np
 import scipy.linalg
@@ -31,11 +31,9 @@ from .inner_product import (
     a_orthonormalize,
     check_functions,
     check_operators,
-    default_shift,
     fix_signs,
-    start_vector,
-    use_dense,
 )
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
@@ -210,7 +208,7 @@ def min_rayleigh_quotient(
         ``"dense"``: a basis of L by SVD and ``scipy.linalg.eigh`` (small n); ``"sparse"``:
         shift-invert Lanczos on the constrained problem, one sparse LU of ``W + s A`` and ``codim``
         extra solves (no dense n x n matrix; see :class:`ConstrainedRayleigh`, which reuses the
-        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
+        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.solver_policy.use_dense`.
     return_vector : bool
         Also return the minimiser, A-normalised, sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 

@@ -27,7 +27,8 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed
-from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
+from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
+from .solver_policy import start_vector, use_dense
 from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 

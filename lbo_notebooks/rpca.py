@@ -58,14 +58,12 @@ from ._deprecation import renamed, warn
 from .inner_product import (
     a_orthonormalize,
     check_operators,
-    default_shift,
     fix_signs,
     principal_angles,  # noqa: F401  old spelling rpca.principal_angles (home: inner_product)
     reconstruct,  # noqa: F401  old spelling (home: inner_product)
     reconstruction_error,  # noqa: F401  old spelling (home: inner_product)
-    start_vector,
-    use_dense,
 )
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import SymmetricFactor, symmetric_lu
 from .spectrum import eigenbasis
 

@@ -23,11 +23,9 @@ from .inner_product import (
     check_functions,
     check_operators,
     cholesky_qr,
-    default_shift,
     fix_signs_in_place,
-    start_vector,
-    use_dense,
 )
+from .solver_policy import default_shift, start_vector, use_dense
 from .mesh import Mesh, check_coordinate_range
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
 from .sparse_factor import mesh_order

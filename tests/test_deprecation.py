@@ -155,6 +155,10 @@ def test_moved_names():
         ("io", "CleanReport", "repair"),
         ("io", "clean_mesh", "repair"),
         ("spectrum", "fix_signs", "inner_product"),
+        ("inner_product", "default_shift", "solver_policy"),
+        ("inner_product", "start_vector", "solver_policy"),
+        ("inner_product", "use_dense", "solver_policy"),
+        ("inner_product", "DENSE_LIMIT", "solver_policy"),
     ],
 )
 def test_names_moved_to_their_layer(old_module, name, new_module):
@@ -207,9 +211,9 @@ def test_a_fallback_warning_points_at_the_callers_line(sphere, monkeypatch):
 
     monkeypatch.setattr(eigensolver, "slice_eigsh", no_slices)
     monkeypatch.setattr(eigensolver, "SLICE_SIZE", 10)  # slice from k = 10 on
-    import lbo_notebooks.inner_product as inner_product
+    import lbo_notebooks.solver_policy as solver_policy
 
-    monkeypatch.setattr(inner_product, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
+    monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         line = inspect.currentframe().f_lineno + 1
