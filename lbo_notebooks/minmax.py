@@ -44,9 +44,6 @@ __all__ = [
     "random_subspace",
     "optimal_subspace",
     "complement_ratio",
-    "plane_normal",
-    "plane_circle",
-    "symmetric_3x3",
 ]
 
 Method = Literal["auto", "dense", "sparse"]
@@ -295,63 +292,6 @@ def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     return np.array(spectrum.vectors[:, : int(k)])
 
 
-# --- the 3 x 3 picture -----------------------------------------------------------------------------
-def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
-    """Unit normal of a plane through the origin of R^3, rotated by ``angle`` degrees.
-
-    At 0 the plane is orthogonal to the first eigenvector ``v0`` of the symmetric 3 x 3 ``matrix``
-    (eigenvalues ``lam_0 <= lam_1 <= lam_2``, indices from 0; the optimal plane of Courant–Fischer,
-    minimum quotient ``lam_1``); the normal then turns towards ``(v1 + v2) / sqrt(2)``, reaching it
-    at 90 degrees.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> plane_normal(np.diag([1.0, 2.0, 4.0]), 0.0).round(12).tolist()
-    [1.0, 0.0, 0.0]
-    """
-    M = symmetric_3x3(matrix)
-    _, vec = np.linalg.eigh(M)
-    vec = fix_signs(vec)
-    t = np.deg2rad(float(angle))
-    return np.cos(t) * vec[:, 0] + np.sin(t) * (vec[:, 1] + vec[:, 2]) / np.sqrt(2.0)
-
-
-def symmetric_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
-    """``matrix`` as a float array, checked to be a finite symmetric 3 x 3 matrix.
-
-    Examples
-    --------
-    >>> symmetric_3x3(np.eye(3)).shape
-    (3, 3)
-    """
-    M = np.asarray(matrix, dtype=np.float64)
-    if M.shape != (3, 3) or not np.all(np.isfinite(M)) or not np.allclose(M, M.T):
-        raise ValueError(f"matrix must be a finite symmetric 3 x 3 array, got shape {M.shape}.")
-    return M
-
-
-def plane_circle(matrix: ArrayLike, normal: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
-    """The plane ``{x : normal . x = 0}`` on the unit sphere and its Rayleigh-quotient minimum.
-
-    Returns the great circle (200 points), the minimiser (just off the sphere, for drawing) and
-    the minimum value of ``x.T M x`` on the circle.
-
-    Examples
-    --------
-    >>> circle, point, value = plane_circle(np.diag([1.0, 2.0, 4.0]), [1.0, 0.0, 0.0])
-    >>> circle.shape, round(value, 12)
-    ((200, 3), 2.0)
-    """
-    M = symmetric_3x3(matrix)
-    value, point = min_rayleigh_quotient(M, np.eye(3), orthogonal_to=normal, method="dense", return_vector=True)
-    nrm = np.asarray(normal, dtype=np.float64) / np.linalg.norm(normal)
-    e1 = point / np.linalg.norm(point)
-    e2 = np.cross(nrm, e1)
-    t = np.linspace(0, 2 * np.pi, 200)
-    return np.outer(np.cos(t), e1) + np.outer(np.sin(t), e2), 1.01 * e1, value
-
-
 def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
     """The **trap**: ``sup over r A-orthogonal to V of ||r||_A^2 / (r @ W @ r)``.
 
@@ -375,7 +315,9 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
     return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
 
 
-# The 3-D figure and its slider moved to plotting (no plotly code in this module).
-__getattr__ = moved(
-    __name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")}
-)
+# Old spellings: the 3-D figure and its slider moved to plotting (no plotly code in this module), the
+# 3 x 3 plane that the figure draws to the teaching helpers (not a library algorithm).
+__getattr__ = moved(__name__, {
+    **{name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")},
+    **{name: f"lbo_notebooks.teaching:{name}" for name in ("plane_normal", "symmetric_3x3", "plane_circle")},
+})

@@ -40,13 +40,12 @@ LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
     ("linear algebra", "A-inner products, factorisations, Krylov and the sliced eigensolver",
      ("inner_product", "solver_policy", "sparse_factor", "krylov", "eigensolver", "eigensolver.*")),
     ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
-    ("analyses", "what the course computes with a spectrum or a mesh",
-     ("bases", "optimality", "minmax", "descriptors", "geodesics", "heat_method", "distortion", "mds", "rpca",
+    ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
+     ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "rpca",
       "functional_maps", "matching", "shape_distribution")),
     ("shapes and pictures", "procedural test shapes, the creatures, plotting",
      ("shapes", "creatures", "creatures.*", "plotting", "plotting.*")),
-    ("lessons", "teaching helpers and the exercises of the notebooks; the package's lazy front door",
-     ("teaching", "teaching.*", "exercises", "exercises.*", "__init__")),
+    ("lessons", "the exercises of the notebooks; the package's lazy front door", ("exercises", "exercises.*", "__init__")),
 ]
 
 #: Goal for the number of levels (the longest import chain, in modules).

@@ -159,6 +159,8 @@ def test_moved_names():
         ("inner_product", "start_vector", "solver_policy"),
         ("inner_product", "use_dense", "solver_policy"),
         ("inner_product", "DENSE_LIMIT", "solver_policy"),
+        ("minmax", "plane_normal", "teaching"),
+        ("minmax", "plane_circle", "teaching"),
     ],
 )
 def test_names_moved_to_their_layer(old_module, name, new_module):

@@ -30,9 +30,9 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
     """
     import plotly.graph_objects as go
 
-    from .. import minmax
+    from .. import teaching
 
-    M = minmax.symmetric_3x3(matrix)
+    M = teaching.symmetric_3x3(matrix)
     u, v = np.meshgrid(np.linspace(0, np.pi, resolution), np.linspace(0, 2 * np.pi, 2 * resolution))
     X = np.stack([np.sin(u) * np.cos(v), np.sin(u) * np.sin(v), np.cos(u)], axis=-1)
     R = np.einsum("...i,ij,...j->...", X, M, X)
@@ -41,7 +41,7 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
                    colorbar=dict(title="xᵀMx"))
     )
     if normal is not None:
-        circle, point, value = minmax.plane_circle(M, normal)
+        circle, point, value = teaching.plane_circle(M, normal)
         fig.add_trace(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
                                    line=dict(color="white", width=6), name="plane"))
         fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
@@ -62,12 +62,12 @@ class PlaneSlider:
         import ipywidgets as widgets
         import plotly.graph_objects as go
 
-        from .. import minmax
+        from .. import teaching
 
-        self.matrix = minmax.symmetric_3x3(matrix)
+        self.matrix = teaching.symmetric_3x3(matrix)
         self.lam = np.linalg.eigvalsh(self.matrix)
         self._values = list(angles)
-        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, minmax.plane_normal(self.matrix, angles[0])))
+        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, teaching.plane_normal(self.matrix, angles[0])))
         self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
                                               continuous_update=False)
         self.slider.observe(lambda change: self.update(change["new"]), names="value")
@@ -75,9 +75,9 @@ class PlaneSlider:
         self.update(angles[0])
 
     def update(self, angle: float) -> None:
-        from .. import minmax
+        from .. import teaching
 
-        circle, point, value = minmax.plane_circle(self.matrix, minmax.plane_normal(self.matrix, angle))
+        circle, point, value = teaching.plane_circle(self.matrix, teaching.plane_normal(self.matrix, angle))
         with self.figure.batch_update():
             line, marker = self.figure.data[1], self.figure.data[2]
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
