@@ -330,8 +330,7 @@ def _arpack_is_complete(
     eigenvalues below a point exactly, so a count just below the last value's cluster proves the
     set complete, or sends the problem to spectrum slicing, which completes it.
     """
-    from .eigensolver import SliceFactor
-    from .sparse_factor import NESTED_DISSECTION_MIN
+    from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor
 
     top = float(values[-1])
     point = top - max(1e-9 * abs(top), 1e-3 * shift)

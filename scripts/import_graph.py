@@ -38,7 +38,7 @@ LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
      ("operators", "robust", "curvature", "laplacians")),
     ("linear algebra", "A-inner products, factorisations, Krylov and the sliced eigensolver",
-     ("inner_product", "solver_policy", "sparse_factor", "krylov", "eigensolver", "eigensolver.*")),
+     ("inner_product", "solver_policy", "sparse_factor", "krylov", "slicing", "eigensolver")),
     ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
     ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
      ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "rpca",

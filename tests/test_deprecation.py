@@ -161,6 +161,7 @@ def test_moved_names():
         ("inner_product", "DENSE_LIMIT", "solver_policy"),
         ("minmax", "plane_normal", "teaching"),
         ("minmax", "plane_circle", "teaching"),
+        ("eigensolver", "count_below", "sparse_factor"),
     ],
 )
 def test_names_moved_to_their_layer(old_module, name, new_module):
