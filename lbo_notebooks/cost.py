@@ -1,18 +1,26 @@
 """Measuring what a computation costs: CPU time, traced peak memory and growth exponents.
 
 Used by the notebooks to show live how classical and spectral MDS scale with the number of
-vertices (small sizes, measured in the same run), and by the benchmarks.
+vertices (small sizes, measured in the same run), and by the benchmarks. Costs that take minutes
+to measure are recorded by a benchmark run instead: :func:`recorded_benchmark` reads them.
 """
 
 from __future__ import annotations
 
+import json
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["growth_exponent", "measure_cost", "least_cost"]
+__all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
+
+#: Where ``benchmarks/*.py`` record their runs: ``benchmarks/results`` of the repository this
+#: package sits in (found from the package's own location, not from the working directory). An
+#: installed package has no such directory: :func:`recorded_benchmark` then says so.
+RESULTS = Path(__file__).resolve().parents[1] / "benchmarks" / "results"
 
 
 def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
@@ -84,3 +92,30 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
         raise ValueError(f"runs must be a positive integer, got {runs!r}.")
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
+
+
+def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:
+    """The results a benchmark run recorded: ``benchmarks/results/<name>.json``, as a dict.
+
+    The file is found from the package's location (:data:`RESULTS`), so a notebook reads it from
+    any working directory. ``path`` reads another file instead. A ``FileNotFoundError`` that
+    says how to get the file when it is absent (an installed package carries no benchmark results).
+
+    Examples
+    --------
+    >>> recorded = recorded_benchmark("mds")  # doctest: +SKIP
+    >>> sorted(recorded)[:3]  # doctest: +SKIP
+    ['accuracy', 'blas_threads', 'cores']
+    """
+    if path is None:
+        if not isinstance(name, str) or not name or Path(name).name != name:
+            raise ValueError(f"name must be a benchmark's name such as 'mds' (a file of {RESULTS}), got {name!r}.")
+        file = RESULTS / f"{name}.json"
+    else:
+        file = Path(path)
+    if not file.is_file():
+        raise FileNotFoundError(
+            f"no recorded benchmark at {file}: the results live in the repository (benchmarks/results), which an "
+            f"installed package does not include. Clone the repository, or run benchmarks/{name}.py there to record them."
+        )
+    return json.loads(file.read_text())

@@ -1,8 +1,8 @@
 """Point descriptors from the Laplace–Beltrami spectrum: HKS, WKS and GPS.
 
 All three are functions of the eigenpairs ``(lam_i, phi_i)`` of ``W phi = lam A phi`` with
-A-orthonormal ``phi`` (MATH.md section 8), so they are invariant under rigid motions and vertex
-permutations, and (up to discretisation) under isometric deformations:
+A-orthonormal ``phi`` (docs/maths.md, "The A inner product"), so they are invariant under rigid
+motions and vertex permutations, and (up to discretisation) under isometric deformations:
 
 * **HKS** (Sun, Ovsjanikov, Guibas 2009): ``h_t(x) = sum_i exp(-lam_i t) phi_i(x)^2``, the heat
   kept at ``x`` after time ``t``. On the unit sphere ``h_t = sum_l (2l+1)/(4 pi) exp(-l(l+1) t)``

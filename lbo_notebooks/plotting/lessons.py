@@ -109,7 +109,8 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
 def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     """Time and peak memory of spectral vs classical MDS against n, from ``benchmarks/mds.py`` rows.
 
-    ``rows`` is the ``"scaling"`` list of ``benchmarks/results/mds.json``: each row has ``n`` and,
+    ``rows`` is the ``"scaling"`` list of the recorded MDS benchmark
+    (``lbo_notebooks.cost.recorded_benchmark("mds")["scaling"]``): each row has ``n`` and,
     for ``"smds"`` and ``"classical"``, ``seconds``, ``cpu_seconds`` and ``peak_mib`` (classical
     rows may be missing above the size it was run to). Left: wall and CPU seconds on log-log axes
     with slope-1 and slope-2 guides; right: peak MiB with the size of two n x n float64 matrices.
@@ -128,7 +129,7 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     import matplotlib.pyplot as plt
 
     if not rows:
-        raise ValueError("rows is empty; pass the 'scaling' list of benchmarks/results/mds.json.")
+        raise ValueError("rows is empty; pass lbo_notebooks.cost.recorded_benchmark('mds')['scaling'].")
     n = np.array([r["n"] for r in rows], dtype=np.float64)
 
     def get(kind: str, key: str) -> NDArray[np.float64]:
