@@ -28,10 +28,11 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import moved, renamed
+from ._validation import check_integer
+from .inner_product import a_orthonormalize, check_operators
 from .mesh import Mesh
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
-from ._deprecation import moved, renamed
-from .inner_product import a_orthonormalize, check_operators
 from .sparse_factor import symmetric_lu
 from .spectrum import eigenbasis
 
@@ -59,8 +60,7 @@ def _check(mesh: Mesh, k: int, mass_kind: MassKind) -> tuple[int, sp.csr_matrix]
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
     if mass_kind not in MASS_KINDS:
         raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k < mesh.n_vertices:
-        raise ValueError(f"k must be an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}, got {k!r}.")
+    check_integer(k, "k", 1, mesh.n_vertices - 1, what=f"an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}")
     return int(k), mass_matrix(mesh, mass_kind)
 
 
@@ -118,8 +118,7 @@ def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float =
     """
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
-        raise ValueError(f"k must be a non-negative integer, got {k!r}.")
+    check_integer(k, "k", 0)
     if not (np.isscalar(width) and np.isfinite(width) and width > 0):
         raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)

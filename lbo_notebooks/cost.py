@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._validation import check_integer
+
 __all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
 
 #: Where ``benchmarks/*.py`` record their runs: ``benchmarks/results`` of the repository this
@@ -89,8 +91,7 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     >>> sorted(cost), cost["result"].shape
     (['cpu_seconds', 'peak_bytes', 'result'], (100, 100))
     """
-    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
-        raise ValueError(f"runs must be a positive integer, got {runs!r}.")
+    check_integer(runs, "runs", 1)
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
 
 

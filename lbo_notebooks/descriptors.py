@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from .mesh import MeshError
 from .spectrum import Spectrum
 
@@ -51,9 +52,7 @@ def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
 
 
 def _check_count(name: str, value: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}.")
-    return int(value)
+    return check_integer(value, name, 1)
 
 
 def _check_grid(name: str, values: ArrayLike) -> NDArray[np.float64]:
@@ -188,6 +187,5 @@ def gps(spectrum: Spectrum, k: int | None = None) -> NDArray[np.float64]:
     _check_spectrum(spectrum, 2)
     if k is None:
         k = spectrum.k
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= spectrum.k:
-        raise ValueError(f"k must be an integer between 2 and spectrum.k={spectrum.k}, got {k!r}.")
+    check_integer(k, "k", 2, spectrum.k, what=f"an integer between 2 and spectrum.k={spectrum.k}")
     return spectrum.vectors[:, 1:k] / np.sqrt(spectrum.values[1:k])

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ._validation import check_integer
 from .geodesics import farthest_point_sampling
 from .mesh import Mesh
 
@@ -39,8 +40,7 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
 
     if rest.n_vertices != posed.n_vertices or not np.array_equal(rest.faces, posed.faces):
         raise ValueError("rest and posed must share one triangulation (same faces); pass two poses of one creature.")
-    if isinstance(n_samples, bool) or not isinstance(n_samples, (int, np.integer)) or not 2 <= n_samples <= rest.n_vertices:
-        raise ValueError(f"n_samples must be an integer in 2..{rest.n_vertices}, got {n_samples!r}.")
+    check_integer(n_samples, "n_samples", 2, rest.n_vertices)
     edges, n = rest.edges, rest.n_vertices
 
     def lengths(mesh: Mesh) -> NDArray[np.float64]:

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from ._deprecation import moved
 from ._platform import default_workers, return_freed_memory
+from ._validation import check_integer, check_number
 from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
@@ -156,21 +157,17 @@ def slice_eigsh(
     """
     W, A = sp.csr_matrix(stiffness, dtype=np.float64), sp.csr_matrix(mass, dtype=np.float64)
     n = W.shape[0]
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k < n:
-        raise ValueError(f"k must be an integer between 1 and n - 1 = {n - 1}, got {k!r}.")
-    if isinstance(slice_size, bool) or not isinstance(slice_size, (int, np.integer)) or slice_size < 1:
-        raise ValueError(f"slice_size must be a positive integer, got {slice_size!r}.")
-    if isinstance(shift, bool) or not (np.isscalar(shift) and np.isfinite(shift) and shift > 0):
-        raise ValueError(f"shift must be a positive number, got {shift!r}.")
-    if isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating)) or not 0 < tol < 1:
-        raise ValueError(f"tol must be a number between 0 and 1 (e.g. 1e-10), got {tol!r}.")
+    check_integer(k, "k", 1, n - 1, what=f"an integer between 1 and n - 1 = {n - 1}")
+    check_integer(slice_size, "slice_size", 1)
+    check_number(shift, "shift", 0, open_low=True)
+    check_number(tol, "tol", 0, 1, open_low=True, open_high=True, what="a number between 0 and 1 (e.g. 1e-10)")
     v0 = np.asarray(v0, dtype=np.float64)
     if v0.shape != (n,) or not np.all(np.isfinite(v0)):
         raise ValueError(f"v0 must be a finite vector of shape ({n},), got shape {v0.shape}.")
     if workers is None:
         workers = default_workers()
-    elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be a positive integer, got {workers!r}.")
+    else:
+        check_integer(workers, "workers", 1)
     n_sets = plan_sets(k, slice_size, int(workers))
     if order is None:
         order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern

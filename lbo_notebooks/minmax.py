@@ -27,6 +27,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed
+from ._validation import check_integer
 from .inner_product import (
     a_orthonormalize,
     check_functions,
@@ -256,10 +257,8 @@ def random_subspace(
     >>> random_subspace(100, 5, seed=1).shape
     (100, 5)
     """
-    if isinstance(n_vertices, bool) or not isinstance(n_vertices, (int, np.integer)) or n_vertices < 1:
-        raise ValueError(f"n_vertices must be a positive integer, got {n_vertices!r}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < n_vertices:
-        raise ValueError(f"k must be an integer in 0..{n_vertices - 1}, got {k!r}.")
+    check_integer(n_vertices, "n_vertices", 1)
+    check_integer(k, "k", 0, n_vertices - 1)
     rng = np.random.default_rng(seed)
     if pool is None:
         return rng.normal(size=(int(n_vertices), int(k)))
@@ -287,8 +286,7 @@ def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     """
     if not isinstance(spectrum, Spectrum):
         raise ValueError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < spectrum.k:
-        raise ValueError(f"k must be an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known), got {k!r}.")
+    check_integer(k, "k", 0, spectrum.k - 1, what=f"an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known)")
     return np.array(spectrum.vectors[:, : int(k)])
 
 

@@ -27,6 +27,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed
+from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
 from .solver_policy import start_vector, use_dense
 from .sparse_factor import symmetric_lu
@@ -146,8 +147,7 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64]
     True
     """
     spectrum = _check_spectrum(spectrum)
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
-        raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+    check_integer(k, "k", what="an integer number of eigenfunctions")
     if not 1 <= k < spectrum.k:
         raise ValueError(
             f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "

@@ -34,6 +34,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ._deprecation import warn
+from ._validation import check_integer, is_integer
 from .mesh import Mesh, MeshError
 from .pointcloud import PointCloud
 from .units import length_exponent
@@ -230,13 +231,13 @@ def point_cloud_operators(
     """
     if not isinstance(cloud, PointCloud):
         raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
-    if not isinstance(n_neighbors, bool) and isinstance(n_neighbors, (int, np.integer)) and n_neighbors == N_NEIGHBORS:
+    if is_integer(n_neighbors) and n_neighbors == N_NEIGHBORS:
         n_neighbors = min(N_NEIGHBORS, cloud.n_points - 1)
-    if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, (int, np.integer)) or not 3 <= n_neighbors < cloud.n_points:
-        raise ValueError(
-            f"n_neighbors must be an integer between 3 and the number of points - 1 ({cloud.n_points - 1}), "
-            f"got {n_neighbors!r}; the default 30 (n_points - 1 on small clouds) suits most clouds."
-        )
+    check_integer(
+        n_neighbors, "n_neighbors", 3, cloud.n_points - 1,
+        what=f"an integer between 3 and the number of points - 1 ({cloud.n_points - 1})",
+        hint="the default 30 (n_points - 1 on small clouds) suits most clouds",
+    )
     _check_mollify(mollify_factor)
 
     def compute(c: Any) -> tuple[sp.csr_matrix, sp.csr_matrix]:

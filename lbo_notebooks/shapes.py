@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._deprecation import moved
+from ._validation import check_integer
 from .mesh import Mesh
 
 __all__ = ["icosphere", "ellipsoid", "torus", "jittered_torus", "rectangle", "disk", "bumpy_sphere", "scan_like"]
@@ -27,12 +28,7 @@ __getattr__ = moved(__name__, {
 
 
 def _check_int(name: str, value: Any, low: int, high: int | None = None) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low or (
-        high is not None and value > high
-    ):
-        rng = f">= {low}" if high is None else f"in {low}..{high}"
-        raise ValueError(f"{name} must be an integer {rng}, got {value!r}.")
-    return int(value)
+    return check_integer(value, name, low, high, what=f"an integer >= {low}" if high is None else None)
 
 
 def _check_positive(name: str, value: Any) -> float:
@@ -147,8 +143,7 @@ def jittered_torus(
     >>> mesh.n_vertices, mesh.euler_characteristic, bool(np.isclose(K.max(), 1 / (0.4 * 1.4)))
     (160, 0, True)
     """
-    if isinstance(n_minor, bool) or not isinstance(n_minor, (int, np.integer)) or n_minor < 3:
-        raise ValueError(f"n_minor must be an integer >= 3, got {n_minor!r}.")
+    check_integer(n_minor, "n_minor", 3)
     if not (np.isscalar(jitter) and np.isfinite(jitter) and 0 <= jitter < 1):
         raise ValueError(f"jitter must be in [0, 1) (a fraction of the grid step; 1 could fold triangles), got {jitter!r}.")
     R, r = float(major_radius), float(minor_radius)

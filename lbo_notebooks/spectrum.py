@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed, warn
+from ._validation import check_integer, check_number
 from .inner_product import (
     a_orthonormalize,
     check_functions,
@@ -25,9 +26,9 @@ from .inner_product import (
     cholesky_qr,
     fix_signs_in_place,
 )
-from .solver_policy import default_shift, start_vector, use_dense
 from .mesh import Mesh, check_coordinate_range
 from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import mesh_order
 from .units import unit_area_exponent
 
@@ -89,8 +90,7 @@ class Spectrum:
     def _check_n(self, k: int | None) -> int:
         if k is None:
             return self.k
-        if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
-            raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+        check_integer(k, "k", what="an integer number of eigenfunctions")
         if not 0 <= k <= self.k:
             raise ValueError(f"k must be between 0 and k={self.k} (the eigenpairs computed), got {k}.")
         return int(k)
@@ -234,14 +234,14 @@ def eigenbasis(
         raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got {type(mesh).__name__}.")
 
     n = W.shape[0]
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
-        raise ValueError(f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}.")
-    if shift is not None and (isinstance(shift, bool) or not (np.isscalar(shift) and np.isfinite(shift) and shift > 0)):
-        raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
+    check_integer(k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})")
+    if shift is not None:
+        check_number(shift, "shift", 0, open_low=True, what="a positive number (sigma = -shift)")
     if solver not in ("auto", "slicing", "arpack"):
         raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
-    if tol is not None and (isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating)) or not 0 < tol < 1):
-        raise ValueError(f"tol must be a number between 0 and 1 (e.g. 1e-8), or None for the solver's default; got {tol!r}.")
+    if tol is not None:
+        check_number(tol, "tol", 0, 1, open_low=True, open_high=True,
+                     what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default")
     # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
     # with the heat method's factorisations.
     order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) else (lambda: None)

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._deprecation import moved
+from .._validation import check_integer
 from ..mesh import Mesh
 from .rig import JOINT_ORDER, deform, rotation_vector, template_for
 from .tables import JOINTS, PARTS, POSES, SPECIES, part_joints
@@ -40,11 +41,9 @@ __all__ = [
 
 
 def _check_n_vertices(n_vertices: Any) -> int:
-    if isinstance(n_vertices, bool) or not isinstance(n_vertices, (int, np.integer)) or not 1_000 <= n_vertices <= 200_000:
-        raise ValueError(
-            f"n_vertices must be an integer in 1000..200000 (honoured within 10% from 2000 to 50000), got {n_vertices!r}."
-        )
-    return int(n_vertices)
+    return check_integer(
+        n_vertices, "n_vertices", 1_000, 200_000, what="an integer in 1000..200000 (honoured within 10% from 2000 to 50000)"
+    )
 
 
 def _check_species(species: Any) -> str:
