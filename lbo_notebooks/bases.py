@@ -32,7 +32,7 @@ from ._deprecation import moved, renamed
 from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_operators
 from .mesh import Mesh
-from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .operators import MassKind, check_mass_kind, mass_matrix, stiffness_matrix
 from .sparse_factor import symmetric_lu
 from .spectrum import eigenbasis
 
@@ -58,8 +58,7 @@ Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
 def _check(mesh: Mesh, k: int, mass_kind: MassKind) -> tuple[int, sp.csr_matrix]:
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if mass_kind not in MASS_KINDS:
-        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    check_mass_kind(mass_kind)
     check_integer(k, "k", 1, mesh.n_vertices - 1, what=f"an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}")
     return int(k), mass_matrix(mesh, mass_kind)
 

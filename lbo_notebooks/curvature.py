@@ -49,7 +49,7 @@ from numpy.typing import NDArray
 
 from ._deprecation import moved, renamed
 from .mesh import Mesh, per_mesh
-from .operators import MASS_KINDS, MassKind, corner_angles, mass_matrix
+from .operators import MassKind, check_mass_kind, corner_angles, mass_matrix
 
 __all__ = [
     "DEFAULT_FLOOR",
@@ -314,9 +314,7 @@ def metric_mass_matrix(
     _check_mesh(mesh)
     alpha = _check_alpha(alpha)
     floor = _check_floor(floor)
-    if mass_kind not in MASS_KINDS:
-        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-    base = mass_matrix(mesh, mass_kind)
+    base = mass_matrix(mesh, check_mass_kind(mass_kind))
     if alpha == 0.0:
         return base
     if mass_kind == "consistent":

@@ -26,8 +26,9 @@ from .inner_product import (
     cholesky_qr,
     fix_signs_in_place,
 )
-from .mesh import Mesh, check_coordinate_range
-from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .laplacians import laplace_beltrami
+from .mesh import Mesh
+from .operators import MassKind
 from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import mesh_order
 from .units import unit_area_exponent
@@ -203,35 +204,18 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
-    if isinstance(mesh, Mesh):
-        check_coordinate_range(mesh.vertices, "mesh")
-    if not isinstance(mesh, tuple):
-        from .robust import select_operators
-
-        robust = select_operators(mesh, laplacian, mass_kind=mass_kind, alpha=alpha, n_neighbors=n_neighbors)
-        if robust is not None:
-            mesh = robust
-    elif laplacian != "auto":
-        raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
-    if isinstance(mesh, Mesh):
-        if mass_kind not in MASS_KINDS:
-            raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-        if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
-            raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}.")
-        W = stiffness_matrix(mesh)
-        if float(alpha) == 0.0:
-            A = mass_matrix(mesh, mass_kind)
-        else:
-            from .curvature import DEFAULT_FLOOR, metric_mass_matrix
-
-            floor = DEFAULT_FLOOR if curvature_floor is None else curvature_floor
-            A = metric_mass_matrix(mesh, float(alpha), mass_kind=mass_kind, floor=floor)
-    elif isinstance(mesh, tuple) and len(mesh) == 2:
+    if isinstance(mesh, tuple):  # the caller's own operators
+        if laplacian != "auto":
+            raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
         if alpha != 0.0:
             raise ValueError("alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.")
+        if len(mesh) != 2:
+            raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got a tuple of {len(mesh)}.")
         W, A = check_operators(*mesh)
     else:
-        raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got {type(mesh).__name__}.")
+        W, A = laplace_beltrami(
+            mesh, laplacian=laplacian, mass_kind=mass_kind, alpha=alpha, curvature_floor=curvature_floor, n_neighbors=n_neighbors
+        )
 
     n = W.shape[0]
     check_integer(k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})")

@@ -162,6 +162,7 @@ def test_moved_names():
         ("minmax", "plane_normal", "teaching"),
         ("minmax", "plane_circle", "teaching"),
         ("eigensolver", "count_below", "sparse_factor"),
+        ("robust", "select_operators", "laplacians"),
     ],
 )
 def test_names_moved_to_their_layer(old_module, name, new_module):
