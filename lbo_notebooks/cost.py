@@ -1,5 +1,11 @@
 """Measuring what a computation costs: CPU time, traced peak memory and growth exponents.
 
+Two ways, for two questions. In the same process (:func:`measure_cost`, :func:`least_cost`): CPU
+time and the peak of NumPy and Python allocations, cheap enough for a notebook. In a fresh process
+(:func:`measure_in_fresh_process`, :func:`least_wall_time`): wall time and the growth of the whole
+process's peak memory (RSS, compiled libraries included), what the benchmarks (``benchmarks/``)
+report against other libraries.
+
 Used by the notebooks to show live how classical and spectral MDS scale with the number of
 vertices (small sizes, measured in the same run), and by the benchmarks. Costs that take minutes
 to measure are recorded by a benchmark run instead: :func:`recorded_benchmark` reads them.
@@ -17,7 +23,10 @@ from numpy.typing import ArrayLike
 
 from ._validation import check_integer
 
-__all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
+__all__ = [
+    "growth_exponent", "measure_cost", "least_cost", "measure_in_fresh_process", "least_wall_time", "recorded_benchmark",
+    "RESULTS",
+]
 
 #: Where ``benchmarks/*.py`` record their runs: ``benchmarks/results`` of the repository this
 #: package sits in (found from the package's own location, not from the working directory). An
@@ -93,6 +102,59 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     """
     check_integer(runs, "runs", 1)
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
+
+
+def _in_child(function: Any, args: tuple, queue: Any) -> None:
+    import resource
+
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    start = time.perf_counter()
+    result = function(*args)
+    elapsed = time.perf_counter() - start
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # KiB on Linux
+    queue.put({"wall_seconds": elapsed, "peak_rss_mib": peak / 1024.0, "rss_growth_mib": (peak - base) / 1024.0, "result": result})
+
+
+def measure_in_fresh_process(function: Any, *args: Any) -> dict[str, Any]:
+    """Run ``function(*args)`` in a forked process: ``wall_seconds``, ``peak_rss_mib``, ``rss_growth_mib``, ``result``.
+
+    The child starts as a copy of this process (``fork``, so Linux or macOS), and its peak
+    resident memory is read before and after the call: ``rss_growth_mib`` is what the call added,
+    compiled libraries included, and peaks of earlier measurements do not leak in. The result
+    comes back pickled.
+
+    Examples
+    --------
+    >>> cost = measure_in_fresh_process(sum, [1, 2, 3])
+    >>> cost["result"], cost["wall_seconds"] >= 0, cost["peak_rss_mib"] > 0
+    (6, True, True)
+    """
+    import multiprocessing as mp
+
+    context = mp.get_context("fork")
+    queue = context.Queue()
+    child = context.Process(target=_in_child, args=(function, args, queue))
+    child.start()
+    out = queue.get()
+    child.join()
+    return out
+
+
+def least_wall_time(runs: int, function: Any) -> float:
+    """The least wall time, in seconds, of ``runs`` calls of ``function()`` (the least noisy single number).
+
+    Examples
+    --------
+    >>> least_wall_time(3, lambda: sum(range(1000))) >= 0
+    True
+    """
+    check_integer(runs, "runs", 1)
+    best = float("inf")
+    for _ in range(int(runs)):
+        start = time.perf_counter()
+        function()
+        best = min(best, time.perf_counter() - start)
+    return best
 
 
 def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:

@@ -26,3 +26,20 @@ def test_another_file_and_a_missing_one(tmp_path):
         cost.recorded_benchmark("never_run")
     with pytest.raises(ValueError, match="benchmark's name"):
         cost.recorded_benchmark("../mds")
+
+
+def _allocate(mib: int) -> int:
+    import numpy as np
+
+    block = np.ones(mib * 2**20 // 8)
+    return int(block.size)
+
+
+def test_fresh_process_measurements():
+    cost_ = cost.measure_in_fresh_process(_allocate, 64)
+    assert cost_["result"] == 64 * 2**20 // 8
+    assert cost_["rss_growth_mib"] >= 60 and cost_["peak_rss_mib"] >= cost_["rss_growth_mib"] and cost_["wall_seconds"] >= 0
+    assert cost.least_wall_time(2, lambda: None) >= 0
+    with pytest.raises(ValueError, match="runs must be a positive integer"):
+        cost.least_wall_time(0, lambda: None)
+
