@@ -28,6 +28,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "repair": ("clean_mesh",),
     "pointcloud": ("PointCloud",),
     "operators": ("stiffness_matrix", "mass_matrix"),
+    "laplacians": ("laplace_beltrami",),
     "spectrum": ("Spectrum", "eigenbasis"),
     "inner_product": ("a_orthonormalize", "fix_signs", "principal_angles", "reconstruction_error"),
     "eigensolver": ("slice_eigsh",),
@@ -45,7 +46,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "matching": ("match", "matching_error", "error_curve"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust", "formats", "cost", "shape_distribution",
-                                     "exercises"}
+                                     "teaching", "exercises"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 
 __all__ = sorted(_WHERE) + sorted(_SUBMODULES)
