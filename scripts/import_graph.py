@@ -14,7 +14,8 @@ attribute access and is not an import. The rules:
 * every relative import resolves to a module of the package (a moved module is caught here).
 
 It also prints the number of *levels*: the longest chain of imports, counted in modules (a module
-that imports nothing from the package is on level 1, a module importing it on level 2, ...).
+that imports nothing from the package is on level 1, a module importing it on level 2, ...), and
+fails when there are more than :data:`MAX_LEVELS`.
 
 Usage: ``python scripts/import_graph.py [package_dir]``. Exit status 1 on a violation.
 """
@@ -152,12 +153,14 @@ def main(argv: list[str]) -> int:
     against = wrong_way(edges)
     for line in against:
         print("LAYER: " + line)
+    too_high = False
     if not found:
         depth, longest = levels(edges)
-        print(f"longest chain ({depth} levels, goal <= {MAX_LEVELS}): {' -> '.join(longest)}")
+        too_high = depth > MAX_LEVELS
+        print(f"{'TOO HIGH: ' if too_high else ''}longest chain ({depth} levels, at most {MAX_LEVELS}): {' -> '.join(longest)}")
     print(f"{len(edges)} modules, {sum(map(len, edges.values()))} imports, {len(found)} cycles, {len(private)} bad imports, "
           f"{len(against)} layer violations")
-    return 1 if found or private or against else 0
+    return 1 if found or private or against or too_high else 0
 
 
 if __name__ == "__main__":
