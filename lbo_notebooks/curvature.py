@@ -48,6 +48,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ._deprecation import moved, renamed
+from ._validation import check_number
 from .mesh import Mesh, per_mesh
 from .operators import MassKind, check_mass_kind, corner_angles, mass_matrix
 
@@ -65,24 +66,14 @@ DEFAULT_FLOOR = 1e-3
 
 
 def _check_alpha(alpha: float) -> float:
-    if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isreal(alpha)):
-        raise ValueError(f"alpha must be a number in [0, 1] (0: regular metric, 1: scale-invariant), got {alpha!r}.")
-    a = float(alpha)
-    if not (np.isfinite(a) and 0.0 <= a <= 1.0):
-        raise ValueError(f"alpha must be a number in [0, 1] (0: regular metric, 1: scale-invariant), got {alpha!r}.")
-    return a
+    return check_number(alpha, "alpha", 0, 1, what="a number in [0, 1] (0: regular metric, 1: scale-invariant)")
 
 
 def _check_floor(floor: float) -> float:
-    if isinstance(floor, bool) or not (np.isscalar(floor) and np.isreal(floor)):
-        raise ValueError(f"floor must be a positive number (a fraction of 4 pi / area, e.g. 1e-3), got {floor!r}.")
-    f = float(floor)
-    if not (np.isfinite(f) and f > 0.0):
-        raise ValueError(
-            f"floor must be a positive finite number (a fraction of 4 pi / area, e.g. 1e-3), got {floor!r}; "
-            "a zero floor would give flat regions zero mass and a singular mass matrix."
-        )
-    return f
+    return check_number(
+        floor, "floor", 0, open_low=True, what="a positive finite number (a fraction of 4 pi / area, e.g. 1e-3)",
+        hint="a zero floor would give flat regions zero mass and a singular mass matrix",
+    )
 
 
 def _check_mesh(mesh: Mesh) -> Mesh:
