@@ -50,12 +50,11 @@ system_packages() {
 python_env() {
   "$PYTHON" -c 'import sys; sys.exit(sys.version_info < (3, 10))' || { log "Python >= 3.10 is required (found $("$PYTHON" --version))"; exit 1; }
   [ -x "$VENV/bin/python" ] || { log "creating virtual environment $VENV"; "$PYTHON" -m venv "$VENV"; }
-  # -qq: pip still prints errors (and the failing build's output), but not the warnings a working
-  # install emits, such as setuptools' "Editable installation ... same name as your package" box,
-  # which says nothing about this project (it is how every editable install of a flat layout works).
-  "$VENV/bin/python" -m pip install -qq --upgrade pip
+  # -q: errors and real warnings only. (The setuptools "Editable installation" box is gone at its
+  # cause: pyproject.toml declares the flat layout, package-dir "" = ".".)
+  "$VENV/bin/python" -m pip install -q --upgrade pip
   log "installing lbo_notebooks and its dependencies ($1)"
-  "$VENV/bin/python" -m pip install -qq -e ".$1"
+  "$VENV/bin/python" -m pip install -q -e ".$1"
   # JupyterLab settings shared with Binder: no "Build Recommended" pop-up (dash, pulled in by
   # open3d, ships an extension that triggers it) and no "official Jupyter news?" question.
   mkdir -p "$VENV/etc/jupyter/labconfig"

@@ -4,7 +4,7 @@ Pairs are procedural creatures sharing a triangulation, so the true map is known
 shuffled (random vertex order) before matching, so neither method can use vertex indices. Both
 methods get the same meshes (pyFM's ``TriMesh`` with its own cotangent Laplacian and spectrum).
 
-pyFM (PyPI ``pyfmaps``) default pipeline, as in its README and MATH.md section 8: WKS
+pyFM (PyPI ``pyfmaps``) default pipeline, as in its README: WKS
 (100 energies, every 5th kept), 35 x 35 map fitted with w_descr=1, w_lap=1e-2, w_dcomm=1e-1,
 w_orient=1e-1 (L-BFGS), nearest-neighbour point map; then, as a second row, its ZoomOut
 (nit=10, step=1, its default). Ours: ``match`` with its defaults (30 x 30 map solved in closed

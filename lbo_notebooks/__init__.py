@@ -28,11 +28,14 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "repair": ("clean_mesh",),
     "pointcloud": ("PointCloud",),
     "operators": ("stiffness_matrix", "mass_matrix"),
+    "laplacians": ("laplace_beltrami",),
     "spectrum": ("Spectrum", "eigenbasis"),
     "inner_product": ("a_orthonormalize", "fix_signs", "principal_angles", "reconstruction_error"),
-    "eigensolver": ("slice_eigsh", "count_below"),
+    "eigensolver": ("slice_eigsh",),
+    "sparse_factor": ("count_below",),
     "plotting": ("plot_mesh",),
-    "creatures": ("creature", "creature_poses", "creature_parts", "pose_distortion", "vertex_strain", "joint_bands"),
+    "creatures": ("creature", "creature_poses", "creature_parts", "joint_bands"),
+    "distortion": ("pose_distortion", "vertex_strain"),
     "optimality": ("representation_error", "error_bound", "worst_case_ratio", "dirichlet_energy", "witness_function"),
     "curvature": ("gaussian_curvature", "angle_defects", "metric_curvature", "conformal_factor", "metric_mass_matrix"),
     "geodesics": ("geodesic_distances", "farthest_point_sampling", "GeodesicSolver"),
@@ -43,7 +46,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "matching": ("match", "matching_error", "error_curve"),
 }
 _SUBMODULES = frozenset(_EXPORTS) | {"shapes", "creatures", "bases", "minmax", "robust", "formats", "cost", "shape_distribution",
-                                     "exercises"}
+                                     "teaching", "exercises"}
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 
 __all__ = sorted(_WHERE) + sorted(_SUBMODULES)

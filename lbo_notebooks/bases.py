@@ -8,7 +8,8 @@ one call at the largest ``k`` serves a whole curve over ``k``.
 
 The competitors:
 
-* :func:`eigen_basis` — the Laplace–Beltrami eigenbasis itself (the optimum);
+* :func:`lbo_basis` — the Laplace–Beltrami eigenbasis itself (the optimum), as an array (a
+  :class:`~lbo_notebooks.Spectrum` is :func:`~lbo_notebooks.eigenbasis`);
 * :func:`random_smooth_basis` — heat-smoothed random noise;
 * :func:`pca_basis` — principal components of a set of sample functions;
 * :func:`umbrella_basis` — eigenvectors of the combinatorial (umbrella) graph Laplacian;
@@ -27,15 +28,16 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import Mesh
-from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
-from ._deprecation import renamed
+from ._deprecation import moved, renamed
+from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_operators
+from .mesh import Mesh
+from .operators import MassKind, check_mass_kind, mass_matrix, stiffness_matrix
 from .sparse_factor import symmetric_lu
 from .spectrum import eigenbasis
 
 __all__ = [
-    "eigen_basis",
+    "lbo_basis",
     "random_smooth_basis",
     "random_smooth_functions",
     "sample_functions",
@@ -56,10 +58,8 @@ Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
 def _check(mesh: Mesh, k: int, mass_kind: MassKind) -> tuple[int, sp.csr_matrix]:
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if mass_kind not in MASS_KINDS:
-        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k < mesh.n_vertices:
-        raise ValueError(f"k must be an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}, got {k!r}.")
+    check_mass_kind(mass_kind)
+    check_integer(k, "k", 1, mesh.n_vertices - 1, what=f"an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}")
     return int(k), mass_matrix(mesh, mass_kind)
 
 
@@ -84,13 +84,13 @@ def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np
 
 
 @renamed({"n": "k", "mass": "mass_kind"})
-def eigen_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
+def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The first k Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
 
     Examples
     --------
     >>> from lbo_notebooks import shapes
-    >>> eigen_basis(shapes.icosphere(2), 9).shape
+    >>> lbo_basis(shapes.icosphere(2), 9).shape
     (162, 9)
     """
     k, _ = _check(mesh, k, mass_kind)
@@ -117,8 +117,7 @@ def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float =
     """
     if not isinstance(mesh, Mesh):
         raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or k < 0:
-        raise ValueError(f"k must be a non-negative integer, got {k!r}.")
+    check_integer(k, "k", 0)
     if not (np.isscalar(width) and np.isfinite(width) and width > 0):
         raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)
@@ -393,7 +392,7 @@ def competitor_bases(
     ['LBO eigenbasis', 'PCA of samples', 'identity mass']
     """
     bases = {
-        "LBO eigenbasis": eigen_basis(mesh, k, mass_kind=mass_kind),
+        "LBO eigenbasis": lbo_basis(mesh, k, mass_kind=mass_kind),
         "random smooth": random_smooth_basis(mesh, k, mass_kind=mass_kind, seed=seed),
         "PCA of samples": pca_basis(mesh, k, mass_kind=mass_kind, seed=seed),
         "umbrella Laplacian": umbrella_basis(mesh, k, mass_kind=mass_kind),
@@ -403,3 +402,7 @@ def competitor_bases(
     if metric is not None:
         bases["other metric"] = metric_basis(mesh, k, metric, mass_kind=mass_kind)
     return bases
+
+
+# Old spelling: eigen_basis (an array) read too much like eigenbasis (a Spectrum).
+__getattr__ = moved(__name__, {"eigen_basis": "lbo_notebooks.bases:lbo_basis"})

@@ -1,18 +1,37 @@
 """Measuring what a computation costs: CPU time, traced peak memory and growth exponents.
 
+Two ways, for two questions. In the same process (:func:`measure_cost`, :func:`least_cost`): CPU
+time and the peak of NumPy and Python allocations, cheap enough for a notebook. In a fresh process
+(:func:`measure_in_fresh_process`, :func:`least_wall_time`): wall time and the growth of the whole
+process's peak memory (RSS, compiled libraries included), what the benchmarks (``benchmarks/``)
+report against other libraries.
+
 Used by the notebooks to show live how classical and spectral MDS scale with the number of
-vertices (small sizes, measured in the same run), and by the benchmarks.
+vertices (small sizes, measured in the same run), and by the benchmarks. Costs that take minutes
+to measure are recorded by a benchmark run instead: :func:`recorded_benchmark` reads them.
 """
 
 from __future__ import annotations
 
+import json
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["growth_exponent", "measure_cost", "least_cost"]
+from ._validation import check_integer
+
+__all__ = [
+    "growth_exponent", "measure_cost", "least_cost", "measure_in_fresh_process", "least_wall_time", "recorded_benchmark",
+    "RESULTS",
+]
+
+#: Where ``benchmarks/*.py`` record their runs: ``benchmarks/results`` of the repository this
+#: package sits in (found from the package's own location, not from the working directory). An
+#: installed package has no such directory: :func:`recorded_benchmark` then says so.
+RESULTS = Path(__file__).resolve().parents[1] / "benchmarks" / "results"
 
 
 def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
@@ -81,6 +100,85 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     >>> sorted(cost), cost["result"].shape
     (['cpu_seconds', 'peak_bytes', 'result'], (100, 100))
     """
-    if isinstance(runs, bool) or not isinstance(runs, (int, np.integer)) or runs < 1:
-        raise ValueError(f"runs must be a positive integer, got {runs!r}.")
+    check_integer(runs, "runs", 1)
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
+
+
+def _in_child(function: Any, args: tuple, queue: Any) -> None:
+    import resource
+
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    start = time.perf_counter()
+    result = function(*args)
+    elapsed = time.perf_counter() - start
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # KiB on Linux
+    queue.put({"wall_seconds": elapsed, "peak_rss_mib": peak / 1024.0, "rss_growth_mib": (peak - base) / 1024.0, "result": result})
+
+
+def measure_in_fresh_process(function: Any, *args: Any) -> dict[str, Any]:
+    """Run ``function(*args)`` in a forked process: ``wall_seconds``, ``peak_rss_mib``, ``rss_growth_mib``, ``result``.
+
+    The child starts as a copy of this process (``fork``, so Linux or macOS), and its peak
+    resident memory is read before and after the call: ``rss_growth_mib`` is what the call added,
+    compiled libraries included, and peaks of earlier measurements do not leak in. The result
+    comes back pickled.
+
+    Examples
+    --------
+    >>> cost = measure_in_fresh_process(sum, [1, 2, 3])
+    >>> cost["result"], cost["wall_seconds"] >= 0, cost["peak_rss_mib"] > 0
+    (6, True, True)
+    """
+    import multiprocessing as mp
+
+    context = mp.get_context("fork")
+    queue = context.Queue()
+    child = context.Process(target=_in_child, args=(function, args, queue))
+    child.start()
+    out = queue.get()
+    child.join()
+    return out
+
+
+def least_wall_time(runs: int, function: Any) -> float:
+    """The least wall time, in seconds, of ``runs`` calls of ``function()`` (the least noisy single number).
+
+    Examples
+    --------
+    >>> least_wall_time(3, lambda: sum(range(1000))) >= 0
+    True
+    """
+    check_integer(runs, "runs", 1)
+    best = float("inf")
+    for _ in range(int(runs)):
+        start = time.perf_counter()
+        function()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:
+    """The results a benchmark run recorded: ``benchmarks/results/<name>.json``, as a dict.
+
+    The file is found from the package's location (:data:`RESULTS`), so a notebook reads it from
+    any working directory. ``path`` reads another file instead. A ``FileNotFoundError`` that
+    says how to get the file when it is absent (an installed package carries no benchmark results).
+
+    Examples
+    --------
+    >>> recorded = recorded_benchmark("mds")  # doctest: +SKIP
+    >>> sorted(recorded)[:3]  # doctest: +SKIP
+    ['accuracy', 'blas_threads', 'cores']
+    """
+    if path is None:
+        if not isinstance(name, str) or not name or Path(name).name != name:
+            raise ValueError(f"name must be a benchmark's name such as 'mds' (a file of {RESULTS}), got {name!r}.")
+        file = RESULTS / f"{name}.json"
+    else:
+        file = Path(path)
+    if not file.is_file():
+        raise FileNotFoundError(
+            f"no recorded benchmark at {file}: the results live in the repository (benchmarks/results), which an "
+            f"installed package does not include. Clone the repository, or run benchmarks/{name}.py there to record them."
+        )
+    return json.loads(file.read_text())

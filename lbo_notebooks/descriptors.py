@@ -1,8 +1,8 @@
 """Point descriptors from the Laplace–Beltrami spectrum: HKS, WKS and GPS.
 
 All three are functions of the eigenpairs ``(lam_i, phi_i)`` of ``W phi = lam A phi`` with
-A-orthonormal ``phi`` (MATH.md section 8), so they are invariant under rigid motions and vertex
-permutations, and (up to discretisation) under isometric deformations:
+A-orthonormal ``phi`` (docs/maths.md, "The A inner product"), so they are invariant under rigid
+motions and vertex permutations, and (up to discretisation) under isometric deformations:
 
 * **HKS** (Sun, Ovsjanikov, Guibas 2009): ``h_t(x) = sum_i exp(-lam_i t) phi_i(x)^2``, the heat
   kept at ``x`` after time ``t``. On the unit sphere ``h_t = sum_l (2l+1)/(4 pi) exp(-l(l+1) t)``
@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from .mesh import MeshError
 from .spectrum import Spectrum
 
@@ -51,9 +52,7 @@ def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
 
 
 def _check_count(name: str, value: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}.")
-    return int(value)
+    return check_integer(value, name, 1)
 
 
 def _check_grid(name: str, values: ArrayLike) -> NDArray[np.float64]:
@@ -188,6 +187,5 @@ def gps(spectrum: Spectrum, k: int | None = None) -> NDArray[np.float64]:
     _check_spectrum(spectrum, 2)
     if k is None:
         k = spectrum.k
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= spectrum.k:
-        raise ValueError(f"k must be an integer between 2 and spectrum.k={spectrum.k}, got {k!r}.")
+    check_integer(k, "k", 2, spectrum.k, what=f"an integer between 2 and spectrum.k={spectrum.k}")
     return spectrum.vectors[:, 1:k] / np.sqrt(spectrum.values[1:k])

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import renamed
 from ._progress import progress_bar
+from ._validation import check_integer
 from .heat_method import HeatMethod
 from .mesh import Mesh, MeshError, per_mesh
 
@@ -64,7 +65,7 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
             f"{what} need a connected mesh, but this one has {k} connected components (vertex counts "
             f"{sorted(sizes.tolist(), reverse=True)[:5]}{' ...' if k > 5 else ''}); distances between "
             "components are infinite. Keep the largest component: "
-            "mesh, _ = lbo_notebooks.io.clean_mesh(mesh, keep_largest_component=True) (or load it with "
+            "mesh, _ = lbo_notebooks.clean_mesh(mesh, keep_largest_component=True) (or load it with "
             "load_mesh(path, clean=True, keep_largest_component=True))."
         )
 
@@ -427,11 +428,10 @@ def farthest_point_sampling(
     method = check_method(method)
     check_connected(mesh)
     n = mesh.n_vertices
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
-        raise ValueError(
-            f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}; "
-            "you cannot pick more samples than the mesh has vertices."
-        )
+    check_integer(
+        k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})",
+        hint="you cannot pick more samples than the mesh has vertices",
+    )
     start = int(_check_sources(start, n)[0])
     k = int(k)
     if select not in ("geodesic", "graph"):

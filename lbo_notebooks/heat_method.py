@@ -32,10 +32,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ._platform import default_workers
 from .blas_threads import one_blas_thread
-from .eigensolver import default_workers
-from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
 from .mesh import Mesh, MeshError, per_mesh
+from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
 
@@ -120,7 +120,7 @@ def _factor(matrix: sp.spmatrix, order: NDArray[np.intp] | None = None) -> Any:
     except RuntimeError as err:  # SuperLU: "Factor is exactly singular"
         raise MeshError(
             f"could not factorise this mesh's Laplacian ({err}): some vertices touch only degenerate "
-            "(zero-area) faces. Repair it: lbo_notebooks.io.clean_mesh(mesh) or load_mesh(path, clean=True)."
+            "(zero-area) faces. Repair it: lbo_notebooks.clean_mesh(mesh) or load_mesh(path, clean=True)."
         ) from err
 
 

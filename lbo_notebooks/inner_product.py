@@ -7,26 +7,26 @@ not the Euclidean one. This module holds, once, what the spectral modules need a
 * norms and bases: :func:`a_norms`, :func:`a_orthonormalize` (the one orthonormaliser),
   :func:`principal_angles`, :func:`reconstruct` and :func:`reconstruction_error` for any
   A-orthonormal basis;
-* the deterministic sign rule :func:`fix_signs`;
-* solver conventions: :func:`default_shift` (shift-invert at ``sigma = -shift``),
-  :func:`start_vector` (a fixed Lanczos start, so ARPACK is deterministic),
-  :func:`use_dense` (one dense-or-sparse policy, :data:`DENSE_LIMIT`). The one sparse
-  factorisation of a symmetric matrix is :func:`~lbo_notebooks.sparse_factor.symmetric_lu`.
+* the deterministic sign rule :func:`fix_signs`.
+
+The solvers' conventions (shift, start vector, dense or sparse) are
+:mod:`lbo_notebooks.solver_policy`; the one sparse factorisation of a symmetric matrix is
+:func:`~lbo_notebooks.sparse_factor.symmetric_lu`.
 
 The formulas are in ``docs/maths.md``, section "The A inner product".
 """
 
 from __future__ import annotations
 
-from typing import Literal, Sequence
+from typing import Sequence
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import moved
+
 __all__ = [
-    "DENSE_LIMIT",
-    "Method",
     "check_operators",
     "check_functions",
     "a_norms",
@@ -36,19 +36,10 @@ __all__ = [
     "cholesky_qr",
     "fix_signs_in_place",
     "fix_signs",
-    "default_shift",
-    "start_vector",
-    "use_dense",
     "principal_angles",
     "reconstruct",
     "reconstruction_error",
 ]
-
-#: Up to this many unknowns a dense ``scipy.linalg.eigh`` is exact and fast enough on a laptop;
-#: above it the sparse (factorise-and-Lanczos) paths win. One limit for every solver.
-DENSE_LIMIT = 600
-
-Method = Literal["auto", "dense", "sparse"]
 
 _BLOCK = 32
 # Columns whose A-Gram matrix is this close to I are finished by one Cholesky QR pass.
@@ -396,60 +387,6 @@ def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) 
     return v
 
 
-# --- solver conventions ------------------------------------------------------------------------
-def default_shift(mass: sp.spmatrix) -> float:
-    """Default shift ``s = 1e-2 * 4 pi / area`` for shift-invert at ``sigma = -s``.
-
-    ``4 pi / S`` is 1 on the unit sphere, whose first nonzero eigenvalue is 2 (``8 pi / S``).
-    The shift scales like the eigenvalues, so ``s / lam[1]`` does not depend on the units; it
-    depends on the shape (0.005 on a round sphere, about 0.02 on a procedural dog). It keeps
-    ``W + s A`` positive definite (``W`` alone is singular: constants are in its kernel). A
-    ``ValueError`` when the total mass is not a positive number (zero, or overflowed).
-
-    Examples
-    --------
-    >>> import numpy as np, scipy.sparse as sp
-    >>> bool(np.isclose(default_shift(sp.identity(4) * np.pi), 1e-2))
-    True
-    """
-    area = float(mass.sum())
-    shift = 1e-2 * 4.0 * np.pi / area if np.isfinite(area) and area > 0 else 0.0
-    if not (np.isfinite(shift) and shift > 0):
-        raise ValueError(
-            f"the mass matrix sums to {area:g}, so no default shift (1e-2 * 4 pi / area) exists: a mass matrix must "
-            "have a positive, finite total. If it comes from a mesh, its coordinates are out of double precision's "
-            "usable range (see lbo_notebooks.units): rescale it to ordinary units."
-        )
-    return shift
-
-
-def start_vector(n: int) -> NDArray[np.float64]:
-    """The fixed Lanczos start vector ``1 + cos(i) / 2``: makes ARPACK deterministic.
-
-    It is positive (so never orthogonal to the constant function) and not constant (so it has
-    a component along every eigenvector in practice).
-
-    Examples
-    --------
-    >>> start_vector(3).round(3).tolist()
-    [1.5, 1.27, 0.792]
-    """
-    return 1.0 + 0.5 * np.cos(np.arange(int(n), dtype=np.float64))
-
-
-def use_dense(n: int, method: str = "auto") -> bool:
-    """The dense-or-sparse policy: ``method`` checked, ``"auto"`` is dense up to :data:`DENSE_LIMIT`.
-
-    Examples
-    --------
-    >>> use_dense(100), use_dense(100_000), use_dense(100_000, "dense")
-    (True, False, True)
-    """
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
-    return method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
-
-
 # --- any A-orthonormal basis -------------------------------------------------------------------
 def _check_a_orthonormal(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
     P = np.asarray(basis, dtype=np.float64)
@@ -587,3 +524,9 @@ def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[n
     sin = np.clip(np.sort(sin)[:k], 0.0, 1.0)  # ascending
     angles = np.where(cos > np.sqrt(0.5), np.arcsin(sin), np.arccos(cos))
     return np.sort(angles)
+
+
+# Old spellings: the solver policy (shift, start vector, dense or sparse) is not A-algebra; it
+# lives in lbo_notebooks.solver_policy.
+__getattr__ = moved(__name__, {name: f"lbo_notebooks.solver_policy:{name}"
+                               for name in ("DENSE_LIMIT", "Method", "default_shift", "start_vector", "use_dense")})

@@ -3,7 +3,7 @@
 :func:`load_mesh` returns a validated :class:`~lbo_notebooks.Mesh` whose vertices are exactly
 the ones the file lists, in the file's order; :func:`save_mesh` writes one; :func:`load_points`
 reads a :class:`~lbo_notebooks.PointCloud`. Repair lives in :mod:`lbo_notebooks.repair`
-(:func:`clean_mesh`, also importable from here); ``load_mesh(path, clean=True)`` applies it.
+(:func:`~lbo_notebooks.repair.clean_mesh`); ``load_mesh(path, clean=True)`` applies it.
 
 How each format is read and written, and why: see :mod:`lbo_notebooks.formats`.
 
@@ -26,22 +26,20 @@ True
 from __future__ import annotations
 
 import os
-import warnings
 from pathlib import Path
 from typing import Any, Union
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ._deprecation import warn
+from ._deprecation import moved, warn
 from .formats import BINARY_FORMATS, FORMATS, POINT_FORMATS, mesh_text, read_point_text, read_raw
 from .mesh import Mesh, MeshError, unique_rows
 from .pointcloud import PointCloud
-from .repair import CleanReport, clean_arrays, clean_mesh
+from .repair import clean_arrays
 
 __all__ = [
-    "load_mesh", "save_mesh", "load_points", "read_mesh_arrays", "clean_mesh", "CleanReport", "MeshRepairWarning",
-    "FORMATS", "POINT_FORMATS",
+    "load_mesh", "save_mesh", "load_points", "read_mesh_arrays", "MeshRepairWarning",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -318,3 +316,8 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
         return PointCloud(points)
     except MeshError as exc:
         raise MeshError(f"{str(p)!r}: {exc}") from None
+
+
+# Old spellings: repair has one home, lbo_notebooks.repair. (FORMATS and POINT_FORMATS, which io
+# reads, stay readable here; their home is lbo_notebooks.formats.)
+__getattr__ = moved(__name__, {name: f"lbo_notebooks.repair:{name}" for name in ("clean_mesh", "CleanReport")})

@@ -41,8 +41,9 @@ from .geodesics import (
     farthest_point_sampling,
     geodesic_solver,
 )
-from .inner_product import DiagonalMass, fix_signs, mass_operator, start_vector, use_dense
+from .inner_product import DiagonalMass, fix_signs, mass_operator
 from .mesh import Mesh
+from .solver_policy import start_vector, use_dense
 from .spectrum import Spectrum, eigenbasis
 
 __all__ = [

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows", "per_mesh", "USABLE_SIZE_RANGE",
-           "real_coordinates"]
+           "box_diagonal", "check_coordinate_range", "real_coordinates"]
 
 T = TypeVar("T")
 
@@ -61,6 +61,68 @@ def real_coordinates(values: ArrayLike, what: str) -> NDArray[np.float64]:
         if isinstance(exc, MeshError):
             raise
         raise MeshError(f"{what} must be numbers convertible to float64: {exc}") from None
+
+
+def box_diagonal(points: np.ndarray) -> float:
+    """Bounding-box diagonal of ``(n, d)`` points, computed without overflow (the box is scaled by its largest side first).
+
+    Examples
+    --------
+    >>> box_diagonal(np.array([[0.0, 0, 0], [3, 4, 0]]))
+    5.0
+    """
+    with np.errstate(over="ignore"):  # coordinates near +-1.8e308: an infinite side, handled below
+        sides = points.max(axis=0) - points.min(axis=0)
+    largest = float(np.max(sides)) if sides.size else 0.0
+    if np.isnan(largest):
+        return largest
+    if not np.isfinite(largest):  # the sides themselves overflow (coordinates near +-1.8e308)
+        return float("inf")
+    if largest == 0.0:
+        return 0.0
+    return largest * float(np.linalg.norm(sides / largest))
+
+
+def check_coordinate_range(points: ArrayLike, what: str = "mesh") -> None:
+    """Raise :class:`MeshError` when the bounding-box diagonal of ``points`` is outside :data:`USABLE_SIZE_RANGE`.
+
+    Parameters
+    ----------
+    points : array (n, 3)
+        Finite coordinates.
+    what : str
+        ``"mesh"`` or ``"point cloud"``: how the message names the input.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> check_coordinate_range(np.eye(3))
+    >>> try:
+    ...     check_coordinate_range(np.eye(3) * 1e100)
+    ... except MeshError as error:
+    ...     print(str(error)[:69])
+    the mesh's coordinates are out of the usable range: its bounding box
+    """
+    p = np.asarray(points, dtype=np.float64)
+    if p.ndim != 2 or p.shape[0] == 0:
+        return
+    diagonal = box_diagonal(p)
+    low, high = USABLE_SIZE_RANGE
+    if low <= diagonal <= high:
+        return
+    if diagonal == 0.0 or np.isnan(diagonal):
+        return  # all points coincide, or NaN coordinates: the callers' own checks name those problems
+    size = "too large" if diagonal > high else "too small"
+    direction = "overflow" if diagonal > high else "underflow"
+    fix = (
+        "mesh.with_vertices(mesh.vertices / mesh.diagonal)" if what == "mesh" else "PointCloud(points / scale), with scale the bounding-box diagonal"
+    )
+    raise MeshError(
+        f"the {what}'s coordinates are out of the usable range: its bounding box has a diagonal of {diagonal:.3g}, "
+        f"{size} for double precision (areas and squared lengths computed from it {direction}; usable diagonals lie "
+        f"between {low:g} and {high:g}). Rescale it to ordinary units first, e.g. {fix}; eigenvalues then scale "
+        "by the square of the factor."
+    )
 
 
 def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:

@@ -18,7 +18,7 @@ codimension n, so its minimum quotient is at most ``lam[n]``.
 
 from __future__ import annotations
 
-from typing import Any, Literal, Sequence, overload
+from typing import Literal, overload
 
 import numpy as np
 import scipy.linalg
@@ -27,15 +27,14 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed
+from ._validation import check_integer
 from .inner_product import (
     a_orthonormalize,
     check_functions,
     check_operators,
-    default_shift,
     fix_signs,
-    start_vector,
-    use_dense,
 )
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
@@ -46,9 +45,6 @@ __all__ = [
     "random_subspace",
     "optimal_subspace",
     "complement_ratio",
-    "plane_normal",
-    "plane_circle",
-    "symmetric_3x3",
 ]
 
 Method = Literal["auto", "dense", "sparse"]
@@ -210,7 +206,7 @@ def min_rayleigh_quotient(
         ``"dense"``: a basis of L by SVD and ``scipy.linalg.eigh`` (small n); ``"sparse"``:
         shift-invert Lanczos on the constrained problem, one sparse LU of ``W + s A`` and ``codim``
         extra solves (no dense n x n matrix; see :class:`ConstrainedRayleigh`, which reuses the
-        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
+        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.solver_policy.use_dense`.
     return_vector : bool
         Also return the minimiser, A-normalised, sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 
@@ -261,10 +257,8 @@ def random_subspace(
     >>> random_subspace(100, 5, seed=1).shape
     (100, 5)
     """
-    if isinstance(n_vertices, bool) or not isinstance(n_vertices, (int, np.integer)) or n_vertices < 1:
-        raise ValueError(f"n_vertices must be a positive integer, got {n_vertices!r}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < n_vertices:
-        raise ValueError(f"k must be an integer in 0..{n_vertices - 1}, got {k!r}.")
+    check_integer(n_vertices, "n_vertices", 1)
+    check_integer(k, "k", 0, n_vertices - 1)
     rng = np.random.default_rng(seed)
     if pool is None:
         return rng.normal(size=(int(n_vertices), int(k)))
@@ -292,66 +286,8 @@ def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     """
     if not isinstance(spectrum, Spectrum):
         raise ValueError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}.")
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < spectrum.k:
-        raise ValueError(f"k must be an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known), got {k!r}.")
+    check_integer(k, "k", 0, spectrum.k - 1, what=f"an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known)")
     return np.array(spectrum.vectors[:, : int(k)])
-
-
-# --- the 3 x 3 picture -----------------------------------------------------------------------------
-def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
-    """Unit normal of a plane through the origin of R^3, rotated by ``angle`` degrees.
-
-    At 0 the plane is orthogonal to the first eigenvector ``v0`` of the symmetric 3 x 3 ``matrix``
-    (eigenvalues ``lam_0 <= lam_1 <= lam_2``, indices from 0; the optimal plane of Courant–Fischer,
-    minimum quotient ``lam_1``); the normal then turns towards ``(v1 + v2) / sqrt(2)``, reaching it
-    at 90 degrees.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> plane_normal(np.diag([1.0, 2.0, 4.0]), 0.0).round(12).tolist()
-    [1.0, 0.0, 0.0]
-    """
-    M = symmetric_3x3(matrix)
-    _, vec = np.linalg.eigh(M)
-    vec = fix_signs(vec)
-    t = np.deg2rad(float(angle))
-    return np.cos(t) * vec[:, 0] + np.sin(t) * (vec[:, 1] + vec[:, 2]) / np.sqrt(2.0)
-
-
-def symmetric_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
-    """``matrix`` as a float array, checked to be a finite symmetric 3 x 3 matrix.
-
-    Examples
-    --------
-    >>> symmetric_3x3(np.eye(3)).shape
-    (3, 3)
-    """
-    M = np.asarray(matrix, dtype=np.float64)
-    if M.shape != (3, 3) or not np.all(np.isfinite(M)) or not np.allclose(M, M.T):
-        raise ValueError(f"matrix must be a finite symmetric 3 x 3 array, got shape {M.shape}.")
-    return M
-
-
-def plane_circle(matrix: ArrayLike, normal: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
-    """The plane ``{x : normal . x = 0}`` on the unit sphere and its Rayleigh-quotient minimum.
-
-    Returns the great circle (200 points), the minimiser (just off the sphere, for drawing) and
-    the minimum value of ``x.T M x`` on the circle.
-
-    Examples
-    --------
-    >>> circle, point, value = plane_circle(np.diag([1.0, 2.0, 4.0]), [1.0, 0.0, 0.0])
-    >>> circle.shape, round(value, 12)
-    ((200, 3), 2.0)
-    """
-    M = symmetric_3x3(matrix)
-    value, point = min_rayleigh_quotient(M, np.eye(3), orthogonal_to=normal, method="dense", return_vector=True)
-    nrm = np.asarray(normal, dtype=np.float64) / np.linalg.norm(normal)
-    e1 = point / np.linalg.norm(point)
-    e2 = np.cross(nrm, e1)
-    t = np.linspace(0, 2 * np.pi, 200)
-    return np.outer(np.cos(t), e1) + np.outer(np.sin(t), e2), 1.01 * e1, value
 
 
 def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:
@@ -377,7 +313,9 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
     return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
 
 
-# The 3-D figure and its slider moved to plotting (no plotly code in this module).
-__getattr__ = moved(
-    __name__, {name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")}
-)
+# Old spellings: the 3-D figure and its slider moved to plotting (no plotly code in this module), the
+# 3 x 3 plane that the figure draws to the teaching helpers (not a library algorithm).
+__getattr__ = moved(__name__, {
+    **{name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")},
+    **{name: f"lbo_notebooks.teaching:{name}" for name in ("plane_normal", "symmetric_3x3", "plane_circle")},
+})

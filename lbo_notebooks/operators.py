@@ -7,7 +7,7 @@ The eigenproblem is ``W phi = lam A phi``.
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 import scipy.sparse as sp
@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 from ._deprecation import renamed
 from .mesh import Mesh, per_mesh
 
-__all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS"]
+__all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "check_mass_kind"]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
 MASS_KINDS: tuple[str, ...] = ("voronoi", "barycentric", "consistent")
@@ -137,6 +137,19 @@ def _mass(m: Mesh, mass_kind: str) -> sp.csr_matrix:
     return sp.diags(diag).tocsr()
 
 
+def check_mass_kind(mass_kind: Any) -> str:
+    """``mass_kind`` checked: one of :data:`MASS_KINDS` (the one check every module uses).
+
+    Examples
+    --------
+    >>> check_mass_kind("voronoi")
+    'voronoi'
+    """
+    if not isinstance(mass_kind, str) or mass_kind not in MASS_KINDS:
+        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
+    return mass_kind
+
+
 @renamed({"kind": "mass_kind"})
 def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
@@ -156,6 +169,4 @@ def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     >>> float(mass_matrix(m).sum())
     2.0
     """
-    if mass_kind not in MASS_KINDS:
-        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-    return _mass(mesh, mass_kind).copy()
+    return _mass(mesh, check_mass_kind(mass_kind)).copy()

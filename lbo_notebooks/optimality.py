@@ -11,7 +11,7 @@ Dirichlet energy better than the first n eigenfunctions of the Laplace–Beltram
 
 The exact ``C(V)`` minimises the energy over the part of ``f`` that lies *in* ``V`` (a Schur
 complement). Using ``W`` itself on the A-orthogonal complement of ``V`` instead is a classic trap:
-it gives only a lower bound (:func:`complement_ratio`, kept to show the difference). See docs/maths.md,
+it gives only a lower bound (:func:`~lbo_notebooks.minmax.complement_ratio`, kept to show the difference). See docs/maths.md,
 section "Optimality".
 """
 
@@ -26,9 +26,10 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import renamed
-from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs, start_vector, use_dense
-from .minmax import complement_ratio  # re-exported: it belongs with min-max, kept here for old imports
+from ._deprecation import moved, renamed
+from ._validation import check_integer
+from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
+from .solver_policy import start_vector, use_dense
 from .sparse_factor import symmetric_lu
 from .spectrum import Spectrum
 
@@ -36,10 +37,8 @@ __all__ = [
     "representation_error",
     "error_bound",
     "dirichlet_energy",
-    "a_orthonormalize",
     "kernel_basis",
     "worst_case_ratio",
-    "complement_ratio",
     "witness_function",
 ]
 
@@ -148,8 +147,7 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64]
     True
     """
     spectrum = _check_spectrum(spectrum)
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
-        raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+    check_integer(k, "k", what="an integer number of eigenfunctions")
     if not 1 <= k < spectrum.k:
         raise ValueError(
             f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "
@@ -287,7 +285,7 @@ def worst_case_ratio(
     of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,
     ``a = A 1``, ``s = 1 @ A @ 1``; the rank-one term makes the right side definite and does not
     change the ratio. (Using ``W`` instead of ``S`` on the complement is the trap:
-    :func:`complement_ratio`.)
+    :func:`~lbo_notebooks.minmax.complement_ratio`.)
 
     Parameters
     ----------
@@ -375,3 +373,7 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c
     return fix_signs(f / np.sqrt(float(f @ (spectrum.mass @ f))), spectrum.mass)
+
+
+# Old spelling: complement_ratio belongs with min-max (lbo_notebooks.minmax).
+__getattr__ = moved(__name__, {"complement_ratio": "lbo_notebooks.minmax:complement_ratio"})

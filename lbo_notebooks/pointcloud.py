@@ -13,8 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import MeshError, real_coordinates
-from .units import check_coordinate_range
+from .mesh import MeshError, check_coordinate_range, real_coordinates
 
 __all__ = ["PointCloud", "MIN_POINTS", "LINE_TOLERANCE"]
 
@@ -41,7 +40,7 @@ class PointCloud:
     MeshError
         For NaN/inf coordinates, repeated points, fewer than :data:`MIN_POINTS` points, a wrong
         shape, points that all lie on one line (within :data:`LINE_TOLERANCE`), or coordinates
-        out of the usable range (:func:`~lbo_notebooks.units.check_coordinate_range`); the
+        out of the usable range (:func:`~lbo_notebooks.mesh.check_coordinate_range`); the
         message names the problem and the fix.
 
     Examples

@@ -33,7 +33,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._deprecation import warn
+from ._deprecation import moved
+from ._validation import check_integer, is_integer
 from .mesh import Mesh, MeshError
 from .pointcloud import PointCloud
 from .units import length_exponent
@@ -44,11 +45,11 @@ __all__ = [
     "LaplacianWarning",
     "NEEDLE_ANGLE",
     "N_NEIGHBORS",
+    "check_referenced",
     "cotan_defects",
     "non_manifold_vertices",
     "robust_operators",
     "point_cloud_operators",
-    "select_operators",
 ]
 
 Laplacian = Literal["auto", "cotan", "robust"]
@@ -155,7 +156,7 @@ def cotan_defects(mesh: Mesh) -> list[str]:
     return reasons
 
 
-def _check_referenced(mesh: Mesh) -> None:
+def check_referenced(mesh: Mesh) -> None:
     used = np.zeros(mesh.n_vertices, dtype=bool)
     used[mesh.faces.ravel()] = True
     if not used.all():
@@ -192,7 +193,7 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
     if not isinstance(mesh, Mesh):
         raise ValueError(f"robust_operators needs a Mesh, got {type(mesh).__name__}; for points use point_cloud_operators.")
     _check_mollify(mollify_factor)
-    _check_referenced(mesh)
+    check_referenced(mesh)
 
     def compute(m: Mesh) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         import robust_laplacian
@@ -230,13 +231,13 @@ def point_cloud_operators(
     """
     if not isinstance(cloud, PointCloud):
         raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
-    if not isinstance(n_neighbors, bool) and isinstance(n_neighbors, (int, np.integer)) and n_neighbors == N_NEIGHBORS:
+    if is_integer(n_neighbors) and n_neighbors == N_NEIGHBORS:
         n_neighbors = min(N_NEIGHBORS, cloud.n_points - 1)
-    if isinstance(n_neighbors, bool) or not isinstance(n_neighbors, (int, np.integer)) or not 3 <= n_neighbors < cloud.n_points:
-        raise ValueError(
-            f"n_neighbors must be an integer between 3 and the number of points - 1 ({cloud.n_points - 1}), "
-            f"got {n_neighbors!r}; the default 30 (n_points - 1 on small clouds) suits most clouds."
-        )
+    check_integer(
+        n_neighbors, "n_neighbors", 3, cloud.n_points - 1,
+        what=f"an integer between 3 and the number of points - 1 ({cloud.n_points - 1})",
+        hint="the default 30 (n_points - 1 on small clouds) suits most clouds",
+    )
     _check_mollify(mollify_factor)
 
     def compute(c: Any) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -289,82 +290,5 @@ def _as_pair(L: sp.spmatrix, M: sp.spmatrix) -> tuple[sp.csr_matrix, sp.csr_matr
     return W, A
 
 
-def _component_note(n_components: int) -> str:
-    if n_components <= 1:
-        return ""
-    return (
-        f" It has {n_components} connected components, so its first {n_components} eigenvalues are (near) zero, "
-        "one constant per component; keep only the largest with load_mesh(path, clean=True, "
-        "keep_largest_component=True) if you want one shape."
-    )
-
-
-def select_operators(
-    shape: Any,
-    laplacian: str,
-    *,
-    mass_kind: str,
-    alpha: float,
-    n_neighbors: int = N_NEIGHBORS,
-) -> tuple[sp.csr_matrix, sp.csr_matrix] | None:
-    """The robust ``(stiffness, mass)`` for ``shape``, or None when the cotangent path applies.
-
-    The dispatch behind ``eigenbasis(..., laplacian=...)``: ``"auto"`` takes the cotangent
-    operator unless :func:`cotan_defects` finds a reason not to, and then warns
-    (:class:`LaplacianWarning`) naming the reasons; ``"cotan"`` refuses a mesh with defects;
-    ``"robust"`` always takes the tufted Laplacian. A :class:`~lbo_notebooks.PointCloud` always
-    gets :func:`point_cloud_operators`.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes
-    >>> select_operators(shapes.icosphere(1), "auto", mass_kind="voronoi", alpha=0.0, n_neighbors=30) is None
-    True
-    >>> W, A = select_operators(shapes.icosphere(1), "robust", mass_kind="voronoi", alpha=0.0, n_neighbors=30)
-    >>> W.shape
-    (42, 42)
-    """
-    if laplacian not in LAPLACIANS:
-        raise ValueError(f"laplacian must be one of {LAPLACIANS}, got {laplacian!r}.")
-    if isinstance(shape, PointCloud):
-        if laplacian == "cotan":
-            raise ValueError("a point cloud has no triangles for the cotangent Laplacian; use laplacian='auto' or 'robust'.")
-        _check_robust_options(mass_kind, alpha)
-        return point_cloud_operators(shape, n_neighbors=n_neighbors)
-    if not isinstance(shape, Mesh):
-        raise ValueError(f"eigenbasis takes a Mesh or a PointCloud or a (stiffness, mass) tuple, got {type(shape).__name__}.")
-    _check_referenced(shape)
-    if laplacian == "robust":
-        _check_robust_options(mass_kind, alpha)
-        return robust_operators(shape)
-    reasons = cotan_defects(shape)
-    if not reasons:
-        return None
-    why = "; ".join(reasons)
-    if laplacian == "cotan":
-        raise MeshError(
-            f"the cotangent Laplacian cannot serve this mesh: {why}. Use eigenbasis(mesh, k, laplacian='robust') "
-            "(or the default laplacian='auto'), which builds the intrinsic tufted Laplacian of Sharp & Crane 2020."
-        )
-    _check_robust_options(mass_kind, alpha)
-    warn(
-        f"eigenbasis used the robust (intrinsic tufted) Laplacian of Sharp & Crane 2020 instead of the cotangent "
-        f"one, because the mesh has {why}. Pass laplacian='robust' to choose it explicitly."
-        + _component_note(shape.n_components),
-        LaplacianWarning,
-    )
-    return robust_operators(shape)
-
-
-def _check_robust_options(mass_kind: str, alpha: float) -> None:
-    if mass_kind not in ("voronoi", "barycentric"):
-        raise ValueError(
-            f"the robust Laplacian comes with its own lumped (diagonal) mass; mass={mass_kind!r} applies to the "
-            "cotangent operator only. Leave mass at its default or pass laplacian='cotan'."
-        )
-    if alpha != 0.0:
-        raise ValueError(
-            "alpha (the scale-invariant metric of notebook 08) is built on the cotangent operator, which cannot "
-            "serve this shape (a point cloud, laplacian='robust', or a mesh with the defects cotan_defects lists); "
-            "use alpha=0, or repair the mesh into an edge-manifold one with well-shaped triangles."
-        )
+# Old spelling: the choice of operators for an input has one owner, lbo_notebooks.laplacians.
+__getattr__ = moved(__name__, {"select_operators": "lbo_notebooks.laplacians:select_operators"})

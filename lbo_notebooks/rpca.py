@@ -58,14 +58,12 @@ from ._deprecation import renamed, warn
 from .inner_product import (
     a_orthonormalize,
     check_operators,
-    default_shift,
     fix_signs,
-    principal_angles,
-    reconstruct,
-    reconstruction_error,
-    start_vector,
-    use_dense,
+    principal_angles,  # noqa: F401  old spelling rpca.principal_angles (home: inner_product)
+    reconstruct,  # noqa: F401  old spelling (home: inner_product)
+    reconstruction_error,  # noqa: F401  old spelling (home: inner_product)
 )
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import SymmetricFactor, symmetric_lu
 from .spectrum import eigenbasis
 
@@ -75,9 +73,6 @@ __all__ = [
     "regularized_pca",
     "mu_from_beta",
     "beta_from_mu",
-    "reconstruct",
-    "reconstruction_error",
-    "principal_angles",
 ]
 
 Method = Literal["auto", "dense", "sparse"]

@@ -13,6 +13,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
+
 __all__ = ["shape_distribution", "shape_distribution_distances"]
 
 
@@ -52,8 +54,7 @@ def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 
         raise ValueError(f"points must be a finite (n, d) array, got shape {P.shape}.")
     if P.shape[0] < 2:
         raise ValueError(f"a shape distribution needs at least two points, got {P.shape[0]}.")
-    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or bins < 1:
-        raise ValueError(f"bins must be a positive integer, got {bins!r}.")
+    check_integer(bins, "bins", 1)
     if not (np.isscalar(max_ratio) and np.isfinite(max_ratio) and max_ratio > 0):
         raise ValueError(f"max_ratio must be a positive number, got {max_ratio!r}.")
     d = pdist(P)

@@ -1,8 +1,8 @@
 """Procedural surfaces generated in code: the package's embedded, network-free data.
 
 Every function here is deterministic and returns a validated :class:`~lbo_notebooks.Mesh`.
-The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures` and are
-re-exported here (``shapes.creature``, ``shapes.creature_poses``).
+The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures`
+(``shapes.creature`` and ``shapes.creature_poses`` still work for one release, with a warning).
 """
 
 from __future__ import annotations
@@ -12,29 +12,23 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ._deprecation import moved
+from ._validation import check_integer
 from .mesh import Mesh
 
-__all__ = ["icosphere", "ellipsoid", "torus", "rectangle", "disk", "bumpy_sphere", "scan_like", "creature", "creature_poses"]
+__all__ = ["icosphere", "ellipsoid", "torus", "jittered_torus", "rectangle", "disk", "bumpy_sphere", "scan_like"]
 
-_CREATURE_NAMES = ("creature", "creature_poses", "creature_parts", "pose_distortion", "SPECIES", "POSES", "JOINTS", "PARTS")
-
-
-def __getattr__(name: str) -> Any:
-    # Creatures pull in heavier dependencies (marching cubes, remeshing): import them on demand.
-    if name in _CREATURE_NAMES:
-        from . import creatures
-
-        return getattr(creatures, name)
-    raise AttributeError(f"module 'lbo_notebooks.shapes' has no attribute {name!r}")
+# Old spellings: the creatures were re-exported here; they live in lbo_notebooks.creatures (and
+# pose_distortion, a measurement, in lbo_notebooks.distortion).
+__getattr__ = moved(__name__, {
+    **{name: f"lbo_notebooks.creatures:{name}"
+       for name in ("creature", "creature_poses", "creature_parts", "SPECIES", "POSES", "JOINTS", "PARTS")},
+    "pose_distortion": "lbo_notebooks.distortion:pose_distortion",
+})
 
 
 def _check_int(name: str, value: Any, low: int, high: int | None = None) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low or (
-        high is not None and value > high
-    ):
-        rng = f">= {low}" if high is None else f"in {low}..{high}"
-        raise ValueError(f"{name} must be an integer {rng}, got {value!r}.")
-    return int(value)
+    return check_integer(value, name, low, high, what=f"an integer >= {low}" if high is None else None)
 
 
 def _check_positive(name: str, value: Any) -> float:
@@ -129,6 +123,41 @@ def torus(major_radius: float = 1.0, minor_radius: float = 0.4, n_major: int = 6
     p11 = ((i + 1) % nu) * nv + (j + 1) % nv
     faces = np.concatenate([np.stack([p00, p10, p11], -1).reshape(-1, 3), np.stack([p00, p11, p01], -1).reshape(-1, 3)])
     return Mesh(verts, faces)
+
+
+def jittered_torus(
+    n_minor: int, jitter: float = 0.0, *, major_radius: float = 1.0, minor_radius: float = 0.4, seed: int = 0
+) -> tuple[Mesh, NDArray[np.float64]]:
+    """A torus whose vertices are moved at random *within* the surface, and its exact curvature.
+
+    The grid has ``n_major = round(2.5 n_minor)`` columns (near-equilateral triangles). Each
+    vertex's angles (u, v) are shifted by ``jitter`` times a uniform random fraction in
+    [-1/2, 1/2] of the grid step, and the vertex is placed on the exact torus, so the surface is
+    exact and only the triangulation is irregular. Returns the mesh and the true Gaussian
+    curvature ``K = cos v / (r (R + r cos v))`` at every vertex: an oracle for how well angle
+    defects measure ``|K|`` where it is small (near the top and bottom circles, ``cos v = 0``).
+
+    Examples
+    --------
+    >>> mesh, K = jittered_torus(8, 0.5)
+    >>> mesh.n_vertices, mesh.euler_characteristic, bool(np.isclose(K.max(), 1 / (0.4 * 1.4)))
+    (160, 0, True)
+    """
+    check_integer(n_minor, "n_minor", 3)
+    if not (np.isscalar(jitter) and np.isfinite(jitter) and 0 <= jitter < 1):
+        raise ValueError(f"jitter must be in [0, 1) (a fraction of the grid step; 1 could fold triangles), got {jitter!r}.")
+    R, r = float(major_radius), float(minor_radius)
+    if not (0 < r < R):
+        raise ValueError(f"need 0 < minor_radius < major_radius, got {r} and {R}.")
+    nv, nu = int(n_minor), int(round(2.5 * n_minor))
+    # the same (u-major, v-minor) vertex order and faces as torus
+    faces = torus(R, r, nu, nv).faces
+    rng = np.random.default_rng(seed)
+    u = 2 * np.pi * (np.repeat(np.arange(nu), nv) + jitter * rng.uniform(-0.5, 0.5, nu * nv)) / nu
+    v = 2 * np.pi * (np.tile(np.arange(nv), nu) + jitter * rng.uniform(-0.5, 0.5, nu * nv)) / nv
+    ring = R + r * np.cos(v)
+    vertices = np.column_stack([ring * np.cos(u), ring * np.sin(u), r * np.sin(v)])
+    return Mesh(vertices, faces), np.cos(v) / (r * ring)
 
 
 def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mesh:

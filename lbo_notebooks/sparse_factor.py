@@ -16,10 +16,13 @@ without an order is ordered by SuperLU's minimum degree there.
 
 Pivots are taken on the diagonal, in the symmetric order: ``P M P^T = L U`` with ``U = D L^T``,
 so for an indefinite ``M`` the signs of ``D`` are its inertia (Sylvester's law), which is how
-the eigensolver counts eigenvalues (:attr:`SymmetricFactor.n_negative`).
+the eigensolver counts eigenvalues (:attr:`SymmetricFactor.n_negative`): :class:`SliceFactor`
+factorises ``W - b A`` and counts the eigenvalues below ``b`` (:func:`count_below`).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -28,7 +31,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .mesh import Mesh, per_mesh
 
-__all__ = ["NESTED_DISSECTION_MIN", "SymmetricFactor", "fill_reducing_order", "mesh_order", "symmetric_lu"]
+__all__ = [
+    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "mesh_order", "symmetric_lu",
+]
 
 # Below this many unknowns a matrix with no order given is ordered by SuperLU itself (minimum
 # degree on A + A^T): at 2.5k vertices METIS's run plus the factorisation took 2.2x as long as
@@ -192,3 +197,54 @@ def symmetric_lu(matrix: sp.spmatrix, order: ArrayLike | None = None) -> Symmetr
     ([1.0, -1.0, 2.0], 1)
     """
     return SymmetricFactor(matrix, order)
+
+
+@dataclass(frozen=True)
+class SliceFactor:
+    """``W - shift A`` factorised as ``L D L^T`` (via an unpivoted symmetric-ordering LU).
+
+    Attributes
+    ----------
+    shift : float
+        The point ``b`` of the spectrum.
+    n_below : int
+        Number of eigenvalues of ``W phi = lam A phi`` strictly below ``shift`` (Sylvester inertia).
+    lu : SymmetricFactor or None
+        The factorisation; ``lu.solve`` applies ``(W - shift A)^{-1}``. ``None`` once dropped (at
+        50k vertices a factorisation takes as much memory as 125 eigenvectors; the count remains).
+    """
+
+    shift: float
+    n_below: int
+    lu: SymmetricFactor | None
+
+    @classmethod
+    def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float, order: NDArray[np.intp] | None = None) -> "SliceFactor":
+        """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue.
+
+        ``order``: a :func:`~lbo_notebooks.sparse_factor.fill_reducing_order` of the pattern of
+        ``stiffness`` and ``mass``, shared by every shift (when omitted,
+        :func:`~lbo_notebooks.sparse_factor.symmetric_lu` chooses one by size).
+        """
+        try:
+            lu = symmetric_lu(stiffness - shift * mass, order)
+        except RuntimeError as err:  # an exactly zero pivot: shift is (numerically) an eigenvalue
+            raise ValueError(f"W - {shift:.17g} A is singular; move the shift off the eigenvalue.") from err
+        try:
+            n_below = lu.n_negative
+        except ValueError as err:
+            raise ValueError(f"W - {shift:.17g} A: {err}") from err
+        return cls(shift=float(shift), n_below=n_below, lu=lu)
+
+
+def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
+    """Number of eigenvalues of ``stiffness phi = lam mass phi`` below ``value`` (Sylvester inertia).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> m = shapes.icosphere(3)
+    >>> count_below(stiffness_matrix(m), mass_matrix(m), 4.0)  # l = 0, 1: 1 + 3 eigenvalues below 4
+    4
+    """
+    return SliceFactor.of(stiffness, mass, value).n_below

@@ -17,24 +17,23 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from ._deprecation import moved, renamed, warn
+from ._validation import check_integer, check_number
 from .inner_product import (
     a_orthonormalize,
     check_functions,
     check_operators,
     cholesky_qr,
-    default_shift,
-    fix_signs,
     fix_signs_in_place,
-    start_vector,
-    use_dense,
 )
-from ._deprecation import renamed, warn
+from .laplacians import laplace_beltrami
 from .mesh import Mesh
-from .operators import MASS_KINDS, MassKind, mass_matrix, stiffness_matrix
+from .operators import MassKind
+from .solver_policy import default_shift, start_vector, use_dense
 from .sparse_factor import mesh_order
-from .units import check_coordinate_range, unit_area_exponent
+from .units import unit_area_exponent
 
-__all__ = ["Spectrum", "eigenbasis", "fix_signs", "check_operators"]
+__all__ = ["Spectrum", "eigenbasis"]
 
 Operators = tuple[sp.spmatrix, sp.spmatrix]
 
@@ -49,7 +48,7 @@ class Spectrum:
         Eigenvalues, ascending; ``values[0]`` is 0 (up to round-off) on a connected surface.
     vectors : ndarray, shape (n, k)
         Eigenvectors, A-orthonormal (``vectors.T @ mass @ vectors == I``), signs fixed by
-        :func:`fix_signs`.
+        :func:`~lbo_notebooks.inner_product.fix_signs`.
     stiffness, mass : scipy.sparse.csr_matrix
         The operators the spectrum was computed from.
 
@@ -92,8 +91,7 @@ class Spectrum:
     def _check_n(self, k: int | None) -> int:
         if k is None:
             return self.k
-        if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
-            raise ValueError(f"k must be an integer number of eigenfunctions, got {k!r}.")
+        check_integer(k, "k", what="an integer number of eigenfunctions")
         if not 0 <= k <= self.k:
             raise ValueError(f"k must be between 0 and k={self.k} (the eigenpairs computed), got {k}.")
         return int(k)
@@ -206,45 +204,28 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
-    if isinstance(mesh, Mesh):
-        check_coordinate_range(mesh.vertices, "mesh")
-    if not isinstance(mesh, tuple):
-        from .robust import select_operators
-
-        robust = select_operators(mesh, laplacian, mass_kind=mass_kind, alpha=alpha, n_neighbors=n_neighbors)
-        if robust is not None:
-            mesh = robust
-    elif laplacian != "auto":
-        raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
-    if isinstance(mesh, Mesh):
-        if mass_kind not in MASS_KINDS:
-            raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-        if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
-            raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}.")
-        W = stiffness_matrix(mesh)
-        if float(alpha) == 0.0:
-            A = mass_matrix(mesh, mass_kind)
-        else:
-            from .curvature import DEFAULT_FLOOR, metric_mass_matrix
-
-            floor = DEFAULT_FLOOR if curvature_floor is None else curvature_floor
-            A = metric_mass_matrix(mesh, float(alpha), mass_kind=mass_kind, floor=floor)
-    elif isinstance(mesh, tuple) and len(mesh) == 2:
+    if isinstance(mesh, tuple):  # the caller's own operators
+        if laplacian != "auto":
+            raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
         if alpha != 0.0:
             raise ValueError("alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.")
+        if len(mesh) != 2:
+            raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got a tuple of {len(mesh)}.")
         W, A = check_operators(*mesh)
     else:
-        raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got {type(mesh).__name__}.")
+        W, A = laplace_beltrami(
+            mesh, laplacian=laplacian, mass_kind=mass_kind, alpha=alpha, curvature_floor=curvature_floor, n_neighbors=n_neighbors
+        )
 
     n = W.shape[0]
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= n:
-        raise ValueError(f"k must be an integer between 1 and the number of vertices ({n}), got {k!r}.")
-    if shift is not None and (isinstance(shift, bool) or not (np.isscalar(shift) and np.isfinite(shift) and shift > 0)):
-        raise ValueError(f"shift must be a positive number (sigma = -shift), got {shift!r}.")
+    check_integer(k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})")
+    if shift is not None:
+        check_number(shift, "shift", 0, open_low=True, what="a positive number (sigma = -shift)")
     if solver not in ("auto", "slicing", "arpack"):
         raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
-    if tol is not None and (isinstance(tol, bool) or not isinstance(tol, (int, float, np.integer, np.floating)) or not 0 < tol < 1):
-        raise ValueError(f"tol must be a number between 0 and 1 (e.g. 1e-8), or None for the solver's default; got {tol!r}.")
+    if tol is not None:
+        check_number(tol, "tol", 0, 1, open_low=True, open_high=True,
+                     what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default")
     # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
     # with the heat method's factorisations.
     order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) else (lambda: None)
@@ -333,8 +314,7 @@ def _arpack_is_complete(
     eigenvalues below a point exactly, so a count just below the last value's cluster proves the
     set complete, or sends the problem to spectrum slicing, which completes it.
     """
-    from .eigensolver import SliceFactor
-    from .sparse_factor import NESTED_DISSECTION_MIN
+    from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor
 
     top = float(values[-1])
     point = top - max(1e-9 * abs(top), 1e-3 * shift)
@@ -344,3 +324,7 @@ def _arpack_is_complete(
     except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
         return False
     return count == int(np.count_nonzero(values < point))
+
+
+# Old spelling: fix_signs belongs to the A-inner-product algebra (lbo_notebooks.inner_product).
+__getattr__ = moved(__name__, {"fix_signs": "lbo_notebooks.inner_product:fix_signs"})

@@ -14,7 +14,8 @@ back:
 * :func:`length_exponent`: the point-cloud and tufted Laplacians (robust-laplacian) get their
   points divided by the power of two nearest the bounding-box diagonal, and their mass back
   multiplied by its square, so the library always sees a shape of about unit size.
-* :func:`check_coordinate_range`: coordinates whose bounding-box diagonal lies outside
+* :func:`~lbo_notebooks.mesh.check_coordinate_range` (in :mod:`~lbo_notebooks.mesh`, beside
+  the range it enforces): coordinates whose bounding-box diagonal lies outside
   :data:`USABLE_DIAGONAL` are refused with an error that says so and how to rescale, instead of
   being blamed on degenerate faces or coincident points (or crashing a library).
 
@@ -32,9 +33,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .mesh import USABLE_SIZE_RANGE, MeshError
+from ._deprecation import moved
+from .mesh import USABLE_SIZE_RANGE, box_diagonal
 
-__all__ = ["USABLE_DIAGONAL", "check_coordinate_range", "length_exponent", "unit_area_exponent"]
+__all__ = ["USABLE_DIAGONAL", "length_exponent", "unit_area_exponent"]
 
 #: Bounding-box diagonals (in the data's own units) the package computes with: the one range that
 #: :data:`lbo_notebooks.mesh.USABLE_SIZE_RANGE` sets for meshes, applied here to point clouds and
@@ -44,68 +46,12 @@ __all__ = ["USABLE_DIAGONAL", "check_coordinate_range", "length_exponent", "unit
 USABLE_DIAGONAL = USABLE_SIZE_RANGE
 
 
-def _diagonal(points: np.ndarray) -> float:
-    """Bounding-box diagonal, computed without overflow (the box is scaled by its largest side first)."""
-    with np.errstate(over="ignore"):  # coordinates near +-1.8e308: an infinite side, handled below
-        sides = points.max(axis=0) - points.min(axis=0)
-    largest = float(np.max(sides)) if sides.size else 0.0
-    if np.isnan(largest):
-        return largest
-    if not np.isfinite(largest):  # the sides themselves overflow (coordinates near +-1.8e308)
-        return float("inf")
-    if largest == 0.0:
-        return 0.0
-    return largest * float(np.linalg.norm(sides / largest))
-
-
-def check_coordinate_range(points: ArrayLike, what: str = "mesh") -> None:
-    """Raise :class:`MeshError` when the bounding-box diagonal of ``points`` is outside :data:`USABLE_DIAGONAL`.
-
-    Parameters
-    ----------
-    points : array (n, 3)
-        Finite coordinates.
-    what : str
-        ``"mesh"`` or ``"point cloud"``: how the message names the input.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> check_coordinate_range(np.eye(3))
-    >>> try:
-    ...     check_coordinate_range(np.eye(3) * 1e100)
-    ... except MeshError as error:
-    ...     print(str(error)[:69])
-    the mesh's coordinates are out of the usable range: its bounding box
-    """
-    p = np.asarray(points, dtype=np.float64)
-    if p.ndim != 2 or p.shape[0] == 0:
-        return
-    diagonal = _diagonal(p)
-    low, high = USABLE_DIAGONAL
-    if low <= diagonal <= high:
-        return
-    if diagonal == 0.0 or np.isnan(diagonal):
-        return  # all points coincide, or NaN coordinates: the callers' own checks name those problems
-    size = "too large" if diagonal > high else "too small"
-    direction = "overflow" if diagonal > high else "underflow"
-    fix = (
-        "mesh.with_vertices(mesh.vertices / mesh.diagonal)" if what == "mesh" else "PointCloud(points / scale), with scale the bounding-box diagonal"
-    )
-    raise MeshError(
-        f"the {what}'s coordinates are out of the usable range: its bounding box has a diagonal of {diagonal:.3g}, "
-        f"{size} for double precision (areas and squared lengths computed from it {direction}; usable diagonals lie "
-        f"between {low:g} and {high:g}). Rescale it to ordinary units first, e.g. {fix}; eigenvalues then scale "
-        "by the square of the factor."
-    )
-
-
 def length_exponent(points: ArrayLike) -> int:
     """The exponent ``e`` of the power of two ``2**e`` nearest the bounding-box diagonal of ``points`` (0 if it is 0).
 
     Dividing coordinates by ``2**e`` is exact in floating point and gives a shape of about unit size.
     """
-    diagonal = _diagonal(np.asarray(points, dtype=np.float64))
+    diagonal = box_diagonal(np.asarray(points, dtype=np.float64))
     if not (np.isfinite(diagonal) and diagonal > 0):
         return 0
     return int(np.round(np.log2(diagonal)))
@@ -133,3 +79,7 @@ def unit_area_exponent(mass_entries: ArrayLike) -> int:
             "definite (check the mesh for degenerate faces, or rescale coordinates that underflow)."
         )
     return int(np.round((np.log2(peak) + np.log2(total)) / 2.0))
+
+
+# Old spelling: the range check lives in lbo_notebooks.mesh, beside the range it enforces.
+__getattr__ = moved(__name__, {"check_coordinate_range": "lbo_notebooks.mesh:check_coordinate_range"})

@@ -1,14 +1,21 @@
 #!/usr/bin/env python
-"""Print the import graph of the lbo_notebooks package; fail on cycles and on private imports.
+"""Print the import graph of the lbo_notebooks package; fail on cycles, wrong-way and private imports.
 
 Reads the source with ``ast`` (nothing is imported, so it runs anywhere in milliseconds). Every
 relative import counts, at module level or inside a function (a lazy import is still a
-dependency). Two rules:
+dependency). A deprecation shim (``_deprecation.moved``) resolves its old spelling by a string at
+attribute access and is not an import. The rules:
 
 * no cycle between modules (``a`` imports ``b`` imports ... ``a``);
+* every module sits in one of the :data:`LAYERS` below, and imports only from its own layer or
+  from layers under it (a module that is in no layer is a violation too: place it);
 * no private name (``_x``) imported from another module; private *modules* such as
   ``_open3d`` are allowed, they exist to be imported inside the package;
 * every relative import resolves to a module of the package (a moved module is caught here).
+
+It also prints the number of *levels*: the longest chain of imports, counted in modules (a module
+that imports nothing from the package is on level 1, a module importing it on level 2, ...), and
+fails when there are more than :data:`MAX_LEVELS`.
 
 Usage: ``python scripts/import_graph.py [package_dir]``. Exit status 1 on a violation.
 """
@@ -16,8 +23,34 @@ Usage: ``python scripts/import_graph.py [package_dir]``. Exit status 1 on a viol
 from __future__ import annotations
 
 import ast
+import fnmatch
 import sys
+from functools import lru_cache
 from pathlib import Path
+
+#: The house, bottom to top: (layer, what it holds, module patterns). A module may import from its
+#: own layer and from the layers under it, never from a layer above.
+LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
+    ("support", "tools every layer uses: deprecation shims, argument checks, optional open3d, progress bars, "
+     "BLAS threads and platform details, cost measurement",
+     ("_deprecation", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "cost")),
+    ("data", "the mesh and point cloud, units, files in and out, repair",
+     ("mesh", "units", "io", "formats", "formats.*", "repair", "pointcloud")),
+    ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
+     ("operators", "robust", "curvature", "laplacians")),
+    ("linear algebra", "A-inner products, factorisations, Krylov and the sliced eigensolver",
+     ("inner_product", "solver_policy", "sparse_factor", "krylov", "slicing", "eigensolver")),
+    ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
+    ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
+     ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "rpca",
+      "functional_maps", "matching", "shape_distribution")),
+    ("shapes and pictures", "procedural test shapes, the creatures, plotting",
+     ("shapes", "creatures", "creatures.*", "plotting", "plotting.*")),
+    ("lessons", "the exercises of the notebooks; the package's lazy front door", ("exercises", "exercises.*", "__init__")),
+]
+
+#: Goal for the number of levels (the longest import chain, in modules).
+MAX_LEVELS = 8
 
 
 def module_name(path: Path, root: Path) -> str:
@@ -73,6 +106,39 @@ def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
     return found
 
 
+def layer_of(module: str) -> int | None:
+    """Index of the layer holding ``module`` (None when no layer lists it)."""
+    for index, (_, _, patterns) in enumerate(LAYERS):
+        if any(fnmatch.fnmatchcase(module, pattern) for pattern in patterns):
+            return index
+    return None
+
+
+def wrong_way(edges: dict[str, set[str]]) -> list[str]:
+    """Imports that go up the layers, and modules in no layer."""
+    bad = [f"{name} is in no layer: add it to LAYERS in scripts/import_graph.py" for name in sorted(edges)
+           if layer_of(name) is None]
+    for name in sorted(edges):
+        here = layer_of(name)
+        for dep in sorted(edges[name]):
+            there = layer_of(dep)
+            if here is not None and there is not None and there > here:
+                bad.append(f"{name} ({LAYERS[here][0]}) imports {dep} ({LAYERS[there][0]}), a layer above it")
+    return bad
+
+
+def levels(edges: dict[str, set[str]]) -> tuple[int, list[str]]:
+    """Length in modules of the longest import chain, and one such chain (top first); needs no cycle."""
+
+    @lru_cache(maxsize=None)
+    def chain(node: str) -> tuple[str, ...]:
+        below = [chain(dep) for dep in sorted(edges.get(node, ()))]
+        return (node,) + max(below, key=len, default=())
+
+    longest = max((chain(name) for name in sorted(edges)), key=len, default=())
+    return len(longest), list(longest)
+
+
 def main(argv: list[str]) -> int:
     root = Path(argv[1]) if len(argv) > 1 else Path(__file__).resolve().parents[1] / "lbo_notebooks"
     edges, private = graph(root)
@@ -84,8 +150,17 @@ def main(argv: list[str]) -> int:
         print("CYCLE: " + " -> ".join(cycle))
     for line in private:
         print("BAD IMPORT: " + line)
-    print(f"{len(edges)} modules, {sum(map(len, edges.values()))} imports, {len(found)} cycles, {len(private)} bad imports")
-    return 1 if found or private else 0
+    against = wrong_way(edges)
+    for line in against:
+        print("LAYER: " + line)
+    too_high = False
+    if not found:
+        depth, longest = levels(edges)
+        too_high = depth > MAX_LEVELS
+        print(f"{'TOO HIGH: ' if too_high else ''}longest chain ({depth} levels, at most {MAX_LEVELS}): {' -> '.join(longest)}")
+    print(f"{len(edges)} modules, {sum(map(len, edges.values()))} imports, {len(found)} cycles, {len(private)} bad imports, "
+          f"{len(against)} layer violations")
+    return 1 if found or private or against or too_high else 0
 
 
 if __name__ == "__main__":

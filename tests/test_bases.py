@@ -9,7 +9,7 @@ from lbo_notebooks.optimality import worst_case_ratio
 from .strategies import wavy_sheet
 
 ALL = [
-    bases.eigen_basis,
+    bases.lbo_basis,
     bases.random_smooth_basis,
     bases.pca_basis,
     bases.umbrella_basis,
@@ -132,7 +132,7 @@ def test_competitor_bases_and_bad_input(blob):
     with pytest.raises(ValueError, match="mass_kind must be one of"):
         bases.identity_mass_basis(m, 5, mass_kind="lumped")
     with pytest.raises(ValueError, match="Mesh"):
-        bases.eigen_basis((stiffness_matrix(m), mass_matrix(m)), 5)
+        bases.lbo_basis((stiffness_matrix(m), mass_matrix(m)), 5)
     with pytest.raises(ValueError, match="width"):
         bases.random_smooth_basis(m, 5, width=-1.0)
 

@@ -6,8 +6,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lbo_notebooks import Mesh, shapes
+from lbo_notebooks import Mesh
 from lbo_notebooks import creatures as C
+from lbo_notebooks import distortion as D
 from lbo_notebooks.operators import corner_angles
 
 N = 3000  # small meshes keep the file fast; one test uses 10,000
@@ -28,9 +29,7 @@ def _signed_volume(mesh: Mesh) -> float:
     return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
 
 
-def test_reexported_from_shapes() -> None:
-    assert shapes.creature is C.creature
-    assert shapes.creature_poses is C.creature_poses
+def test_tables() -> None:
     assert set(C.SPECIES) >= {"dog", "horse"}
     assert len(C.POSES) >= 6
 
@@ -83,7 +82,7 @@ def test_poses_nearly_isometric(family: tuple[str, dict[str, Mesh]]) -> None:
     # pose_distortion itself is checked against exact oracles in test_pose_distortion_oracles.
     _, poses = family
     for name, m in poses.items():
-        d = C.pose_distortion(poses["standing"], m, n_samples=50)
+        d = D.pose_distortion(poses["standing"], m, n_samples=50)
         assert d["edge_median"] < 0.02, name
         assert d["edge_p99"] < 0.10, name
         assert d["geodesic_mean"] < 0.03, name
@@ -195,29 +194,29 @@ def test_bad_input_raises(kwargs: dict, match: str) -> None:
 
 def test_pose_distortion_oracles() -> None:
     rest = C.creature("dog", n_vertices=N)
-    zero = C.pose_distortion(rest, rest)
+    zero = D.pose_distortion(rest, rest)
     assert zero == {"edge_median": 0.0, "edge_p99": 0.0, "geodesic_mean": 0.0}
     # A uniform scaling by 1.1 changes every length, hence every geodesic, by exactly 10%.
-    grown = C.pose_distortion(rest, rest.with_vertices(1.1 * rest.vertices))
+    grown = D.pose_distortion(rest, rest.with_vertices(1.1 * rest.vertices))
     for value in grown.values():
         assert value == pytest.approx(0.1, rel=1e-9)
     with pytest.raises(ValueError, match="triangulation"):
-        C.pose_distortion(rest, C.creature("horse", n_vertices=N))
+        D.pose_distortion(rest, C.creature("horse", n_vertices=N))
     with pytest.raises(ValueError, match="n_samples"):
-        C.pose_distortion(rest, rest, n_samples=1)
+        D.pose_distortion(rest, rest, n_samples=1)
 
 
 def test_isometry_at_10k() -> None:
     poses = C.creature_poses("dog", n_vertices=10_000)
     for name, m in poses.items():
-        d = C.pose_distortion(poses["standing"], m)
+        d = D.pose_distortion(poses["standing"], m)
         assert d["edge_median"] < 0.02 and d["edge_p99"] < 0.10 and d["geodesic_mean"] < 0.03, (name, d)
 
 
 def test_body_key_turns_rigidly() -> None:
     rest = C.creature("dog", n_vertices=N)
     turned = C.creature("dog", {"body": (0.0, 90.0, 0.0)}, n_vertices=N)
-    assert C.pose_distortion(rest, turned, n_samples=5)["edge_p99"] < 1e-12
+    assert D.pose_distortion(rest, turned, n_samples=5)["edge_p99"] < 1e-12
     # Facing +y now: the long axis of the bounding box swapped from x to y.
     extent = np.ptp(turned.vertices, axis=0)
     assert extent[1] > 2 * extent[0]
@@ -235,8 +234,8 @@ def test_vertex_strain_oracles_and_rigid_bones(family: tuple[str, dict[str, Mesh
     rest = poses["standing"]
     # Oracles: a rigid motion gives zero, a uniform scaling by 1.1 gives exactly 10% everywhere.
     R = np.linalg.qr(np.random.default_rng(0).normal(size=(3, 3)))[0]
-    assert C.vertex_strain(rest, rest.with_vertices(rest.vertices @ R.T + 1.0)).max() < 1e-12
-    assert np.allclose(C.vertex_strain(rest, rest.with_vertices(1.1 * rest.vertices)), 0.1, rtol=1e-9)
+    assert D.vertex_strain(rest, rest.with_vertices(rest.vertices @ R.T + 1.0)).max() < 1e-12
+    assert np.allclose(D.vertex_strain(rest, rest.with_vertices(1.1 * rest.vertices)), 0.1, rtol=1e-9)
     # Outside the joint bands (and their one-ring) every pose moves the body rigidly.
     bands = C.joint_bands(species, n_vertices=N)
     e = rest.edges
@@ -244,11 +243,11 @@ def test_vertex_strain_oracles_and_rigid_bones(family: tuple[str, dict[str, Mesh
     near[e[bands[e[:, 0]] | bands[e[:, 1]]].ravel()] = True
     assert 0 < (~near).sum() and bands.any()
     for name, m in poses.items():
-        strain = C.vertex_strain(rest, m)
+        strain = D.vertex_strain(rest, m)
         assert strain[~near].max() < 1e-10, name
         if name != "standing":
             assert strain[bands].max() > 1e-3, name  # the bands are where the pose bends
     with pytest.raises(ValueError, match="triangulation"):
-        C.vertex_strain(rest, C.creature("horse" if species == "dog" else "dog", n_vertices=N))
+        D.vertex_strain(rest, C.creature("horse" if species == "dog" else "dog", n_vertices=N))
     with pytest.raises(ValueError, match="Mesh"):
-        C.vertex_strain(rest, rest.vertices)  # type: ignore[arg-type]
+        D.vertex_strain(rest, rest.vertices)  # type: ignore[arg-type]

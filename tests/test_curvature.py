@@ -10,7 +10,7 @@ import scipy.sparse.linalg as spla
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lbo_notebooks import Mesh, eigenbasis, shapes
+from lbo_notebooks import Mesh, creatures, eigenbasis, shapes
 from lbo_notebooks.curvature import (
     DEFAULT_FLOOR,
     angle_defects,
@@ -33,7 +33,7 @@ def bumpy() -> Mesh:
 
 @pytest.fixture(scope="module")
 def curved_shapes(bumpy: Mesh) -> list[Mesh]:
-    creature = shapes.creature("dog", n_vertices=2000)
+    creature = creatures.creature("dog", n_vertices=2000)
     return [bumpy, shapes.torus(n_major=24, n_minor=10), shapes.ellipsoid(subdivisions=3), creature]
 
 
@@ -309,7 +309,7 @@ def test_bad_kind_and_where(bumpy: Mesh) -> None:
 
 # --- jittered torus: an exact surface with an irregular triangulation ------------------------------
 def test_jittered_torus_is_the_torus_with_its_exact_curvature():
-    from lbo_notebooks.curvature import jittered_torus
+    from lbo_notebooks.shapes import jittered_torus
 
     flat, K0 = jittered_torus(12, 0.0)
     assert np.array_equal(flat.vertices, shapes.torus(1.0, 0.4, 30, 12).vertices)
@@ -330,7 +330,7 @@ def test_jittered_torus_is_the_torus_with_its_exact_curvature():
 @pytest.mark.parametrize("kwargs, match", [({"n_minor": 2}, "n_minor"), ({"n_minor": 8, "jitter": 1.0}, "jitter"),
                                            ({"n_minor": 8, "minor_radius": 2.0}, "minor_radius")])
 def test_jittered_torus_bad_arguments(kwargs, match):
-    from lbo_notebooks.curvature import jittered_torus
+    from lbo_notebooks.shapes import jittered_torus
 
     with pytest.raises(ValueError, match=match):
         jittered_torus(**kwargs)

@@ -136,9 +136,49 @@ def test_moved_names():
     for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider"):
         with pytest.warns(DeprecationWarning, match=f"lbo_notebooks.plotting.{name}"):
             assert getattr(minmax, name) is getattr(plotting, name)
-    # complement_ratio moved to minmax and stays importable from optimality, as the same object
-    assert optimality.complement_ratio is minmax.complement_ratio
+    # principal_angles lives in inner_product; rpca still imports it (not in rpca.__all__)
     assert rpca.principal_angles is lbo.inner_product.principal_angles
+
+
+@pytest.mark.parametrize(
+    "old_module, name, new_module",
+    [
+        ("shapes", "creature", "creatures"),
+        ("shapes", "creature_poses", "creatures"),
+        ("shapes", "POSES", "creatures"),
+        ("shapes", "pose_distortion", "distortion"),
+        ("creatures", "pose_distortion", "distortion"),
+        ("creatures", "vertex_strain", "distortion"),
+        ("curvature", "jittered_torus", "shapes"),
+        ("units", "check_coordinate_range", "mesh"),
+        ("optimality", "complement_ratio", "minmax"),
+        ("io", "CleanReport", "repair"),
+        ("io", "clean_mesh", "repair"),
+        ("spectrum", "fix_signs", "inner_product"),
+        ("inner_product", "default_shift", "solver_policy"),
+        ("inner_product", "start_vector", "solver_policy"),
+        ("inner_product", "use_dense", "solver_policy"),
+        ("inner_product", "DENSE_LIMIT", "solver_policy"),
+        ("minmax", "plane_normal", "teaching"),
+        ("minmax", "plane_circle", "teaching"),
+        ("eigensolver", "count_below", "sparse_factor"),
+        ("robust", "select_operators", "laplacians"),
+    ],
+)
+def test_names_moved_to_their_layer(old_module, name, new_module):
+    """Definitions moved to the layer scripts/import_graph.py gives them; the old spelling warns and is the same object."""
+    import importlib
+
+    old, new = (importlib.import_module(f"lbo_notebooks.{m}") for m in (old_module, new_module))
+    with pytest.warns(DeprecationWarning, match=f"use lbo_notebooks.{new_module}.{name} instead"):
+        assert getattr(old, name) is getattr(new, name)
+    assert name not in old.__all__ and name in new.__all__
+
+
+def test_eigen_basis_is_now_lbo_basis(sphere):
+    a, b = _same_with_warning(lambda: bases.lbo_basis(sphere, 5), lambda: bases.eigen_basis(sphere, 5), "bases.lbo_basis")
+    np.testing.assert_array_equal(a, b)
+
 
 
 # --- every warning points at the caller's line ---------------------------------------------------
@@ -175,9 +215,9 @@ def test_a_fallback_warning_points_at_the_callers_line(sphere, monkeypatch):
 
     monkeypatch.setattr(eigensolver, "slice_eigsh", no_slices)
     monkeypatch.setattr(eigensolver, "SLICE_SIZE", 10)  # slice from k = 10 on
-    import lbo_notebooks.inner_product as inner_product
+    import lbo_notebooks.solver_policy as solver_policy
 
-    monkeypatch.setattr(inner_product, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
+    monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         line = inspect.currentframe().f_lineno + 1

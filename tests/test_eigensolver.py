@@ -1,10 +1,14 @@
+import dataclasses
+
 import numpy as np
 import pytest
 import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.eigensolver import SliceFactor, count_below, slice_eigsh
+from lbo_notebooks.eigensolver import slice_eigsh
+from lbo_notebooks.slicing import Pencil, plan_sets
+from lbo_notebooks.sparse_factor import SliceFactor, count_below
 
 
 def operators(mesh):
@@ -184,7 +188,7 @@ def test_sets_start_from_the_top_of_the_spectrum(monkeypatch):
 
     started = []
     original = eigensolver._window_set
-    monkeypatch.setattr(eigensolver, "_window_set", lambda W, A, factor, *rest, **kw: started.append(factor.shift) or original(W, A, factor, *rest, **kw))
+    monkeypatch.setattr(eigensolver, "_window_set", lambda pencil, factor, *rest, **kw: started.append(factor.shift) or original(pencil, factor, *rest, **kw))
     W, A = operators(shapes.bumpy_sphere(3))
     values, _, _ = slice_eigsh(W, A, 80, v0=start(W.shape[0]), shift=0.01, slice_size=20, workers=1)
     assert len(started) == 4 and started == sorted(started, reverse=True)
@@ -192,24 +196,25 @@ def test_sets_start_from_the_top_of_the_spectrum(monkeypatch):
 
 
 def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
-    from lbo_notebooks.eigensolver import _place_shift
+    from lbo_notebooks.slicing import place_shift
 
     W, A = operators(shapes.icosphere(3))  # l = 2: five eigenvalues near 6, counts 4 -> 9 across them
+    pencil = Pencil(W, A, None, start(W.shape[0]), 1e-10)
     first = SliceFactor(shift=-0.01, n_below=0, lu=None)
     above = SliceFactor.of(W, A, 9.0, None)
     assert above.n_below == 9
-    placed = _place_shift(W, A, None, 6.0, 0.5, first, above, 1.0)
+    placed = place_shift(pencil, 6.0, 0.5, first, above, 1.0)
     assert placed is not None and placed.n_below == 4  # below the cluster, the nearer side that fits
     # Between two counts on either side of the same cluster no shift fits: None, not a loop.
     low, high = SliceFactor.of(W, A, 5.0, None), SliceFactor.of(W, A, 7.0, None)
     assert (low.n_below, high.n_below) == (4, 9)
-    assert _place_shift(W, A, None, 6.0, 0.5, low, high, 1.0) is None
+    assert place_shift(pencil, 6.0, 0.5, low, high, 1.0) is None
 
 
 def test_no_shift_placed_is_an_error_and_eigenbasis_falls_back_to_arpack(monkeypatch):
     import lbo_notebooks.eigensolver as eigensolver
 
-    monkeypatch.setattr(eigensolver, "_place_shift", lambda *args: None)
+    monkeypatch.setattr(eigensolver, "place_shift", lambda *args: None)
     mesh = shapes.bumpy_sphere(3)
     W, A = operators(mesh)
     with pytest.raises(RuntimeError, match="could not place a shift"):
@@ -244,7 +249,7 @@ def test_the_top_is_certified_from_a_gap_when_the_window_top_count_is_unavailabl
     submit = eigensolver._submit_sets
 
     def without_top_count(*args, **kwargs):
-        return (*submit(*args, **kwargs)[:4], None)
+        return dataclasses.replace(submit(*args, **kwargs), top_count=None)
 
     W, A = operators(shapes.bumpy_sphere(3))
     exact = dense_values(W, A)
@@ -266,8 +271,8 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
     exact = dense_values(W, A)
     original, runs = eigensolver._window_set, []
 
-    def dropping(W_, A_, factor, window, *args, **kwargs):
-        values, vectors = original(W_, A_, factor, window, *args, **kwargs)
+    def dropping(pencil, factor, window, *args, **kwargs):
+        values, vectors = original(pencil, factor, window, *args, **kwargs)
         runs.append(factor.shift)
         lowest, top = window[0] < 0, factor.shift > 25
         side = values < factor.shift if where == "below the lowest shift" else values > factor.shift
@@ -295,5 +300,5 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
     assert np.abs(residual).max() <= 1e6 * np.finfo(float).eps * scale * np.abs(vectors).max()
     assert np.abs(vectors.T @ (A @ vectors) - np.eye(60)).max() < 1e-8
     assert n_below >= 60 and count_below(W, A, values[-1] * (1 + 1e-9)) <= n_below
-    assert len(runs) == eigensolver.plan_sets(60, 20, 2)  # every set ran once: none was redone
+    assert len(runs) == plan_sets(60, 20, 2)  # every set ran once: none was redone
     assert deflated.count(True) == 1

@@ -32,8 +32,8 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, MeshError, PointCloud, eigenbasis, shapes
-from lbo_notebooks.formats import mesh_text
-from lbo_notebooks.io import FORMATS, load_mesh, load_points, save_mesh
+from lbo_notebooks.formats import FORMATS, mesh_text
+from lbo_notebooks.io import load_mesh, load_points, save_mesh
 
 SEED = 26
 MUTANTS_PER_BASE = 72

@@ -8,18 +8,15 @@ import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes
 from lbo_notebooks.inner_product import (
-    DENSE_LIMIT,
     DiagonalMass,
     a_orthonormalize,
     check_operators,
     cholesky_qr,
-    default_shift,
     fix_signs,
     fix_signs_in_place,
     mass_operator,
-    start_vector,
-    use_dense,
 )
+from lbo_notebooks.solver_policy import DENSE_LIMIT, default_shift, start_vector, use_dense
 
 
 @pytest.fixture(scope="module")

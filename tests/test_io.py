@@ -15,12 +15,10 @@ import pytest
 from .strategies import corrupted_copies
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks import _open3d
-from lbo_notebooks.formats import mesh_text
+from lbo_notebooks.formats import FORMATS, mesh_text
+from lbo_notebooks.repair import clean_mesh
 from lbo_notebooks.io import (
-    FORMATS,
-    CleanReport,
     MeshRepairWarning,
-    clean_mesh,
     load_mesh,
     load_points,
     read_mesh_arrays,

@@ -4,7 +4,8 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.eigensolver import SliceFactor, slice_eigsh
+from lbo_notebooks.eigensolver import slice_eigsh
+from lbo_notebooks.sparse_factor import SliceFactor
 from lbo_notebooks.krylov import nearest_eigenpairs
 
 

@@ -300,7 +300,7 @@ def test_energy_is_the_penalty_of_the_interpolation(blob, energy, power, sampled
 
 
 def test_biharmonic_is_less_sensitive_to_mu(blob):
-    # A 100-fold range of mu moves the biharmonic interpolant less than the Dirichlet one (MATH.md 7).
+    # A 100-fold range of mu moves the biharmonic interpolant less than the Dirichlet one (docs/maths.md, "Multidimensional scaling").
     m, D, X, spec, sampling = blob
     spread = {}
     for energy in ("dirichlet", "biharmonic"):

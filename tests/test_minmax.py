@@ -148,7 +148,7 @@ def test_solver_object_reuses_its_factorisation():
 
 
 def test_rotating_plane_reaches_lam2_only_at_zero():
-    from lbo_notebooks.minmax import plane_normal
+    from lbo_notebooks.teaching import plane_normal
     from lbo_notebooks.plotting import plane_slider
 
     M = random_symmetric(11)
@@ -162,3 +162,18 @@ def test_rotating_plane_reaches_lam2_only_at_zero():
     assert "min on the plane" in w.figure.layout.title.text
     with pytest.raises(ValueError, match="symmetric 3 x 3"):
         plane_normal(np.ones((2, 2)), 0.0)
+
+
+def test_the_teaching_plane_minimum_is_the_library_minimum():
+    """teaching.plane_circle solves the 2 x 2 problem by hand; min_rayleigh_quotient is the general one."""
+    from lbo_notebooks.teaching import plane_circle, plane_normal
+
+    M = np.array([[2.0, 0.3, 0.1], [0.3, 1.0, -0.2], [0.1, -0.2, 4.0]])
+    for angle in (0.0, 25.0, 60.0, 90.0):
+        normal = plane_normal(M, angle)
+        _, point, value = plane_circle(M, normal)
+        expected, f = min_rayleigh_quotient(M, np.eye(3), orthogonal_to=normal, method="dense", return_vector=True)
+        assert value == pytest.approx(expected, rel=1e-13)
+        np.testing.assert_allclose(point, 1.01 * f, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="nonzero 3-vector"):
+        plane_circle(M, [0.0, 0.0, 0.0])

@@ -32,3 +32,53 @@ def test_unknown_attribute():
         lbo.not_a_function  # noqa: B018
     with pytest.raises(AttributeError):
         lbo.shapes.not_a_shape  # noqa: B018
+
+
+def _declared_names() -> dict[str, list[str]]:
+    """Public name -> the modules whose ``__all__`` lists it (read with ast, nothing imported)."""
+    import ast
+    from pathlib import Path
+
+    root = Path(lbo.__file__).parent
+    homes: dict[str, list[str]] = {}
+    for path in sorted(root.rglob("*.py")):
+        if path == root / "__init__.py":
+            continue  # the lazy front door: its __all__ is computed from _EXPORTS
+        module = ".".join(path.relative_to(root).with_suffix("").parts)
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
+                for name in ast.literal_eval(node.value):
+                    homes.setdefault(name, []).append(module)
+    return homes
+
+
+def test_no_public_name_has_two_homes():
+    """Issue 27: one ``__all__`` per public name; old spellings are deprecation shims, outside ``__all__``.
+
+    A subpackage's ``__init__`` presenting the names of its own modules (``plotting``,
+    ``exercises``) is its front door, not a second home; the top-level ``lbo_notebooks``
+    front door is lazy (``_EXPORTS``) and checked by test_every_public_name_resolves.
+    """
+
+    def front_door(modules: list[str]) -> bool:
+        packages = [m for m in modules if m.endswith(".__init__") and m != "__init__"]
+        return len(modules) == 2 and len(packages) == 1 and all(m.startswith(packages[0][: -len("__init__")]) for m in modules)
+
+    twice = {name: modules for name, modules in _declared_names().items() if len(modules) > 1 and not front_door(modules)}
+    assert not twice, twice
+
+
+#: Modules still over the limit, split by another branch (the speed work on mds and rpca); the
+#: lead empties this set when it lands.
+OVER_THE_LIMIT = {"mds.py", "rpca.py"}
+
+
+def test_no_module_is_over_600_lines():
+    """Issue 27: one concept per module, at most 600 lines each."""
+    from pathlib import Path
+
+    root = Path(lbo.__file__).parent
+    sizes = {str(p.relative_to(root)): len(p.read_text().splitlines()) for p in root.rglob("*.py")}
+    over = {name: n for name, n in sizes.items() if n > 600 and name not in OVER_THE_LIMIT}
+    assert not over, over
+    assert OVER_THE_LIMIT <= set(sizes), "a module of the allow-list is gone: remove it from OVER_THE_LIMIT"

@@ -211,3 +211,21 @@ def test_forty_pieces_give_forty_zero_eigenvalues_through_the_sparse_solver(lapl
     assert int(np.sum(np.abs(s.values) < 1e-9 * scale)) == 40
     # Then the largest ball's first nonzero eigenvalue, 2 / r^2, three times.
     np.testing.assert_allclose(s.values[40:], 2 / sizes.max() ** 2, rtol=0.06)
+
+
+def test_one_owner_chooses_the_operators_and_names_mass_kind():
+    """Issue 27: laplacians owns "which (W, A) for this input"; eigenbasis is those operators + the solver."""
+    import lbo_notebooks as lbo
+    from lbo_notebooks.laplacians import laplace_beltrami
+
+    sphere = lbo.shapes.icosphere(2)
+    for options in ({}, {"mass_kind": "consistent"}, {"alpha": 0.5}, {"laplacian": "robust"}):
+        W, A = laplace_beltrami(sphere, **options)
+        s = lbo.eigenbasis(sphere, 5, **options)
+        assert (s.stiffness != W).nnz == 0 and (s.mass != A).nnz == 0
+    with pytest.raises(ValueError, match=r"mass_kind='consistent' applies to the cotangent operator only\. Leave mass_kind"):
+        laplace_beltrami(sphere, laplacian="robust", mass_kind="consistent")
+    with pytest.raises(ValueError, match=r"mass_kind must be one of"):
+        lbo.eigenbasis(sphere, 5, mass_kind="lumped")
+    with pytest.raises(ValueError, match=r"alpha must be a number in \[0, 1\]"):
+        lbo.eigenbasis(sphere, 5, alpha=2.0)

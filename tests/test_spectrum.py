@@ -3,7 +3,7 @@ import pytest
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectrum import fix_signs
+from lbo_notebooks.inner_product import fix_signs
 
 # l(l+1) with multiplicity 2l+1: the first 36 eigenvalues of the unit sphere (l = 0..5).
 L = np.repeat(np.arange(6), 2 * np.arange(6) + 1)
@@ -69,9 +69,9 @@ def test_vectors_are_mass_orthonormal_not_euclidean_orthonormal():
 def test_dense_and_sparse_paths_agree(monkeypatch):
     m = shapes.bumpy_sphere(3)  # 642 vertices: above DENSE_LIMIT, so the sparse path
     sparse = eigenbasis(m, 20)
-    import lbo_notebooks.inner_product as inner_product
+    import lbo_notebooks.solver_policy as solver_policy
 
-    monkeypatch.setattr(inner_product, "DENSE_LIMIT", 10**9)
+    monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10**9)
     dense = eigenbasis(m, 20)
     np.testing.assert_allclose(sparse.values, dense.values, rtol=1e-9, atol=1e-9)
     # Non-degenerate eigenvectors agree including sign (deterministic sign rule).

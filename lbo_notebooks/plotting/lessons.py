@@ -11,8 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..mesh import Mesh
-
-from .meshes import mesh_slider, MeshSlider
+from .sliders import mesh_slider
 
 __all__ = ["rayleigh_sphere_figure", "PlaneSlider", "plane_slider", "plot_mds_scaling", "reconstruction_sliders"]
 
@@ -31,9 +30,9 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
     """
     import plotly.graph_objects as go
 
-    from .. import minmax
+    from .. import teaching
 
-    M = minmax.symmetric_3x3(matrix)
+    M = teaching.symmetric_3x3(matrix)
     u, v = np.meshgrid(np.linspace(0, np.pi, resolution), np.linspace(0, 2 * np.pi, 2 * resolution))
     X = np.stack([np.sin(u) * np.cos(v), np.sin(u) * np.sin(v), np.cos(u)], axis=-1)
     R = np.einsum("...i,ij,...j->...", X, M, X)
@@ -42,7 +41,7 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
                    colorbar=dict(title="xᵀMx"))
     )
     if normal is not None:
-        circle, point, value = minmax.plane_circle(M, normal)
+        circle, point, value = teaching.plane_circle(M, normal)
         fig.add_trace(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
                                    line=dict(color="white", width=6), name="plane"))
         fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
@@ -63,12 +62,12 @@ class PlaneSlider:
         import ipywidgets as widgets
         import plotly.graph_objects as go
 
-        from .. import minmax
+        from .. import teaching
 
-        self.matrix = minmax.symmetric_3x3(matrix)
+        self.matrix = teaching.symmetric_3x3(matrix)
         self.lam = np.linalg.eigvalsh(self.matrix)
         self._values = list(angles)
-        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, minmax.plane_normal(self.matrix, angles[0])))
+        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, teaching.plane_normal(self.matrix, angles[0])))
         self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
                                               continuous_update=False)
         self.slider.observe(lambda change: self.update(change["new"]), names="value")
@@ -76,9 +75,9 @@ class PlaneSlider:
         self.update(angles[0])
 
     def update(self, angle: float) -> None:
-        from .. import minmax
+        from .. import teaching
 
-        circle, point, value = minmax.plane_circle(self.matrix, minmax.plane_normal(self.matrix, angle))
+        circle, point, value = teaching.plane_circle(self.matrix, teaching.plane_normal(self.matrix, angle))
         with self.figure.batch_update():
             line, marker = self.figure.data[1], self.figure.data[2]
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
@@ -110,7 +109,8 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
 def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     """Time and peak memory of spectral vs classical MDS against n, from ``benchmarks/mds.py`` rows.
 
-    ``rows`` is the ``"scaling"`` list of ``benchmarks/results/mds.json``: each row has ``n`` and,
+    ``rows`` is the ``"scaling"`` list of the recorded MDS benchmark
+    (``lbo_notebooks.cost.recorded_benchmark("mds")["scaling"]``): each row has ``n`` and,
     for ``"smds"`` and ``"classical"``, ``seconds``, ``cpu_seconds`` and ``peak_mib`` (classical
     rows may be missing above the size it was run to). Left: wall and CPU seconds on log-log axes
     with slope-1 and slope-2 guides; right: peak MiB with the size of two n x n float64 matrices.
@@ -129,7 +129,7 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     import matplotlib.pyplot as plt
 
     if not rows:
-        raise ValueError("rows is empty; pass the 'scaling' list of benchmarks/results/mds.json.")
+        raise ValueError("rows is empty; pass lbo_notebooks.cost.recorded_benchmark('mds')['scaling'].")
     n = np.array([r["n"] for r in rows], dtype=np.float64)
 
     def get(kind: str, key: str) -> NDArray[np.float64]:

@@ -1,0 +1,79 @@
+"""Solver policy shared by every eigen- and linear solver of the package: one convention each.
+
+* :data:`DENSE_LIMIT` and :func:`use_dense` — up to 600 unknowns a dense ``scipy.linalg.eigh``
+  is exact and fast; above it the sparse (factorise-and-Lanczos) paths win;
+* :func:`default_shift` — the shift of shift-invert, ``1e-2 * 4 pi / area``, which scales like
+  the eigenvalues (so results do not depend on units);
+* :func:`start_vector` — the fixed Lanczos start vector that makes ARPACK deterministic.
+
+The A-inner-product algebra these solvers share is :mod:`lbo_notebooks.inner_product`.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+__all__ = ["DENSE_LIMIT", "Method", "default_shift", "start_vector", "use_dense"]
+
+#: Up to this many unknowns a dense ``scipy.linalg.eigh`` is exact and fast enough on a laptop;
+#: above it the sparse (factorise-and-Lanczos) paths win. One limit for every solver.
+DENSE_LIMIT = 600
+
+Method = Literal["auto", "dense", "sparse"]
+
+
+def default_shift(mass: sp.spmatrix) -> float:
+    """Default shift ``s = 1e-2 * 4 pi / area`` for shift-invert at ``sigma = -s``.
+
+    ``4 pi / S`` is 1 on the unit sphere, whose first nonzero eigenvalue is 2 (``8 pi / S``).
+    The shift scales like the eigenvalues, so ``s / lam[1]`` does not depend on the units; it
+    depends on the shape (0.005 on a round sphere, about 0.02 on a procedural dog). It keeps
+    ``W + s A`` positive definite (``W`` alone is singular: constants are in its kernel). A
+    ``ValueError`` when the total mass is not a positive number (zero, or overflowed).
+
+    Examples
+    --------
+    >>> import numpy as np, scipy.sparse as sp
+    >>> bool(np.isclose(default_shift(sp.identity(4) * np.pi), 1e-2))
+    True
+    """
+    area = float(mass.sum())
+    shift = 1e-2 * 4.0 * np.pi / area if np.isfinite(area) and area > 0 else 0.0
+    if not (np.isfinite(shift) and shift > 0):
+        raise ValueError(
+            f"the mass matrix sums to {area:g}, so no default shift (1e-2 * 4 pi / area) exists: a mass matrix must "
+            "have a positive, finite total. If it comes from a mesh, its coordinates are out of double precision's "
+            "usable range (see lbo_notebooks.units): rescale it to ordinary units."
+        )
+    return shift
+
+
+def start_vector(n: int) -> NDArray[np.float64]:
+    """The fixed Lanczos start vector ``1 + cos(i) / 2``: makes ARPACK deterministic.
+
+    It is positive (so never orthogonal to the constant function) and not constant (so it has
+    a component along every eigenvector in practice).
+
+    Examples
+    --------
+    >>> start_vector(3).round(3).tolist()
+    [1.5, 1.27, 0.792]
+    """
+    return 1.0 + 0.5 * np.cos(np.arange(int(n), dtype=np.float64))
+
+
+def use_dense(n: int, method: str = "auto") -> bool:
+    """The dense-or-sparse policy: ``method`` checked, ``"auto"`` is dense up to :data:`DENSE_LIMIT`.
+
+    Examples
+    --------
+    >>> use_dense(100), use_dense(100_000), use_dense(100_000, "dense")
+    (True, False, True)
+    """
+    if method not in ("auto", "dense", "sparse"):
+        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
+    return method == "dense" or (method == "auto" and n <= DENSE_LIMIT)

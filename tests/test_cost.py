@@ -1,0 +1,45 @@
+"""lbo_notebooks.cost.recorded_benchmark: recorded results found from any working directory, a clear error when absent."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from lbo_notebooks import cost
+
+
+def test_recorded_results_are_found_from_the_package_not_the_working_directory(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # a notebook's or a user's directory: no relative path can work here
+    recorded = cost.recorded_benchmark("mds")
+    assert recorded == json.loads((cost.RESULTS / "mds.json").read_text())
+    assert "scaling" in recorded and recorded["scaling"][0]["n"] > 0
+
+
+def test_another_file_and_a_missing_one(tmp_path):
+    mine = tmp_path / "mine.json"
+    mine.write_text('{"scaling": []}')
+    assert cost.recorded_benchmark("mine", mine) == {"scaling": []}
+    with pytest.raises(FileNotFoundError, match="installed package does not include"):
+        cost.recorded_benchmark("nothing", tmp_path / "nothing.json")
+    with pytest.raises(FileNotFoundError, match="run benchmarks/never_run.py"):
+        cost.recorded_benchmark("never_run")
+    with pytest.raises(ValueError, match="benchmark's name"):
+        cost.recorded_benchmark("../mds")
+
+
+def _allocate(mib: int) -> int:
+    import numpy as np
+
+    block = np.ones(mib * 2**20 // 8)
+    return int(block.size)
+
+
+def test_fresh_process_measurements():
+    cost_ = cost.measure_in_fresh_process(_allocate, 64)
+    assert cost_["result"] == 64 * 2**20 // 8
+    assert cost_["rss_growth_mib"] >= 60 and cost_["peak_rss_mib"] >= cost_["rss_growth_mib"] and cost_["wall_seconds"] >= 0
+    assert cost.least_wall_time(2, lambda: None) >= 0
+    with pytest.raises(ValueError, match="runs must be a positive integer"):
+        cost.least_wall_time(0, lambda: None)
+
