@@ -146,7 +146,7 @@ def _check_robust_options(mass_kind: str, alpha: float) -> None:
         )
     if alpha != 0.0:
         raise ValueError(
-            "alpha (the scale-invariant metric of notebook 06) is built on the cotangent operator, which cannot "
+            "alpha (the scale-invariant metric of notebook 08) is built on the cotangent operator, which cannot "
             "serve this shape (a point cloud, laplacian='robust', or a mesh with the defects cotan_defects lists); "
             "use alpha=0, or repair the mesh into an edge-manifold one with well-shaped triangles."
         )
