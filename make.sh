@@ -5,7 +5,8 @@
 #   ./make.sh test    install everything (with test extras) and run unit tests + every notebook
 #   ./make.sh browser real-browser test: JupyterLab driven by Debian's chromium (Playwright)
 #   ./make.sh binder  rebuild a fresh environment from binder/ only and run the notebooks in it
-#   ./make.sh site    execute the notebooks and write a static HTML site into build/site
+#   ./make.sh site    execute the notebooks and build the site (notebooks, API reference, docs; Sphinx)
+#                     into build/site: offline, open build/site/index.html
 #   ./make.sh student write the student edition (solutions removed by nbgrader) into build/student;
 #                     `student --check` also runs it unanswered and autogrades the instructor's answers,
 #                     `student lab` opens JupyterLab on it for self-study (docs/exercises.md)
@@ -96,7 +97,7 @@ case "${1:-}" in
     one_blas_thread
     exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules --durations=15 tests notebooks lbo_notebooks "${@:2}" ;;
   site)
-    system_packages; python_env "[test]"
+    system_packages; python_env "[docs]"
     one_blas_thread
     exec "$VENV/bin/python" scripts/build_site.py "${@:2}" ;;
   browser)
