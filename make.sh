@@ -72,6 +72,12 @@ git_filter() {
   git config filter.strip-notebook.clean "python3 scripts/strip_notebook.py"
 }
 
+# Options of every JupyterLab started here (lab, student lab; the browser tests read them from this
+# line). Kernels talk to the server over local ZeroMQ sockets; ipykernel warns, once per kernel,
+# that plain TCP is unencrypted, unless the server provisions CurveZMQ keys, which jupyter_server
+# does for kernels whose kernelspec declares support (ipykernel's does) with this setting.
+LAB_OPTIONS=(--MappingKernelManager.transport_encryption=auto)
+
 # BLAS threads for every kernel and test worker started from here (README, "Threads"): one, unless
 # the caller set them. The notebooks' dense problems are small, and more OpenBLAS threads than
 # free cores (Binder's CPU quota, a busy laptop, two pytest workers) makes them many times slower.
@@ -90,7 +96,7 @@ case "${1:-}" in
     # Open the series' first notebook rather than the Launcher (also the link JupyterLab prints);
     # on Binder the badge's urlpath does the same.
     exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
-      "${root[@]}" "${@:2}" ;;
+      "${LAB_OPTIONS[@]}" "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"
     log "running unit tests and every notebook (nbval)"
@@ -125,7 +131,7 @@ case "${1:-}" in
         > "$config/jupyter_server_config.json"
       log "starting JupyterLab on the student edition, build/student/ (Ctrl-C to stop)"
       JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" exec "$VENV/bin/jupyter" lab \
-        --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${root[@]}" "${@:3}"
+        --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${LAB_OPTIONS[@]}" "${root[@]}" "${@:3}"
     fi
     exec "$VENV/bin/python" scripts/student_edition.py "${@:2}" ;;
   binder)

@@ -61,6 +61,9 @@ html_theme_options = {
     "footer_end": [],
     "header_links_before_dropdown": 6,
 }
+# Light unless the reader switches: the figures are drawn on white. (The theme's template needs a
+# value: without one its script logs "Got invalid theme mode" as a console error on a first visit.)
+html_context = {"default_mode": "light"}
 html_sidebars = {"index": []}         # the landing page lists the notebooks itself
 html_show_sourcelink = False
 html_copy_source = False
