@@ -47,7 +47,9 @@ extensions = [
     "numpydoc",
 ]
 exclude_patterns = ["_clean", ".doctrees", "**/.ipynb_checkpoints"]
-templates_path = ["_templates"]
+# Absolute: autosummary looks templates up relative to the source folder, Sphinx's HTML builder
+# relative to this one, and the two differ (``sphinx-build -c docs``).
+templates_path = [str(Path(__file__).resolve().parent / "_templates")]
 html_static_path = ["_static"]
 html_css_files = ["site.css"]
 # Not deferred: each figure's inline script calls Plotly.newPlot as the page is parsed.
@@ -83,7 +85,6 @@ myst_heading_anchors = 3
 # docstrings' Parameters / Returns / Examples sections.
 autosummary_generate = True
 autodoc_typehints = "none"            # the numpydoc sections say the types, in words
-autodoc_default_options = {"members": False}
 numpydoc_show_class_members = False   # the class template lists them instead
 numpydoc_class_members_toctree = False
 numpydoc_validation_checks: set[str] = set()

@@ -172,7 +172,9 @@ def test_a_reference_page_shows_the_docstring_sections(small_site):
     assert "Parameters" in text and "Returns" in text and "Examples" in text
     for name in inspect.signature(lbo_notebooks.eigenbasis).parameters:
         assert re.search(rf"\b{name}\b", text), name
-    assert (out / "generated" / "lbo_notebooks.shapes.html").exists()           # a module's page
+    # A module's page documents its members; a class's page its methods and properties.
+    assert 'id="lbo_notebooks.shapes.icosphere"' in (out / "generated" / "lbo_notebooks.shapes.html").read_text()
+    assert 'id="lbo_notebooks.Spectrum.project"' in (out / "generated" / "lbo_notebooks.Spectrum.html").read_text()
     assert "lbo_notebooks.eigenbasis" in (out / "searchindex.js").read_text()    # the search finds it
 
 
