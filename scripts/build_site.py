@@ -28,7 +28,9 @@ plotly.js copied into it, no CDN). This script does what Sphinx cannot, then han
 4. **The source folder** for Sphinx (``<out>-src``, rebuilt each time, laid out like the
    repository so that links between notebooks and ``docs/`` resolve): ``notebooks/`` (executed),
    ``docs/*.md``, ``index.md`` (every notebook with its title, its topic from the series map, a
-   link to the clean ``.ipynb`` and its run time) and ``reference.rst`` (from ``__all__``).
+   link to the clean ``.ipynb`` and its run time), ``notebooks/index.md`` (the series' table of
+   contents) and ``reference.rst`` (an autosummary of ``lbo_notebooks.__all__``, read when the site
+   is built: names added or moved by the library need no change here).
 
 Exit code 1 if a notebook fails to execute (its page is still written, with the error shown) or
 Sphinx fails.
@@ -287,10 +289,10 @@ def run_sphinx(src: Path, out: Path) -> int:
     return subprocess.run(command, cwd=REPO).returncode
 
 
-def _fresh(folder: Path, marker: str) -> None:
-    """Empty ``folder`` (a previous build of ours, recognised by ``marker``), or create it."""
+def _fresh(folder: Path, *markers: str) -> None:
+    """Empty ``folder`` (a previous build of ours, recognised by one of ``markers``), or create it."""
     if folder.exists() and any(folder.iterdir()):
-        if not (folder / marker).exists():
+        if not any((folder / marker).exists() for marker in markers):
             raise SystemExit(f"{folder} is not empty and is not a previous site build: choose another --out")
         shutil.rmtree(folder)
     folder.mkdir(parents=True, exist_ok=True)
@@ -317,7 +319,7 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     out = args.out.resolve()
     src = out.with_name(out.name + "-src")
-    _fresh(out, ".buildinfo")
+    _fresh(out, ".buildinfo", "plotly.min.js")   # Sphinx's build, or the site before Sphinx
     _fresh(src, "index.md")
     (src / "notebooks").mkdir()
     (src / "_clean").mkdir()
