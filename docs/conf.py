@@ -85,7 +85,7 @@ myst_heading_anchors = 3
 # docstrings' Parameters / Returns / Examples sections.
 autosummary_generate = True
 autodoc_typehints = "none"            # the numpydoc sections say the types, in words
-numpydoc_show_class_members = False   # the class template lists them instead
+numpydoc_show_class_members = False   # the class template documents them (autodoc :members:)
 numpydoc_class_members_toctree = False
 numpydoc_validation_checks: set[str] = set()
 

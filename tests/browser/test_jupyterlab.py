@@ -38,7 +38,9 @@ The browser has no network: every request to a host other than 127.0.0.1 is abor
 the test), and the browser's own resolver maps every other name to nowhere.
 
 ``test_lab_opens_on_start_here``: JupyterLab started as ``./make.sh lab`` starts it (its
-``--LabApp.default_url`` is read from ``make.sh``) opens ``00_start_here.ipynb``, not the Launcher.
+``--LabApp.default_url`` is read from ``make.sh``, and every server here gets ``make.sh``'s
+``LAB_OPTIONS``) opens ``00_start_here.ipynb``, not the Launcher, and its kernel starts without
+the "running over TCP without encryption" warning (the server provisions CurveZMQ keys).
 
 ``test_static_site`` builds the site (``scripts/build_site.py``: Sphinx, myst-nb, numpydoc) for
 ``SITE_NOTEBOOKS`` and the API reference (or opens an existing build named by
