@@ -58,7 +58,9 @@ html_theme = "pydata_sphinx_theme"
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
-    "secondary_sidebar_items": ["page-toc"],   # no "edit this page" / "show source" links
+    # The page's table of contents, not "edit this page" / "show source" links; none beside a
+    # notebook (see html_sidebars).
+    "secondary_sidebar_items": {"docs/*": ["page-toc"], "generated/*": ["page-toc"], "reference": ["page-toc"]},
     "footer_start": ["copyright"],
     "footer_end": [],
     "header_links_before_dropdown": 6,
@@ -66,7 +68,10 @@ html_theme_options = {
 # Light unless the reader switches: the figures are drawn on white. (The theme's template needs a
 # value: without one its script logs "Got invalid theme mode" as a console error on a first visit.)
 html_context = {"default_mode": "light"}
-html_sidebars = {"index": []}         # the landing page lists the notebooks itself
+# No sidebars beside a notebook: its 3D figures need the page's width (three scenes side by side
+# clip in the theme's reading column); the header, the Previous/Next links and the index navigate.
+# The landing page lists the notebooks itself.
+html_sidebars = {"index": [], "notebooks/*": []}
 html_show_sourcelink = False
 html_copy_source = False
 
