@@ -5,7 +5,8 @@
 #   ./make.sh test    install everything (with test extras) and run unit tests + every notebook
 #   ./make.sh browser real-browser test: JupyterLab driven by Debian's chromium (Playwright)
 #   ./make.sh binder  rebuild a fresh environment from binder/ only and run the notebooks in it
-#   ./make.sh site    execute the notebooks and write a static HTML site into build/site
+#   ./make.sh site    execute the notebooks and build the site (notebooks, API reference, docs; Sphinx)
+#                     into build/site: offline, open build/site/index.html
 #   ./make.sh student write the student edition (solutions removed by nbgrader) into build/student;
 #                     `student --check` also runs it unanswered and autogrades the instructor's answers,
 #                     `student lab` opens JupyterLab on it for self-study (docs/exercises.md)
@@ -70,6 +71,12 @@ git_filter() {
   git config filter.strip-notebook.clean "python3 scripts/strip_notebook.py"
 }
 
+# Options of every JupyterLab started here (lab, student lab; the browser tests read them from this
+# line). Kernels talk to the server over local ZeroMQ sockets; ipykernel warns, once per kernel,
+# that plain TCP is unencrypted, unless the server provisions CurveZMQ keys, which jupyter_server
+# does for kernels whose kernelspec declares support (ipykernel's does) with this setting.
+LAB_OPTIONS=(--MappingKernelManager.transport_encryption=auto)
+
 # BLAS threads for every kernel and test worker started from here (README, "Threads"): one, unless
 # the caller set them. The notebooks' dense problems are small, and more OpenBLAS threads than
 # free cores (Binder's CPU quota, a busy laptop, two pytest workers) makes them many times slower.
@@ -88,14 +95,14 @@ case "${1:-}" in
     # Open the series' first notebook rather than the Launcher (also the link JupyterLab prints);
     # on Binder the badge's urlpath does the same.
     exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
-      "${root[@]}" "${@:2}" ;;
+      "${LAB_OPTIONS[@]}" "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"
     log "running unit tests and every notebook (nbval)"
     one_blas_thread
     exec "$VENV/bin/python" -m pytest -p no:dash -n "${JOBS:-2}" --dist loadfile --nbval-lax --doctest-modules --durations=15 tests notebooks lbo_notebooks "${@:2}" ;;
   site)
-    system_packages; python_env "[test]"
+    system_packages; python_env "[docs]"
     one_blas_thread
     exec "$VENV/bin/python" scripts/build_site.py "${@:2}" ;;
   browser)
@@ -123,7 +130,7 @@ case "${1:-}" in
         > "$config/jupyter_server_config.json"
       log "starting JupyterLab on the student edition, build/student/ (Ctrl-C to stop)"
       JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" exec "$VENV/bin/jupyter" lab \
-        --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${root[@]}" "${@:3}"
+        --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${LAB_OPTIONS[@]}" "${root[@]}" "${@:3}"
     fi
     exec "$VENV/bin/python" scripts/student_edition.py "${@:2}" ;;
   binder)

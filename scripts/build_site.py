@@ -1,65 +1,59 @@
-"""Build the static site for self-study readers: every notebook executed and rendered to HTML.
+"""Build the static site: the executed notebooks, the API reference and the docs, with Sphinx.
 
-One command (from the repository root, with the project's environment)::
+One command (from the repository root, with the project's environment; ``./make.sh site``)::
 
     python scripts/build_site.py                   # -> build/site/index.html
     python scripts/build_site.py --out /tmp/site notebooks/03_laplace_beltrami.ipynb
 
-The site publishes exactly the series: ``00_start_here`` and the notebooks its map of the series
-lists (``| NN | [name](NN_name.ipynb) | topic |``), in that order. Any other ``.ipynb`` in
-``notebooks/`` (a lecturer's scratch notebook, a ``-Copy1`` JupyterLab made, a student's
-``.new.ipynb``) is neither executed nor listed; the build names what it skipped. Notebooks given
-on the command line are built as given.
+The site is rendered by Sphinx with myst-nb (notebooks and Markdown), autosummary + numpydoc (a
+reference page for every name in ``lbo_notebooks.__all__``) and the PyData theme, with Sphinx's
+own search; ``docs/conf.py`` says why this stack and how the site stays offline (MathJax and
+plotly.js copied into it, no CDN). This script does what Sphinx cannot, then hands over:
 
-Each notebook of the series is executed top to bottom in a fresh kernel (working directory
-``notebooks/``, like JupyterLab) and converted with nbconvert's ``HTMLExporter`` (lab template).
-The site works offline, from ``file://`` or any static host:
+1. **The series.** It publishes exactly ``00_start_here`` and the notebooks its map of the series
+   lists (``| NN | [name](NN_name.ipynb) | topic |``), in that order. Any other ``.ipynb`` in
+   ``notebooks/`` (a scratch notebook, a ``-Copy1``, a student's ``.new.ipynb``) is neither executed
+   nor listed; the build names what it skipped. Notebooks given on the command line are built as given.
+2. **Execution.** Each notebook runs top to bottom in a fresh kernel (working directory
+   ``notebooks/``, like JupyterLab) started with ``scripts/site_prelude.py``: plotly figures become
+   HTML that uses the site's one plotly.js, ``mesh_slider`` viewers become plotly figures with a
+   plotly slider over precomputed frames, progress bars are off. The kernel talks to the builder
+   over IPC sockets (a TCP kernel warns that its traffic is unencrypted). myst-nb then renders the
+   executed notebooks as they are (``nb_execution_mode = "off"``).
+3. **What the reader sees.** Exercise solutions (nbgrader answer cells) are folded in a
+   ``<details>`` block with what they print, their figures staying in view; check cells show the
+   check call, not their hidden tests (``### BEGIN HIDDEN TESTS`` ...: run, but the autograder's);
+   verification cells (``hide-input``, or collapsed in JupyterLab) are folded by myst-nb; live
+   widgets (which need a kernel) are replaced by a note.
+4. **The source folder** for Sphinx (``<out>-src``, rebuilt each time, laid out like the
+   repository so that links between notebooks and ``docs/`` resolve): ``notebooks/`` (executed),
+   ``docs/*.md``, ``index.md`` (every notebook with its title, its topic from the series map, a
+   link to the clean ``.ipynb`` and its run time), ``notebooks/index.md`` (the series' table of
+   contents) and ``reference.rst`` (an autosummary of ``lbo_notebooks.__all__``, read when the site
+   is built: names added or moved by the library need no change here).
 
-- plotly figures stay interactive: the kernel renders them as HTML that calls ``Plotly.newPlot``,
-  and every page loads the one ``plotly.min.js`` copied into the site from the installed plotly;
-- ``mesh_slider`` viewers (live widgets need a kernel) become plotly figures with a plotly slider
-  over precomputed frames (see ``scripts/site_prelude.py``); other widgets are replaced by a note;
-- solutions (cells hidden with ``{"jupyter": {"source_hidden": true}}``, and the answer cells of
-  the exercises marked for nbgrader, with what they print) are folded in a ``<details>`` block; the
-  check cells show the check call only, not their hidden tests (``### BEGIN HIDDEN TESTS`` ...),
-  which are run but are the autograder's, not the reader's;
-- formulas are typeset by MathJax 2 copied into the site (``mathjax/``) from the installed Python
-  package ``jupyter-server-mathjax`` (a ``[test]`` dependency; ``--mathjax`` names another local
-  MathJax 2 folder, e.g. Debian's ``libjs-mathjax``), so no page loads anything from the network;
-- progress bars are switched off while executing (a notebook-widget bar would be a dead widget on a
-  static page), and the kernel talks to the builder over IPC sockets rather than TCP;
-- ``index.html`` lists every notebook with its title line, its topic (its row in the series map of
-  ``00_start_here``, else the "What you will learn" sentence), its run time and a link to the clean
-  ``.ipynb``.
-
-Exit code 1 if a notebook fails to execute (its page is still written, with the error shown).
+Exit code 1 if a notebook fails to execute (its page is still written, with the error shown) or
+Sphinx fails.
 """
 
 from __future__ import annotations
 
 import argparse
-import html
+import importlib.util
 import re
 import shutil
+import subprocess
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import mistune
 import nbformat
 from nbclient import NotebookClient
 from nbclient.exceptions import CellExecutionError
-from nbconvert import HTMLExporter
 
 REPO = Path(__file__).resolve().parent.parent
 PRELUDE = Path(__file__).resolve().parent / "site_prelude.py"
-DEBIAN_MATHJAX = Path("/usr/share/javascript/mathjax")
-# MathJax 2 options set before MathJax.js loads: typeset with the web fonts shipped in the copy
-# (jupyter-server-mathjax ships STIX-Web only), never ask the network for others.
-MATHJAX_PRECONFIG = ('<script>window.MathJax = {"HTML-CSS": {availableFonts: [], preferredFont: null, '
-                     'webFont: "STIX-Web", imageFont: null}, messageStyle: "none", '
-                     'tex2jax: {inlineMath: [["$", "$"], ["\\\\(", "\\\\)"]], processEscapes: true}};</script>')
 WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
 WIDGET_NOTE = ('<p class="lbo-widget-note"><em>An interactive widget appears here when the notebook runs in '
                'JupyterLab.</em></p>')
@@ -68,7 +62,6 @@ WIDGET_NOTE = ('<p class="lbo-widget-note"><em>An interactive widget appears her
 @dataclass
 class Page:
     source: Path
-    html_name: str
     title: str
     description: str
     seconds: float
@@ -133,28 +126,6 @@ def title_and_description(nb: nbformat.NotebookNode, topic: str | None = None) -
     return title, ""
 
 
-_MATH = re.compile(r"\$\$.+?\$\$|\$[^$]+\$", re.S)
-
-
-def markdown_inline(text: str) -> str:
-    r"""One line of markdown as HTML, with ``$...$`` formulas passed through untouched for MathJax.
-
-    (Markdown would otherwise eat TeX's backslash escapes: ``\,`` becomes ``,``.)
-
-    >>> markdown_inline(r"the top of $(A X X^\top A - \mu W)\,p = \sigma A p$ and **bold** <b>")
-    'the top of $(A X X^\\top A - \\mu W)\\,p = \\sigma A p$ and <strong>bold</strong> &lt;b&gt;'
-    """
-    formulas: list[str] = []
-
-    def stash(m: re.Match) -> str:
-        formulas.append(html.escape(m.group(0), quote=False))
-        return f"@@MATH{len(formulas) - 1}@@"  # letters and digits: markdown leaves them alone
-
-    body = mistune.create_markdown(escape=True)(_MATH.sub(stash, text)).strip()
-    body = body.removeprefix("<p>").removesuffix("</p>")
-    return re.sub(r"@@MATH(\d+)@@", lambda m: formulas[int(m.group(1))], body)
-
-
 def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int) -> str | None:
     """Run the notebook in place in a fresh kernel started with the site prelude; return the error, if any.
 
@@ -180,9 +151,15 @@ def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int) -> str | None:
     return None
 
 
+def _tag(cell: nbformat.NotebookNode, tag: str) -> None:
+    tags = cell.metadata.setdefault("tags", [])
+    if tag not in tags:
+        tags.append(tag)
+
+
 def prepare_for_html(nb: nbformat.NotebookNode) -> None:
-    """Replace widget outputs by a note, fold hidden solution cells and answer cells into <details>,
-    and drop the hidden tests from check cells."""
+    """Make an executed notebook ready for myst-nb: widget outputs become a note, answer cells are
+    folded, check cells lose their hidden tests, cells collapsed in JupyterLab are folded."""
     cells = []
     for cell in nb.cells:
         if cell.cell_type == "code":
@@ -194,23 +171,14 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
                 cell.source = without_hidden_tests(cell.source)
             if grader.get("solution"):
                 cells.append(folded_solution(cell))
-                cells.append(cell)
-                continue
-            if cell.metadata.get("jupyter", {}).get("source_hidden"):
-                code = html.escape(cell.source)
-                summary = "Solutions" if cell.source.lstrip().lower().startswith("# solution") else "Hidden code"
-                cells.append(nbformat.v4.new_markdown_cell(
-                    f'<details class="lbo-solutions"><summary>{summary} (click to show)</summary>\n'
-                    f'<pre><code class="language-python">{code}</code></pre>\n</details>'))
-                cell.metadata.setdefault("tags", []).append("lbo-remove-input")
+            elif cell.metadata.get("jupyter", {}).get("source_hidden"):
+                _tag(cell, "hide-input")          # myst-nb folds the input ("Show code cell source")
         cells.append(cell)
     nb.cells = cells
     nb.metadata.pop("widgets", None)
 
 
 _HIDDEN_TESTS = re.compile(r"^[ \t]*#+\s*BEGIN HIDDEN TESTS.*?^[ \t]*#+\s*END HIDDEN TESTS[^\n]*\n?", re.M | re.S)
-
-
 _SOLUTION_MARKER = re.compile(r"^[ \t]*#+\s*(BEGIN|END) SOLUTION[^\n]*\n?", re.M)
 
 
@@ -226,12 +194,15 @@ def without_hidden_tests(source: str) -> str:
 def folded_solution(cell: nbformat.NotebookNode) -> nbformat.NotebookNode:
     """An exercise's answer cell folded: the code and what it printed, in a <details> block.
 
-    The cell itself keeps its rich outputs (figures) but loses its input and printed text, so that
-    a reader sees the question, then the check's verdict, and opens the solution on purpose.
+    The cell itself keeps its rich outputs (figures) but loses its input (myst-nb's
+    ``remove-input`` tag) and printed text, so that a reader sees the question, then the check's
+    verdict, and opens the solution on purpose. (myst-nb's ``hide-cell`` would fold the figures too.)
     """
+    import html
+
     printed = "".join(o.get("text", "") for o in cell.get("outputs", []) if o.get("output_type") == "stream")
     cell.outputs = [o for o in cell.get("outputs", []) if o.get("output_type") != "stream"]
-    cell.metadata.setdefault("tags", []).append("lbo-remove-input")
+    _tag(cell, "remove-input")
     code = _SOLUTION_MARKER.sub("", cell.source).strip("\n")
     shown = f'<pre><code class="language-python">{html.escape(code)}</code></pre>'
     if printed.strip():
@@ -240,102 +211,91 @@ def folded_solution(cell: nbformat.NotebookNode) -> nbformat.NotebookNode:
         f'<details class="lbo-solutions"><summary>Solution (click to show)</summary>\n{shown}\n</details>')
 
 
-# MathJax 2 configurations, best first: CommonHTML output where the copy has it, else HTML-CSS.
-MATHJAX_CONFIGS = ["TeX-AMS_CHTML-full", "TeX-AMS-MML_HTMLorMML-full"]
+def public_names() -> list[str]:
+    """``lbo_notebooks.__all__``, read from the package being documented."""
+    import lbo_notebooks
+
+    return list(lbo_notebooks.__all__)
 
 
-def installed_mathjax() -> Path | None:
-    """MathJax 2 shipped by the ``jupyter-server-mathjax`` package, if installed."""
-    try:
-        import jupyter_server_mathjax
-    except ImportError:
-        return None
-    return Path(jupyter_server_mathjax.__file__).parent / "static"
+def reference_page(names: list[str]) -> str:
+    """``reference.rst``: an autosummary table (and a page each) for the public functions and classes,
+    then for the public submodules (a page each with their members)."""
+    modules = [n for n in names if importlib.util.find_spec(f"lbo_notebooks.{n}") is not None]
+    objects = [n for n in names if n not in modules]
+
+    def table(entries: list[str]) -> str:
+        return ".. autosummary::\n   :toctree: generated\n   :nosignatures:\n\n" + "".join(f"   {n}\n" for n in entries)
+
+    parts = ["API reference\n=============\n\n.. currentmodule:: lbo_notebooks\n\n"
+             "Every public name of ``lbo_notebooks`` (its ``__all__``), importable from the top level "
+             "(``import lbo_notebooks as lbo; lbo.eigenbasis(...)``), with its documentation.\n\n"]
+    if objects:
+        parts.append("Functions and classes\n---------------------\n\n" + table(objects) + "\n")
+    if modules:
+        parts.append("Modules\n-------\n\n" + table(modules))
+    return "".join(parts)
 
 
-def copy_mathjax(source: Path, target: Path) -> None:
-    """Copy MathJax 2 without what the pages never load: other languages, SVG output, unpacked sources."""
-
-    def skip(folder: str, names: list[str]) -> list[str]:
-        rel = Path(folder).relative_to(source).as_posix()
-        if rel == "localization":
-            return [n for n in names if n != "en"]
-        if rel == "jax/output":
-            return [n for n in names if n == "SVG"]
-        return [n for n in names if n in ("unpacked", "test", "docs")]
-
-    shutil.copytree(source, target, ignore=skip, symlinks=False, dirs_exist_ok=True)
-
-
-def mathjax_setting(out: Path, mathjax: str | None) -> str:
-    """Copy MathJax 2 into ``out/mathjax`` and return the pages' relative URL for it.
-
-    ``mathjax`` is a local MathJax 2 folder; by default the ``jupyter-server-mathjax`` package's
-    copy (or Debian's ``libjs-mathjax``). A site that loaded MathJax from the network would show
-    raw LaTeX offline, so there is no network fallback.
-    """
-    candidates = [Path(mathjax)] if mathjax else [p for p in (installed_mathjax(), DEBIAN_MATHJAX) if p is not None]
-    source = next((p for p in candidates if (p / "MathJax.js").exists()), None)
-    if source is None:
-        where = f"--mathjax {mathjax}: no MathJax.js there" if mathjax else "no MathJax 2 installed"
-        raise SystemExit(f"{where}. Install it with: pip install jupyter-server-mathjax "
-                         "(part of the [test] extra, which ./make.sh site installs).")
-    config = next((c for c in MATHJAX_CONFIGS if (source / "config" / f"{c}.js").exists()), None)
-    if config is None:
-        raise SystemExit(f"{source}: none of the MathJax configurations {MATHJAX_CONFIGS} is there.")
-    copy_mathjax(source, out / "mathjax")
-    return f"mathjax/MathJax.js?config={config},Safe"
-
-
-def render(nb: nbformat.NotebookNode, mathjax_url: str, title: str) -> str:
-    exporter = HTMLExporter(template_name="lab", mathjax_url=mathjax_url)
-    exporter.register_preprocessor(_remove_input_preprocessor(), enabled=True)
-    body, _ = exporter.from_notebook_node(nb, resources={"metadata": {"name": title}})
-    # No require.js from a CDN (nothing needs it: no widget state is embedded); load plotly.js locally.
-    body = body.replace(f'<script src="{exporter.require_js_url}"></script>', "")
-    body = body.replace(f'<script src="{mathjax_url}">', MATHJAX_PRECONFIG + f'\n<script src="{mathjax_url}">', 1)
-    nav = ('<nav class="lbo-nav" style="padding:0.5em 1em;font-family:sans-serif">'
-           '<a href="index.html">&larr; all notebooks</a></nav>')
-    body = body.replace("<head>", '<head>\n<script src="plotly.min.js"></script>', 1)
-    return re.sub(r"(<body[^>]*>)", r"\1" + nav, body, count=1)
-
-
-def _remove_input_preprocessor():
-    from nbconvert.preprocessors import TagRemovePreprocessor
-
-    return TagRemovePreprocessor(remove_input_tags={"lbo-remove-input"}, enabled=True)
-
-
-def index_page(pages: list[Page], mathjax_url: str) -> str:
+def index_page(pages: list[Page], with_reference: bool = True) -> str:
+    """``index.md``: the series, each notebook with its title, topic, clean download and run time."""
     rows = []
-    for p in pages:
-        status = f' <span class="err">(failed: {html.escape(p.error)})</span>' if p.error else ""
-        rows.append(
-            f'<li><a href="{p.html_name}"><strong>{html.escape(p.title)}</strong></a>{status}'
-            f'<div class="desc">{markdown_inline(p.description)}</div>'
-            f'<div class="meta"><a href="notebooks/{p.source.name}" download>{p.source.name}</a> · '
-            f'runs in {p.seconds:.0f} s</div></li>')
+    for i, p in enumerate(pages, 1):
+        status = f" **(failed: {p.error})**" if p.error else ""
+        rows.append(f"{i}. [**{p.title}**](notebooks/{p.source.name}){status}\\\n"
+                    f"   {p.description}\\\n"
+                    f"   {{download}}`{p.source.name} <_clean/{p.source.name}>` · runs in {p.seconds:.0f} s\n")
+    docs = "".join(f"docs/{d.stem}\n" for d in sorted((REPO / "docs").glob("*.md")))
+    reference = "reference\n" if with_reference else ""
     built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-    return f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
-<title>lbo_notebooks: spectral shape analysis with the Laplace–Beltrami operator</title>
-{MATHJAX_PRECONFIG}
-<script src="{mathjax_url}"></script>
-<style>
-body {{ font-family: system-ui, sans-serif; max-width: 52em; margin: 2em auto; padding: 0 1em; line-height: 1.5; color: #222; }}
-li {{ margin: 0 0 1.2em 0; }} .desc {{ margin-top: 0.2em; }} .meta {{ color: #666; font-size: 0.9em; }} .err {{ color: #b00; }}
-</style></head>
-<body>
-<h1>Spectral shape analysis with the Laplace–Beltrami operator</h1>
-<p>The notebooks of <code>lbo_notebooks</code>, executed and rendered for reading. 3D figures can be rotated and
+    return f"""# Spectral shape analysis with the Laplace–Beltrami operator
+
+The notebooks of `lbo_notebooks`, executed and rendered for reading. 3D figures can be rotated and
 zoomed; sliders step through precomputed frames. To change the code, download a notebook (or clone the
-repository) and run it in JupyterLab: <code>./make.sh lab</code>.</p>
-<ol>
+repository) and run it in JupyterLab: `./make.sh lab`.{" The [API reference](reference) documents every public name of the library; the search box finds any of them." if with_reference else ""}
+
 {chr(10).join(rows)}
-</ol>
-<p class="meta">Built {built}.</p>
-</body></html>
+```{{toctree}}
+:hidden:
+
+notebooks/index
+{reference}{docs}```
+
+<p class="lbo-built">Built {built}.</p>
 """
+
+
+def notebooks_page(pages: list[Page]) -> str:
+    """``notebooks/index.md``: the series as a table of contents (the section the notebooks live in)."""
+    entries = "".join(f"{p.source.stem}\n" for p in pages)
+    return f"# Notebooks\n\nThe series, in reading order.\n\n```{{toctree}}\n:maxdepth: 1\n\n{entries}```\n"
+
+
+def sphinx_sources(src: Path, pages: list[Page], names: list[str]) -> None:
+    """Everything but the executed notebooks: ``docs/*.md``, the index pages and ``reference.rst``."""
+    (src / "docs").mkdir(parents=True, exist_ok=True)
+    for doc in sorted((REPO / "docs").glob("*.md")):
+        shutil.copy2(doc, src / "docs" / doc.name)
+    (src / "index.md").write_text(index_page(pages, bool(names)), encoding="utf-8")
+    (src / "notebooks" / "index.md").write_text(notebooks_page(pages), encoding="utf-8")
+    if names:
+        (src / "reference.rst").write_text(reference_page(names), encoding="utf-8")
+
+
+def run_sphinx(src: Path, out: Path) -> int:
+    """``sphinx-build -b html -c docs <src> <out>`` (doctrees kept in the source folder)."""
+    command = [sys.executable, "-m", "sphinx", "-b", "html", "-q", "-c", str(REPO / "docs"),
+               "-d", str(src / ".doctrees"), str(src), str(out)]
+    return subprocess.run(command, cwd=REPO).returncode
+
+
+def _fresh(folder: Path, *markers: str) -> None:
+    """Empty ``folder`` (a previous build of ours, recognised by one of ``markers``), or create it."""
+    if folder.exists() and any(folder.iterdir()):
+        if not any((folder / marker).exists() for marker in markers):
+            raise SystemExit(f"{folder} is not empty and is not a previous site build: choose another --out")
+        shutil.rmtree(folder)
+    folder.mkdir(parents=True, exist_ok=True)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -344,8 +304,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="notebooks (default: the series, 00_start_here and the notebooks its map lists)")
     parser.add_argument("--out", type=Path, default=REPO / "build" / "site", help="output folder (default build/site)")
     parser.add_argument("--timeout", type=int, default=600, help="per-cell timeout in seconds")
-    parser.add_argument("--mathjax", help="local MathJax 2 folder to copy into the site "
-                        "(default: the jupyter-server-mathjax package's)")
+    parser.add_argument("--no-reference", action="store_true", help="leave the API reference out (quicker)")
     args = parser.parse_args(argv)
 
     # Exactly the series (its entry point first, then the notebooks its map lists), unless named.
@@ -359,30 +318,34 @@ def main(argv: list[str] | None = None) -> int:
         print("no notebooks found", file=sys.stderr)
         return 1
     out = args.out.resolve()
-    (out / "notebooks").mkdir(parents=True, exist_ok=True)
-    import plotly.offline
+    src = out.with_name(out.name + "-src")
+    _fresh(out, ".buildinfo", "plotly.min.js")   # Sphinx's build, or the site before Sphinx
+    _fresh(src, "index.md")
+    (src / "notebooks").mkdir()
+    (src / "_clean").mkdir()
 
-    (out / "plotly.min.js").write_text(plotly.offline.get_plotlyjs(), encoding="utf-8")
-    mathjax_url = mathjax_setting(out, args.mathjax)
-
-    start_here = REPO / "notebooks" / "00_start_here.ipynb"
+    start_here = REPO / "notebooks" / f"{START_HERE}.ipynb"
     topics = series_map(nbformat.read(start_here, as_version=4)) if start_here.exists() else {}
     pages = []
-    for src in sources:
-        nb = nbformat.read(src, as_version=4)
-        title, description = title_and_description(nb, topics.get(src.stem))
+    started = time.perf_counter()
+    for path in sources:
+        nb = nbformat.read(path, as_version=4)
+        title, description = title_and_description(nb, topics.get(path.stem))
         start = time.perf_counter()
-        error = execute(nb, src.parent, args.timeout)
+        error = execute(nb, path.parent, args.timeout)
         seconds = time.perf_counter() - start
         prepare_for_html(nb)
-        page = Page(src, src.stem + ".html", title, description, seconds, error)
-        (out / page.html_name).write_text(render(nb, mathjax_url, title), encoding="utf-8")
-        shutil.copy2(src, out / "notebooks" / src.name)
-        pages.append(page)
-        print(f"{src.name:<34} {seconds:6.1f} s  {'FAILED: ' + error if error else 'ok'}", flush=True)
-    (out / "index.html").write_text(index_page(pages, mathjax_url), encoding="utf-8")
-    print(f"wrote {out / 'index.html'} ({len(pages)} notebooks)")
-    return 1 if any(p.error for p in pages) else 0
+        nbformat.write(nb, src / "notebooks" / path.name)
+        shutil.copy2(path, src / "_clean" / path.name)
+        pages.append(Page(path, title, description, seconds, error))
+        print(f"{path.name:<34} {seconds:6.1f} s  {'FAILED: ' + error if error else 'ok'}", flush=True)
+    sphinx_sources(src, pages, [] if args.no_reference else public_names())
+    print(f"executed {len(pages)} notebooks in {time.perf_counter() - started:.0f} s; rendering with Sphinx", flush=True)
+    start = time.perf_counter()
+    status = run_sphinx(src, out)
+    html_pages = sum(1 for _ in out.rglob("*.html"))
+    print(f"Sphinx: {html_pages} pages in {time.perf_counter() - start:.0f} s; wrote {out / 'index.html'}", flush=True)
+    return 1 if status or any(p.error for p in pages) else 0
 
 
 if __name__ == "__main__":

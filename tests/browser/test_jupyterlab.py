@@ -38,12 +38,17 @@ The browser has no network: every request to a host other than 127.0.0.1 is abor
 the test), and the browser's own resolver maps every other name to nowhere.
 
 ``test_lab_opens_on_start_here``: JupyterLab started as ``./make.sh lab`` starts it (its
-``--LabApp.default_url`` is read from ``make.sh``) opens ``00_start_here.ipynb``, not the Launcher.
+``--LabApp.default_url`` is read from ``make.sh``, and every server here gets ``make.sh``'s
+``LAB_OPTIONS``) opens ``00_start_here.ipynb``, not the Launcher, and its kernel starts without
+the "running over TCP without encryption" warning (the server provisions CurveZMQ keys).
 
-``test_static_site`` builds the static site (``scripts/build_site.py``) for ``SITE_NOTEBOOKS``
-(or opens an existing build named by ``LBO_BROWSER_SITE=/path/to/site``), serves it from
-127.0.0.1 and checks each page the same way, plus: formulas typeset by the site's own MathJax
-(no ``$...$`` left as text), no request that fails, no slider title with a negative zero.
+``test_static_site`` builds the site (``scripts/build_site.py``: Sphinx, myst-nb, numpydoc) for
+``SITE_NOTEBOOKS`` and the API reference (or opens an existing build named by
+``LBO_BROWSER_SITE=/path/to/site``), serves it from 127.0.0.1 and checks each notebook page the
+same way, plus: formulas typeset by the site's own MathJax (no ``$...$`` left as text), no request
+that fails, no slider title with a negative zero. ``test_site_reference_and_search``: the reference
+page of ``eigenbasis`` shows its docstring (its summary line and a Parameters section naming every
+parameter), and a public name typed into the search page finds that page.
 
 Select notebooks with pytest's ``-k``, e.g. ``-k "laplace or static_site"``.
 
@@ -141,6 +146,13 @@ def _start_url() -> str:
     return match.group(1)
 
 
+def _lab_options() -> list[str]:
+    """The options ``./make.sh`` starts every JupyterLab with (its ``LAB_OPTIONS``)."""
+    match = re.search(r"^LAB_OPTIONS=\((.*)\)$", (REPO / "make.sh").read_text(), re.M)
+    assert match, "make.sh must define LAB_OPTIONS=(...), the options of every JupyterLab it starts"
+    return match.group(1).split()
+
+
 def _load_script(name: str):
     import importlib.util
 
@@ -178,7 +190,7 @@ class Lab:
              "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
              f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
              f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent.parent / 'workspaces'}",
-             f"--LabApp.default_url={_start_url()}"],
+             f"--LabApp.default_url={_start_url()}", *_lab_options()],
             stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
@@ -655,6 +667,10 @@ def test_lab_opens_on_start_here(page: Page, lab: Lab, offline: Offline) -> None
     launchers = page.locator(".jp-Launcher").evaluate_all("els => els.filter(e => e.offsetParent !== null).length")
     assert launchers == 0, "the Launcher is shown beside the first notebook"
     offline.check("JupyterLab start page (00_start_here)")
+    # The notebook's kernel has started: nothing in the server's output a newcomer reads as trouble.
+    _kernel_ready(page, lab, 120)
+    log = Path(lab.log.name).read_text()
+    assert "without encryption" not in log, "a kernel runs over unencrypted TCP: see LAB_OPTIONS in make.sh"
 
 
 class _QuietHandler(http.server.SimpleHTTPRequestHandler):
@@ -664,10 +680,10 @@ class _QuietHandler(http.server.SimpleHTTPRequestHandler):
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
-    """The static site, built for SITE_NOTEBOOKS (or LBO_BROWSER_SITE), served from 127.0.0.1."""
+    """The site, built for SITE_NOTEBOOKS with the reference (or LBO_BROWSER_SITE), served from 127.0.0.1."""
     root = Path(os.environ["LBO_BROWSER_SITE"]) if os.environ.get("LBO_BROWSER_SITE") else None
     if root is None:
-        root = tmp_path_factory.mktemp("site")
+        root = tmp_path_factory.mktemp("site") / "site"
         notebooks = [str(REPO / "notebooks" / f"{stem}.ipynb") for stem in SITE_NOTEBOOKS]
         build = subprocess.run([sys.executable, str(REPO / "scripts" / "build_site.py"), "--out", str(root), *notebooks],
                                capture_output=True, text=True, timeout=1800)
@@ -713,12 +729,14 @@ def test_static_site(browser, site, offline: Offline) -> None:
     assert all(s.startswith(url) for s in math["scripts"]), f"scripts from elsewhere: {math['scripts']}"
     assert math["typeset"] > 0 and not math["raw"], f"index: formulas left as LaTeX: {math}"
     assert "W),p" not in page.inner_text("body")
-    pages = sorted(p.name for p in root.glob("*.html") if p.name != "index.html")
-    assert pages, f"no notebook pages in {root}"
+    pages = sorted(p.relative_to(root).as_posix() for p in (root / "notebooks").glob("*.html") if p.name != "index.html")
+    assert pages, f"no notebook pages in {root / 'notebooks'}"
+    linked = page.locator("article a[href^='notebooks/']").evaluate_all("els => els.map(e => e.getAttribute('href'))")
+    assert set(pages) <= set(linked), f"the index does not link every notebook page: {pages} vs {linked}"
     for name in pages:
         page.goto(f"{url}/{name}", timeout=180_000)
         math = _wait_for_math(page)
-        stem = name.removesuffix(".html")
+        stem = Path(name).stem
         page.screenshot(path=str(out / f"{stem}.png"), full_page=True)
         assert math["typeset"] > 0 and not math["raw"] and not math["failed"], f"{name}: formulas left as LaTeX: {math}"
         assert all(s.startswith(url) for s in math["scripts"]), f"{name}: scripts from elsewhere: {math['scripts']}"
@@ -741,3 +759,45 @@ def test_static_site(browser, site, offline: Offline) -> None:
         offline.check(name)
     local_failures = [f for f in offline.failed if f.startswith(url)]
     assert not local_failures, f"requests to the site that failed: {local_failures[:10]}"
+
+
+def test_site_reference_and_search(browser, site, offline: Offline) -> None:
+    """The API reference renders a docstring (numpydoc sections), and Sphinx's search finds a public name."""
+    import inspect
+
+    import lbo_notebooks
+
+    root, url = site
+    out = ARTIFACTS / "site"
+    out.mkdir(parents=True, exist_ok=True)
+    page = offline.page
+    page.goto(f"{url}/reference.html", timeout=60_000)
+    listed = page.locator("article table a code, article table a span").all_inner_texts()
+    missing = [n for n in lbo_notebooks.__all__ if n not in listed]
+    assert not missing, f"the reference page does not list {missing}"
+    page.get_by_role("link", name="eigenbasis", exact=True).first.click()
+    page.wait_for_load_state("load")
+    assert urllib.parse.urlsplit(page.url).path == "/generated/lbo_notebooks.eigenbasis.html", page.url
+    page.screenshot(path=str(out / "reference_eigenbasis.png"), full_page=True)
+    body = page.locator("article dl.py.function")
+    summary = inspect.getdoc(lbo_notebooks.eigenbasis).splitlines()[0]
+    assert body.locator("dd > p").first.inner_text().split() == re.sub(r"``?", "", summary).split()
+    fields = body.locator("dl.field-list").first
+    assert fields.locator("dt").first.inner_text().strip().rstrip(":") == "Parameters"
+    documented = fields.locator("dd dl dt strong").all_inner_texts()
+    assert documented == list(inspect.signature(lbo_notebooks.eigenbasis).parameters), documented
+    offline.check("reference page of eigenbasis")
+
+    # Type a public name into the search page (no search.html?q= shortcut): the results link its page.
+    page.goto(f"{url}/search.html", timeout=60_000)
+    box = page.locator(".bd-search-container form.bd-search input[type=search]")
+    box.fill("farthest_point_sampling")
+    box.press("Enter")
+    hit = page.locator("#search-results ul.search li a", has_text="farthest_point_sampling").first
+    hit.wait_for(state="visible", timeout=60_000)
+    page.screenshot(path=str(out / "search.png"), full_page=True)
+    assert hit.get_attribute("href").startswith("generated/lbo_notebooks.farthest_point_sampling.html")
+    hit.click()
+    page.wait_for_load_state("load")
+    assert "farthest_point_sampling" in page.locator("article h1").inner_text()
+    offline.check("search page")
