@@ -16,6 +16,9 @@ from __future__ import annotations
 
 import importlib.util
 import re
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import nbformat
@@ -166,3 +169,58 @@ def test_the_tagging_script_is_idempotent_and_keeps_outputs_visible():
     # The git clean filter keeps the collapsed state (it is part of the course, not of a run).
     strip = _load_script("strip_notebook")
     assert strip.strip(nb)["cells"][0]["metadata"] == {"tags": ["hide-input"], "jupyter": {"source_hidden": True}}
+
+
+# --- a notebook is one class session (issue 29) ---------------------------------------------------
+
+PROSE_WORD_LIMIT = 1600  # about what a 75–90-minute session can read, discuss and run
+TIME_ESTIMATE = re.compile(r"^\*Time: about (\d+) minutes in class\*$", re.MULTILINE)
+FORMULA = re.compile(r"\$\$.+?\$\$|\$[^$\n]+\$", re.DOTALL)
+
+
+def prose_words(nb) -> int:
+    """Words of the markdown cells, each ``$…$`` or ``$$…$$`` formula counted as one word."""
+    return sum(len(FORMULA.sub("formula", _source(c)).split()) for c in nb.cells if c.cell_type == "markdown")
+
+
+def test_prose_words_counts_a_formula_as_one_word():
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_markdown_cell("The bound $a \\le b / c$ holds: $$x + y$$"),
+                                         nbformat.v4.new_code_cell("not prose at all")])
+    assert prose_words(nb) == 5
+
+
+def test_prose_fits_one_class_session(notebook):
+    path, nb = notebook
+    words = prose_words(nb)
+    assert words <= PROSE_WORD_LIMIT, (
+        f"{path.name}: {words} words of prose, more than one session's {PROSE_WORD_LIMIT}; split the notebook "
+        "or move reference material to docs/maths.md")
+
+
+def test_header_gives_a_time_estimate(notebook):
+    path, nb = notebook
+    found = TIME_ESTIMATE.search(_source(nb.cells[0]))
+    assert found, f"{path.name}: put '*Time: about N minutes in class*' under the title"
+    assert 30 <= int(found.group(1)) <= 90, f"{path.name}: a notebook should fit one 75–90-minute session"
+
+
+# --- code cells read without horizontal scrolling (issue 29) --------------------------------------
+
+CODE_LINE_LIMIT = 100  # fits a 1400-pixel JupyterLab window with the file browser open
+
+
+def test_code_lines_fit_the_window(notebook):
+    path, nb = notebook
+    long = [(i, len(line)) for i, c in enumerate(nb.cells) if c.cell_type == "code"
+            for line in _source(c).splitlines() if len(line) > CODE_LINE_LIMIT]
+    assert not long, (f"{path.name}: (cell, length) of lines over {CODE_LINE_LIMIT} characters: {long}; "
+                      "run `ruff format notebooks` and split long strings and comments")
+
+
+def test_code_cells_are_formatted_by_ruff():
+    ruff = shutil.which("ruff") or str(Path(sys.executable).with_name("ruff"))
+    if not Path(ruff).exists():
+        pytest.skip("ruff is not installed (it is in the [test] extra)")
+    root = Path(__file__).resolve().parent.parent
+    result = subprocess.run([ruff, "format", "--check", "--diff", "notebooks"], cwd=root, capture_output=True, text=True)
+    assert result.returncode == 0, f"code cells not formatted; run `ruff format notebooks`:\n{result.stdout[-3000:]}"
