@@ -296,9 +296,10 @@ def check_plane_range(answer: Any, M: Any, *, show: bool = True) -> Feedback:
     """Exercise 07-range: the interval of min-over-a-plane values, (lowest, highest), over all planes."""
     def body() -> str:
         require_attempt(answer)
-        if not isinstance(answer, (list, tuple)) or len(answer) != 2:
+        pair = tuple(answer) if isinstance(answer, np.ndarray) and answer.shape == (2,) else answer   # lam[:2] too
+        if not isinstance(pair, (list, tuple)) or len(pair) != 2:
             raise Stop(WRONG, "Give a pair (lowest, highest).")
-        low, high = (as_number(a) for a in answer)
+        low, high = (as_number(a) for a in pair)
         lam = np.linalg.eigvalsh(np.asarray(M, dtype=np.float64))
         if low > high:
             raise Stop(WRONG, "Give the lowest value first.")
