@@ -532,6 +532,15 @@ def test_plane_minimum():
         _status(ex.check_plane_minimum(placeholder, M, u, show=False), NOT_ATTEMPTED)
 
 
+def test_plane_range_accepts_an_array_pair():
+    """Found on review: `plane_range = lam[:2]` (an array of shape (2,)) was told "give a pair"."""
+    M = np.diag([1.0, 2.5, 4.0])
+    lam = np.linalg.eigvalsh(M)
+    _status(ex.check_plane_range(lam[:2], M, show=False), CORRECT)
+    _status(ex.check_plane_range(np.array([1.0, 4.0]), M, show=False), WRONG)
+    assert "pair" in ex.check_plane_range(lam, M, show=False).message  # three numbers: not a pair
+
+
 def test_plane_range_and_dual_value():
     M, _ = _three_by_three()
     _status(ex.check_plane_range((1.0, 2.5), M, show=False), CORRECT)
