@@ -174,7 +174,7 @@ def test_the_tagging_script_is_idempotent_and_keeps_outputs_visible():
 # --- a notebook is one class session (issue 29) ---------------------------------------------------
 
 PROSE_WORD_LIMIT = 1600  # about what a 75–90-minute session can read, discuss and run
-TIME_ESTIMATE = re.compile(r"^\*Time: about (\d+) minutes in class\*$", re.MULTILINE)
+TIME_ESTIMATE = re.compile(r"^\*Time: about (\d+) minutes in class\*", re.MULTILINE)
 FORMULA = re.compile(r"\$\$.+?\$\$|\$[^$\n]+\$", re.DOTALL)
 
 
@@ -224,3 +224,9 @@ def test_code_cells_are_formatted_by_ruff():
     root = Path(__file__).resolve().parent.parent
     result = subprocess.run([ruff, "format", "--check", "--diff", "notebooks"], cwd=root, capture_output=True, text=True)
     assert result.returncode == 0, f"code cells not formatted; run `ruff format notebooks`:\n{result.stdout[-3000:]}"
+
+
+def test_header_links_the_glossary(notebook):
+    path, nb = notebook
+    assert "](../docs/glossary.md)" in _source(nb.cells[0]), (
+        f"{path.name}: link the glossary from the first cell: [glossary](../docs/glossary.md)")
