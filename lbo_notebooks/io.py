@@ -5,11 +5,8 @@ the ones the file lists, in the file's order; :func:`save_mesh` writes one; :fun
 reads a :class:`~lbo_notebooks.PointCloud`. Repair lives in :mod:`lbo_notebooks.repair`
 (:func:`~lbo_notebooks.repair.clean_mesh`); ``load_mesh(path, clean=True)`` applies it.
 
-How each format is read and written, and why: see :mod:`lbo_notebooks.formats`.
-
-Polygons (faces with more than three corners, in OFF, OBJ or PLY) are refused by default with a
-:class:`MeshError`; with ``clean=True`` each is split into a fan of triangles from its first
-corner (right for convex polygons, which is what exporters write) and the split is reported.
+How each format is read and written, and why (STL welding, polygons refused or split with
+``clean=True``): see :mod:`lbo_notebooks.formats`.
 
 Examples
 --------

@@ -612,18 +612,26 @@ def test_floor_fraction():
     (ex.check_recap_scale_invariant, (0.25, "A", "regular"), [(0, 0.5, "1/R²"), (0, 4, "upside down"), (1, "w", "conformally"),
                                                  (1, "both", "conformally"), (2, "scale-invariant", "section 6")]),
 ])
-def test_recaps_04_06(check, right, slips):
+def test_recaps_05_08(check, right, slips):
+    _check_recap(check, right, slips, unsure_at=1)
+
+
+def _check_recap(check, right, slips, unsure_at):
+    """A three-question recap: all right; each slip named with its hint; "maybe" where a choice is
+    expected; not attempted; partly attempted."""
     _status(check(*right, show=False), CORRECT, "all 3")
     for k, wrong, hint in slips:
         answers = list(right)
         answers[k] = wrong
         _status(check(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(check(right[0], "maybe", right[2], show=False), WRONG, "one of")
+    unsure = list(right)
+    unsure[unsure_at] = "maybe"
+    _status(check(*unsure, show=False), WRONG, "one of")
     _status(check(..., ..., ..., show=False), NOT_ATTEMPTED)
     _status(check(right[0], ..., ..., show=False), WRONG, "every part")
 
 
-def test_messages_04_to_06_never_give_the_answer():
+def test_messages_05_to_08_never_give_the_answer():
     M, (v0, v1, _) = _three_by_three()
     cases = [(ex.check_plane_minimum(3.3, M, v0 + 2 * v1, show=False), 1.3),
              (ex.check_plane_range((1.0, 3.0), M, show=False), 2.5),
@@ -1349,15 +1357,8 @@ def test_cycle_multiplicity():
                                        (1, 4, "mass"), (1, 0.25, "eigenvalues"), (1, 3, "angles"),
                                        (2, "a", "Euclidean"), (2, "c", "multiplies")]),
 ])
-def test_recaps_of_the_warm_up_and_02(check, right, slips):
-    _status(check(*right, show=False), CORRECT, "all 3")
-    for k, wrong, hint in slips:
-        answers = list(right)
-        answers[k] = wrong
-        _status(check(*answers, show=False), WRONG, f"question {k + 1}", hint, "2 of 3 right")
-    _status(check(right[0], right[1], "maybe", show=False), WRONG, "one of")
-    _status(check(..., ..., ..., show=False), NOT_ATTEMPTED)
-    _status(check(right[0], ..., ..., show=False), WRONG, "every part")
+def test_recaps_of_the_warm_up_and_03(check, right, slips):
+    _check_recap(check, right, slips, unsure_at=2)
 
 
 def test_recap_lbo_accepts_the_round_off_of_cot_90():
