@@ -25,7 +25,7 @@ import sys
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time as _best  # noqa: E402
 
-from lbo_notebooks import Mesh, eigenbasis, shapes  # noqa: E402
+from lbo_notebooks import Mesh, creature, eigenbasis, shapes  # noqa: E402
 from lbo_notebooks.curvature import metric_mass_matrix
 from lbo_notebooks.operators import mass_matrix
 
@@ -40,7 +40,7 @@ def _fresh(mesh: Mesh) -> Mesh:
 def _meshes() -> list[tuple[str, Mesh]]:
     out = [("bumpy_sphere(4)", shapes.bumpy_sphere(4))]
     try:
-        out.append(("creature('horse', 4000)", shapes.creature("horse", n_vertices=4000)))
+        out.append(("creature('horse', 4000)", creature("horse", n_vertices=4000)))
     except (AttributeError, ImportError):
         pass
     out.append(("bumpy_sphere(5)", shapes.bumpy_sphere(5)))

@@ -1137,10 +1137,10 @@ def test_messages_of_00_08_09_never_give_the_answer():
 @pytest.fixture(scope="module")
 def rows_embedding():
     """A small spectral MDS in the paper's form: (phi, alpha, X) with X the library's embedding."""
-    from lbo_notebooks import eigenbasis
+    from lbo_notebooks import creatures, eigenbasis
     from lbo_notebooks.mds import spectral_mds
 
-    mesh = shapes.creature("dog", "walking", n_vertices=1000)
+    mesh = creatures.creature("dog", "walking", n_vertices=1000)
     s = eigenbasis(mesh, 40)
     X, details = spectral_mds(mesh, k=40, n_samples=60, sampled="rows", spectrum=s, return_details=True)
     assert details["eigengap"] > 1.2                       # the top three directions are well defined
