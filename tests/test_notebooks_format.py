@@ -7,7 +7,8 @@ after it in code cells hidden with ``{"jupyter": {"source_hidden": true}}``, or,
 for nbgrader (docs/exercises.md), every exercise is an answer cell whose solution lies between
 ``### BEGIN SOLUTION`` and ``### END SOLUTION`` followed by its locked check cell, with at least
 two exercises inside the body and at least one in the Exercises section; cells that display a
-slider widget start with ``# NBVAL_IGNORE_OUTPUT`` (a widget's repr changes from run to run);
+slider widget carry the cell tag ``nbval-ignore-output`` (a widget's repr changes from run to run;
+nbval's tags keep such markers out of the reader's code);
 verification cells (only ``assert``s and what they need) are tagged ``hide-input`` and every cell so
 tagged is collapsed (``scripts/tag_verification_cells.py`` does both).
 """
@@ -130,9 +131,15 @@ def test_widget_cells_ignore_their_output(notebook):
         lines = [ln for ln in text.strip().splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
         displays_a_widget = (any(f in text for f in WIDGET_FACTORIES) and lines
                              and re.fullmatch(r"[A-Za-z_][A-Za-z_0-9.]*", lines[-1].strip()))
-        if displays_a_widget and not text.lstrip().startswith("# NBVAL_IGNORE_OUTPUT"):
+        if displays_a_widget and "nbval-ignore-output" not in c.metadata.get("tags", []):
             bad.append(i)
-    assert not bad, f"{path.name}: cells {bad} display a widget; start them with '# NBVAL_IGNORE_OUTPUT'"
+    assert not bad, f"{path.name}: cells {bad} display a widget; give them the cell tag 'nbval-ignore-output'"
+
+
+def test_no_test_markers_in_the_readers_code(notebook):
+    path, nb = notebook
+    marked = [i for i, c in enumerate(nb.cells) if c.cell_type == "code" and "NBVAL_" in _source(c)]
+    assert not marked, f"{path.name}: cells {marked} show an NBVAL_ comment; use nbval's cell tags instead"
 
 
 def test_verification_cells_are_tagged_and_collapsed(notebook):
