@@ -237,3 +237,11 @@ def test_header_links_the_glossary(notebook):
     path, nb = notebook
     assert "](../docs/glossary.md)" in _source(nb.cells[0]), (
         f"{path.name}: link the glossary from the first cell: [glossary](../docs/glossary.md)")
+
+
+def test_ends_with_a_three_question_recap(notebook):
+    path, nb = notebook
+    if path.name.startswith("00_"):
+        pytest.skip("00 is the map of the series, not a lesson")
+    recaps = [c for c in nb.cells if "recap" in c.metadata.get("nbgrader", {}).get("grade_id", "")]
+    assert recaps, f"{path.name}: end with a self-checked recap (exercises.recap, docs/exercises.md)"
