@@ -409,7 +409,7 @@ def check_curvature_scaling(factor: Any, scale: float = 3.0, *, show: bool = Tru
 
 
 def check_metric_scaling(factors: Any, scale: float = 3.0, *, show: bool = True) -> Feedback:
-    """Exercise 08-scaling: ``{alpha: factor}``, how the eigenvalues of |K|^alpha g change under scaling by ``scale``."""
+    """Exercise 08-scaling: ``{alpha: factor}``, how the eigenvalues of ``|K|^alpha g`` change under scaling by ``scale``."""
     def body() -> str:
         require_attempt(factors)
         if not isinstance(factors, Mapping) or not factors:

@@ -499,7 +499,7 @@ def check_truncation_bound(bound: Any, spectrum: Any, f: Any, k: int, *, show: b
 
 
 def check_alpha_choice(alpha: Any, *, show: bool = True) -> Feedback:
-    """Exercise 12-alpha: which α of the metric |K|^α g matches the dog with a 1.6 times larger head best (0, 0.4 or 1)?"""
+    """Exercise 12-alpha: which α of the metric ``|K|^α g`` matches the dog with a 1.6 times larger head best (0, 0.4 or 1)?"""
     def body() -> str:
         require_attempt(alpha)
         got = as_number(alpha, "one of 0, 0.4, 1")
