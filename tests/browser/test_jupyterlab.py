@@ -741,7 +741,12 @@ def test_static_site(browser, site, offline: Offline) -> None:
         assert math["typeset"] > 0 and not math["raw"] and not math["failed"], f"{name}: formulas left as LaTeX: {math}"
         assert all(s.startswith(url) for s in math["scripts"]), f"{name}: scripts from elsewhere: {math['scripts']}"
         figures = page.locator(".js-plotly-plot")
-        assert figures.count() > 0, f"{name}: no figure"
+        # Every page shows a figure: interactive plotly, or a static one (matplotlib's PNG, e.g. the warm-up's).
+        images = page.locator("article .cell_output img")
+        assert figures.count() + images.count() > 0, f"{name}: no figure"
+        for i in range(images.count()):
+            size = images.nth(i).evaluate("el => [el.naturalWidth, el.naturalHeight]")
+            assert min(size) > 50, f"{name}: image {i} did not load ({size})"
         for i in range(figures.count()):
             fig = figures.nth(i)
             fig.scroll_into_view_if_needed()
