@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._progress import LARGE_MESH, check_progress, progress_bar
+from .blas_threads import one_blas_thread
 from .functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
 from .mesh import Mesh
 from .spectrum import eigenbasis
@@ -143,7 +144,9 @@ def match(
 
     sampled = n_samples is not None and n_min > 2.5 * n_samples
     long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
-    with progress_bar(5 + sampled, "match", progress, long=long) as bar:
+    # One BLAS thread throughout (unless the user chose the count): the nearest-neighbour search
+    # runs in its own threads, and the rest gains little from more (benchmarks/busy.py).
+    with one_blas_thread(), progress_bar(5 + sampled, "match", progress, long=long) as bar:
         def stage(name: str) -> None:
             bar.set_postfix_str(name, refresh=True)
 
