@@ -15,6 +15,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from .blas_threads import one_blas_thread
 from .geodesics import GeodesicMethod, check_connected, check_method, farthest_point_sampling
 from .inner_product import fix_signs
 from .mesh import Mesh
@@ -144,35 +145,36 @@ def fast_classical_scaling(
     if isinstance(mu, bool) or not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 1e-3), got {mu!r}.")
 
-    # 1. samples and their squared distance fields
-    if sampling is None:
-        samples, fields = farthest_point_sampling(
-            mesh, q, method=method, return_distances=True, progress=progress, select="graph"
-        )
-    else:
-        samples, fields = (np.asarray(a) for a in sampling)
-        if samples.ndim != 1 or fields.ndim != 2 or fields.shape != (samples.size, n) or samples.size < q:
-            raise ValueError(
-                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
-                f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
+    with one_blas_thread():  # as in spectral_mds: no BLAS threads spinning against other programs
+        # 1. samples and their squared distance fields
+        if sampling is None:
+            samples, fields = farthest_point_sampling(
+                mesh, q, method=method, return_distances=True, progress=progress, select="graph"
             )
-        samples, fields = samples[:q].astype(np.int64), fields[:q]
-    F = np.square(fields)  # a new array: the caller's sampling is not modified
-    t1 = time.perf_counter()
+        else:
+            samples, fields = (np.asarray(a) for a in sampling)
+            if samples.ndim != 1 or fields.ndim != 2 or fields.shape != (samples.size, n) or samples.size < q:
+                raise ValueError(
+                    f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
+                    f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
+                )
+            samples, fields = samples[:q].astype(np.int64), fields[:q]
+        F = np.square(fields)  # a new array: the caller's sampling is not modified
+        t1 = time.perf_counter()
 
-    # 2. interpolation operator
-    M, mu_abs = _interpolation_operator(mesh, samples, float(mu))
-    t2 = time.perf_counter()
+        # 2. interpolation operator
+        M, mu_abs = _interpolation_operator(mesh, samples, float(mu))
+        t2 = time.perf_counter()
 
-    # 3. classical scaling in span[J M, J F.T]: D2 ~ (M F + F.T M.T) / 2 gives
-    # B = C (-1/4 [[0, I], [I, 0]]) C.T with C = [J M, J F.T].
-    basis = np.hstack([M - M.mean(axis=0), F.T - F.T.mean(axis=0)])
-    del M
-    swap = np.block([[np.zeros((q, q)), np.eye(q)], [np.eye(q), np.zeros((q, q))]])
-    y, G = scaling_in_span(basis.T @ basis, -0.25 * swap, dim)
-    X = basis @ y
-    X = fix_signs(X - X.mean(axis=0))
-    t3 = time.perf_counter()
+        # 3. classical scaling in span[J M, J F.T]: D2 ~ (M F + F.T M.T) / 2 gives
+        # B = C (-1/4 [[0, I], [I, 0]]) C.T with C = [J M, J F.T].
+        basis = np.hstack([M - M.mean(axis=0), F.T - F.T.mean(axis=0)])
+        del M
+        swap = np.block([[np.zeros((q, q)), np.eye(q)], [np.eye(q), np.zeros((q, q))]])
+        y, G = scaling_in_span(basis.T @ basis, -0.25 * swap, dim)
+        X = basis @ y
+        X = fix_signs(X - X.mean(axis=0))
+        t3 = time.perf_counter()
     if not return_details:
         return X
     details = {

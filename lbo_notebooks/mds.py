@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import renamed
 from ._progress import LARGE_MESH, check_progress, progress_bar
+from .blas_threads import one_blas_thread
 from .embedding_error import gram_error, procrustes_error
 from .fast_scaling import FCS_DEFAULTS, fast_classical_scaling
 from .geodesics import (
@@ -462,7 +463,10 @@ def spectral_mds(
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
     check_progress(progress)
 
-    with progress_bar(3, "spectral MDS", progress, long=n >= LARGE_MESH) as bar:
+    # One BLAS thread throughout (unless the user chose the count): the eigensolver and the heat
+    # method limit themselves anyway, and OpenBLAS threads spinning against another program made
+    # the embedding's products 10-20x slower (0.2-0.5 s -> 3.9-7.3 s at 25k vertices; benchmarks/busy.py).
+    with one_blas_thread(), progress_bar(3, "spectral MDS", progress, long=n >= LARGE_MESH) as bar:
         # 1. eigenbasis
         bar.set_postfix_str("eigenbasis", refresh=True)
         if spectrum is None:

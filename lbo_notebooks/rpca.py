@@ -29,6 +29,11 @@ c, the number of data columns), and a Lanczos run as long as :func:`~lbo_noteboo
 memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
 about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
 
+Threads: the sparse path runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count
+the user set is kept). Its work is sparse solves and Lanczos' level-2 products, which gain little
+from BLAS threads, and OpenBLAS threads spin while they wait for a core: beside other programs
+regularized PCA at 25,000 vertices took 4x the CPU time it needs (``benchmarks/busy.py``).
+
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
 ``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
 
@@ -298,12 +303,11 @@ class RegularizedPCA:
         if method == "sparse" and 2 * k + c + 2 > n:
             method = "dense"  # Lanczos needs room: k close to n is a small-mesh problem anyway
         if np.isinf(mu):
-            return self._solve_infinite(k)
-        if mu == 0.0:
-            return self._solve_pca_limit(k, method)
-        if method == "dense":
-            return self._solve_dense(k, mu)
-        return self._solve_sparse(k, mu)
+            return self._solve_infinite(k)  # the eigensolver limits its BLAS threads itself
+        if method == "dense":  # small meshes: LAPACK on an n x n matrix, where BLAS threads pay
+            return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_dense(k, mu)
+        with one_blas_thread():  # the sparse paths: see the module docstring, "Threads"
+            return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis
     def _solve_infinite(self, k: int) -> RPCAResult:
@@ -337,8 +341,7 @@ class RegularizedPCA:
                 _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, k - r - 1])
                 rest = Z @ Y  # already A-orthonormal: Y.T (Z.T A Z) Y = I
             else:
-                with one_blas_thread():  # see the module docstring, "Threads"
-                    rest = complement_lanczos(W, A, U, self._base()[0], self._t0, k - r, Q_all, mu=None)
+                rest = complement_lanczos(W, A, U, self._base()[0], self._t0, k - r, Q_all, mu=None)
             basis = np.hstack([pca, rest])
             values = np.concatenate([w[:r], np.zeros(k - r)])
         return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, k))
@@ -376,11 +379,10 @@ class RegularizedPCA:
         n_data = min(n_above, k)
         data_vectors = np.zeros((self.n_vertices, 0))
         rest = np.zeros((self.n_vertices, 0))
-        with one_blas_thread():  # see the module docstring, "Threads"
-            if n_data:
-                data_vectors = data_eigenpairs(W, A, U, self.data, n_data, mu, tau, Y0)
-            if k > n_data:
-                rest = complement_lanczos(W, A, U, F0, self._t0, k - n_data, data_vectors, mu=mu, Y0=Y0)
+        if n_data:
+            data_vectors = data_eigenpairs(W, A, U, self.data, n_data, mu, tau, Y0)
+        if k > n_data:
+            rest = complement_lanczos(W, A, U, F0, self._t0, k - n_data, data_vectors, mu=mu, Y0=Y0)
         subspace = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
         values, ritz = rayleigh_ritz(subspace, U, W, mu, k)
         if ritz.shape[1] < k:  # pragma: no cover - would mean a lost direction
