@@ -139,18 +139,19 @@ def main() -> None:
                     print(f"{call:10s} {name:3s} {'busy ' if busy else 'quiet'} wall {t['wall']:7.2f} s  cpu {t['cpu']:7.2f} s",
                           flush=True)
     print(f"\nload average at the end: {os.getloadavg()[0]:.2f}; medians over {args.repeats} round(s)")
-    print(f"{'call':10s} {'code':4s} {'quiet s':>8s} {'busy s':>8s} {'busy/quiet':>10s} {'quiet cpu':>9s}"
+    print(f"{'call':10s} {'code':4s} {'quiet s':>8s} {'busy s':>8s} {'busy/quiet':>10s} {'quiet cpu':>9s} {'busy cpu':>8s}"
           + ("  quiet new/old" if len(trees) > 1 else ""))
     for call in args.calls:
         for name in trees:
             quiet = np.median([t["wall"] for t in times[(call, name, False)]])
             busy = np.median([t["wall"] for t in times[(call, name, True)]])
             cpu = np.median([t["cpu"] for t in times[(call, name, False)]])
+            busy_cpu = np.median([t["cpu"] for t in times[(call, name, True)]])
             extra = ""
             if len(trees) > 1 and name == "new":
                 ratios = [a["wall"] / b["wall"] for a, b in zip(times[(call, "new", False)], times[(call, "old", False)])]
                 extra = f"  {np.median(ratios):13.2f}"
-            print(f"{call:10s} {name:4s} {quiet:8.2f} {busy:8.2f} {busy / quiet:10.2f} {cpu:9.2f}{extra}")
+            print(f"{call:10s} {name:4s} {quiet:8.2f} {busy:8.2f} {busy / quiet:10.2f} {cpu:9.2f} {busy_cpu:8.2f}{extra}")
 
 
 if __name__ == "__main__":
