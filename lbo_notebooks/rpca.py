@@ -29,10 +29,13 @@ c, the number of data columns), and a Lanczos run as long as :func:`~lbo_noteboo
 memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
 about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
 
-Threads: the sparse path runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count
-the user set is kept). Its work is sparse solves and Lanczos' level-2 products, which gain little
-from BLAS threads, and OpenBLAS threads spin while they wait for a core: beside other programs
-regularized PCA at 25,000 vertices took 4x the CPU time it needs (``benchmarks/busy.py``).
+Threads: the sparse path's time goes to sparse solves and Lanczos' level-2 products. On an idle
+machine BLAS threads make the latter faster (25,000 vertices, k = 100: 4.1 s instead of 4.8 s),
+but OpenBLAS threads spin while they wait for a core, and beside one busy program the same call
+took 7.3 s, on a loaded machine up to 7x its time (``benchmarks/busy.py``). So on meshes of
+10,000 vertices or more the solver looks whether the machine's other cores are idle
+(:func:`~lbo_notebooks.idle_cores.machine_is_idle`, 50 ms) and otherwise, as always on smaller
+meshes, runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count the user set is kept).
 
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
 ``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
@@ -50,6 +53,7 @@ area`` Weyl's estimate of the k-th Laplace–Beltrami eigenvalue, i.e.
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 from typing import Literal, Sequence
 
@@ -61,6 +65,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._deprecation import renamed, warn
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
+from .idle_cores import machine_is_idle
 from .inner_product import (
     a_orthonormalize,
     check_operators,
@@ -306,7 +311,10 @@ class RegularizedPCA:
             return self._solve_infinite(k)  # the eigensolver limits its BLAS threads itself
         if method == "dense":  # small meshes: LAPACK on an n x n matrix, where BLAS threads pay
             return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_dense(k, mu)
-        with one_blas_thread():  # the sparse paths: see the module docstring, "Threads"
+        # The sparse paths: BLAS threads only on a large mesh and an otherwise idle machine
+        # (module docstring, "Threads").
+        idle = self.n_vertices >= LARGE_MESH and machine_is_idle()
+        with nullcontext() if idle else one_blas_thread():
             return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis
