@@ -44,7 +44,27 @@ A second run of the same command 15 minutes later (load 5-6), final code:
      49124 lbo.match                0.0018     29.41    20.11              2.87
      49124 pyFM default             0.0101     83.58    57.91
 
-On that loaded machine the wall times are 1.5-2.5x the CPU times; the eigensolver runs in two
+With the eigenbases at Lanczos tolerance 1e-6 (``matching.EIGEN_TOL``; identical point maps at 25k
+and 50k, 11-15% less CPU), one BLAS thread in ``match`` and the nearest-neighbour search in its own
+two worker threads (issue 30, item 4), in the user's default environment (no thread variable
+set, so pyFM's BLAS uses both cores), load 1.2-2.2, one round:
+
+    env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u MKL_NUM_THREADS python benchmarks/matching.py --sizes 25000 50000 --repeats 1
+
+         n method                    error  wall (s)  cpu (s)  pyFM wall / ours
+     24705 lbo.match                0.0023      6.17     6.68              2.23
+     24705 pyFM default             0.0094     13.78    26.19
+     49124 lbo.match                0.0018     15.00    16.76              2.54
+     49124 pyFM default             0.0100     38.12    66.30
+
+The same command a few minutes earlier with ``OPENBLAS_NUM_THREADS=1`` (before the tolerance
+change, load 3.4-3.9): 25k 6.46 s (6.92 CPU) against pyFM 21.30 s, 3.30x; 50k 31.27 s (18.37 CPU)
+against 64.84 s, 2.07x. Profile at 50k (cProfile, load about 3, 17.5 s): eigenbases 11.1 s (ARPACK's
+reorthogonalisation 4.0 s, sparse solves 4.3 s), ZoomOut 3.1 s (the final search over every vertex
+2.7 s), ``estimate_map`` 1.9 s, farthest-point samples 1.3 s. Computing the two eigenbases in two
+threads was slower (ARPACK holds the GIL): 50k, two interleaved rounds, 15.6 s against 12.7 s.
+
+On the loaded machine of the two earlier runs the wall times are 1.5-2.5x the CPU times; the eigensolver runs in two
 threads, so on a quiet machine ``match`` takes less wall time than CPU time. Where the time of
 ``match`` goes at 50k vertices (same pair, load about 6, wall / CPU seconds): eigenbases
 7.7 / 6.2 and 6.5 / 6.0, WKS 0.1, ``estimate_map`` 3.7 / 3.0, farthest-point samples 1.1 / 1.1,

@@ -16,7 +16,7 @@ Run from the repository root::
 
 Part 1 (accuracy): on several shapes of 3,000-5,000 vertices, SMDS with its *default* parameters
 against classical MDS computed from the same (heat-method) geodesic distances; the Gram error
-(``mds.gram_error``: ``||Z Z.T - X X.T||_F / ||X X.T||_F`` of the centred embeddings, X classical)
+(``embedding_error.gram_error``: ``||Z Z.T - X X.T||_F / ||X X.T||_F`` of the centred embeddings, X classical)
 must be under 1%. Landmark MDS with as many samples is shown beside it.
 
 Part 2 (scaling): a family of deformed tori from 2k to 51k vertices. Every measurement runs in a
@@ -117,16 +117,9 @@ from pathlib import Path
 import numpy as np
 
 from lbo_notebooks import Mesh, shapes
-from lbo_notebooks.mds import (
-    FCS_DEFAULTS,
-    SMDS_DEFAULTS,
-    classical_mds,
-    fast_classical_scaling,
-    gram_error,
-    landmark_mds,
-    procrustes_error,
-    spectral_mds,
-)
+from lbo_notebooks.embedding_error import gram_error, procrustes_error
+from lbo_notebooks.fast_scaling import FCS_DEFAULTS, fast_classical_scaling
+from lbo_notebooks.mds import SMDS_DEFAULTS, classical_mds, landmark_mds, spectral_mds
 
 
 # --- shapes ------------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ conversion on every vertex.
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numpy as np
@@ -38,6 +39,8 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from ._progress import LARGE_MESH, check_progress, progress_bar
+from .blas_threads import one_blas_thread
+from .eigensolver import default_workers
 from .inner_product import a_norms
 from .mesh import Mesh
 from .spectrum import Spectrum
@@ -106,7 +109,9 @@ def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_sou
     return target.vectors[:, :k2].T @ (target.mass @ source.vectors[p, :k1])
 
 
-def _nearest_rows(queries: NDArray[np.float64], points: NDArray[np.float64], *, dtype: type = np.float64) -> NDArray[np.int64]:
+def _nearest_rows(
+    queries: NDArray[np.float64], points: NDArray[np.float64], *, dtype: type = np.float64, workers: int | None = None
+) -> NDArray[np.int64]:
     """Index of the nearest row of ``points`` (Euclidean) for every row of ``queries``; exact.
 
     ``|q - p|^2 = |q|^2 - 2 q.p + |p|^2``, so the nearest ``p`` maximises ``q.p - |p|^2 / 2``:
@@ -118,6 +123,12 @@ def _nearest_rows(queries: NDArray[np.float64], points: NDArray[np.float64], *, 
     distance loops lose to the matrix product by an order of magnitude (benchmarks/matching.py).
     ``dtype=np.float32`` halves the time; the scores it compares differ by ``|p - p'|^2 / 2``
     between neighbouring points, far above its rounding, so only near-ties can change.
+
+    The blocks of 1024 queries are shared among ``workers`` threads (default: the usable cores,
+    at most 2), each running BLAS on one thread (:mod:`lbo_notebooks.blas_threads`): the argmax
+    runs in parallel too, and no BLAS thread spins waiting for a core that another program holds
+    (``benchmarks/busy.py``). Every block is computed alone, so the result does not depend on
+    ``workers``.
     """
     n_points, dim = points.shape
     augmented = np.empty((dim + 1, n_points), dtype=dtype)
@@ -127,7 +138,8 @@ def _nearest_rows(queries: NDArray[np.float64], points: NDArray[np.float64], *, 
     rows[:, :-1] = queries
     rows[:, -1] = 1.0
     out = np.empty(len(queries), dtype=np.int64)
-    for start in range(0, len(queries), 1024):
+
+    def search(start: int) -> None:
         block = rows[start : start + 1024]
         best = np.full(len(block), -np.inf, dtype=dtype)
         at = out[start : start + 1024]
@@ -138,6 +150,15 @@ def _nearest_rows(queries: NDArray[np.float64], points: NDArray[np.float64], *, 
             better = value > best  # ties keep the lower index, as one argmax over all points would
             best[better] = value[better]
             at[better] = arg[better] + first
+
+    starts = range(0, len(queries), 1024)
+    workers = min(default_workers() if workers is None else workers, len(starts))
+    if workers <= 1:
+        for start in starts:
+            search(start)
+        return out
+    with one_blas_thread(), ThreadPoolExecutor(max_workers=workers) as pool:
+        list(pool.map(search, starts))
     return out
 
 

@@ -16,9 +16,13 @@ theirs nearly coincide.
   biharmonic energy as in the paper, or least Dirichlet energy), and the scaling is done in a
   (k + q)-dimensional space (k x k in the paper's form, ``sampled="rows"`` or ``"pairs"``).
   O(n (k + q)^2) time, O(n k + q n) memory; never forms an n x n matrix.
+* :func:`~lbo_notebooks.fast_scaling.fast_classical_scaling` (:mod:`lbo_notebooks.fast_scaling`) — the
+  columns interpolated by a smoothing spline on the surface instead of eigenfunctions.
 
-Accuracy is compared without aligning anything by :func:`gram_error` (the relative Frobenius error
-of the Gram matrices), and after an optimal rotation by :func:`procrustes_error`.
+Accuracy is compared without aligning anything by :func:`~lbo_notebooks.embedding_error.gram_error`
+(the relative Frobenius error of the Gram matrices), and after an optimal rotation by
+:func:`~lbo_notebooks.embedding_error.procrustes_error` (both in :mod:`lbo_notebooks.embedding_error`). The steps every variant shares (checks,
+top eigenpairs, scaling in a span) are in :mod:`lbo_notebooks.scaling`.
 """
 
 from __future__ import annotations
@@ -28,10 +32,12 @@ from typing import Any
 
 import numpy as np
 import scipy.linalg
-import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import renamed
+from ._deprecation import moved, renamed
+from ._progress import LARGE_MESH, check_progress, progress_bar
+from .blas_threads import one_blas_thread
+from .embedding_error import gram_error, procrustes_error  # noqa: F401  old spellings mds.gram_error, ... (home: embedding_error)
 from .geodesics import (
     GeodesicMethod,
     check_connected,
@@ -43,16 +49,13 @@ from .geodesics import (
 )
 from .inner_product import DiagonalMass, fix_signs, mass_operator
 from .mesh import Mesh
-from .solver_policy import start_vector, use_dense
+from .scaling import check_dim, check_samples, scaling_in_span, top_eigenpairs
 from .spectrum import Spectrum, eigenbasis
 
 __all__ = [
     "classical_mds",
     "landmark_mds",
     "spectral_mds",
-    "fast_classical_scaling",
-    "gram_error",
-    "procrustes_error",
     "scale_mu",
     "SMDS_DEFAULTS",
     "SMDS_EIGEN_TOL",
@@ -97,97 +100,7 @@ SMDS_EIGEN_TOL = 1e-6
 SAMPLED = ("fields", "rows", "pairs")
 
 
-# --- small helpers ----------------------------------------------------------------------------
-def _check_dim(dim: Any, limit: int, what: str) -> int:
-    if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
-        raise ValueError(f"dim must be a positive integer (the embedding dimension), got {dim!r}.")
-    if dim >= limit:
-        raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
-    return int(dim)
-
-
-def _as_embedding(Z: ArrayLike, name: str) -> NDArray[np.float64]:
-    arr = np.asarray(Z, dtype=np.float64)
-    if arr.ndim != 2:
-        raise ValueError(f"{name} must be an (n, dim) array of embedded points, got shape {arr.shape}.")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or inf.")
-    return arr
-
-
-def _pair(Z: ArrayLike, X: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    Zc, Xc = _as_embedding(Z, "Z"), _as_embedding(X, "X")
-    if Zc.shape[0] != Xc.shape[0]:
-        raise ValueError(f"Z has {Zc.shape[0]} points but X has {Xc.shape[0]}; compare embeddings of the same vertices.")
-    return Zc - Zc.mean(axis=0), Xc - Xc.mean(axis=0)
-
-
-# --- accuracy ---------------------------------------------------------------------------------
-def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
-    """Relative Gram-matrix error ``||Z Z.T - X X.T||_F / ||X X.T||_F`` of centred embeddings.
-
-    ``X`` is the reference. No alignment is needed: Gram matrices do not change under rotations
-    and reflections, and both point sets are centred first (so translations do not count either).
-    Computed in O(n dim^2) without forming an n x n matrix (a thin QR of ``[Z X]``, so that the
-    small errors of good embeddings do not drown in round-off);
-    the two embeddings may have different dimensions.
-
-    Examples
-    --------
-    >>> rng = np.random.default_rng(0)
-    >>> X = rng.normal(size=(100, 3))
-    >>> Q = np.linalg.qr(rng.normal(size=(3, 3)))[0]
-    >>> bool(gram_error(X @ Q + 5.0, X) < 1e-12)
-    True
-    """
-    Zc, Xc = _pair(Z, X)
-    # ZZ.T - XX.T = Y S Y.T with Y = [Z X], S = diag(I, -I). With the thin QR Y = Q R its Frobenius
-    # norm is that of the small matrix R S R.T: no cancellation between ||Z.T Z|| and ||X.T X||.
-    R = np.linalg.qr(np.hstack([Zc, Xc]), mode="r")
-    p = Zc.shape[1]
-    Rz, Rx = R[:, :p], R[:, p:]
-    ref = np.linalg.norm(Rx @ Rx.T)
-    if ref <= 0:
-        raise ValueError("the reference embedding X is a single point (its Gram matrix is zero).")
-    return float(np.linalg.norm(Rz @ Rz.T - Rx @ Rx.T) / ref)
-
-
-def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
-    """Relative error ``min_R ||Z R - X||_F / ||X||_F`` over orthogonal ``R``, after centring.
-
-    Reflections are allowed because MDS determines an embedding only up to an orthogonal map.
-    O(n dim^2): one SVD of the dim x dim matrix ``Z.T X``. Both embeddings must have the same
-    dimension.
-
-    Examples
-    --------
-    >>> rng = np.random.default_rng(1)
-    >>> X = rng.normal(size=(50, 3))
-    >>> bool(procrustes_error(-X[:, ::-1] + 1.0, X) < 1e-12)  # a reflection and a shift
-    True
-    """
-    Zc, Xc = _pair(Z, X)
-    if Zc.shape[1] != Xc.shape[1]:
-        raise ValueError(f"Z and X must have the same dimension for Procrustes, got {Zc.shape[1]} and {Xc.shape[1]}.")
-    ref = np.sum(Xc * Xc)
-    if ref <= 0:
-        raise ValueError("the reference embedding X is a single point.")
-    U, _, Vt = np.linalg.svd(Zc.T @ Xc)
-    return float(np.linalg.norm(Zc @ (U @ Vt) - Xc) / np.sqrt(ref))
-
-
 # --- classical MDS ----------------------------------------------------------------------------
-def _top_eigs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Largest ``dim`` eigenpairs of a symmetric matrix, descending."""
-    n = B.shape[0]
-    if use_dense(n) or dim + 1 >= n // 2:
-        vals, vecs = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
-    else:
-        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=start_vector(n))
-    order = np.argsort(vals)[::-1]
-    return vals[order], vecs[:, order]
-
-
 def classical_mds(
     distances: ArrayLike | Mesh,
     dim: int = 3,
@@ -235,7 +148,7 @@ def classical_mds(
         mesh = distances
         check_connected(mesh, "classical MDS on geodesic distances")
         n = mesh.n_vertices
-        _check_dim(dim, n, "the number of vertices")
+        check_dim(dim, n, "the number of vertices")
         check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
                       "simplify the mesh (fewer vertices)")
@@ -248,7 +161,7 @@ def classical_mds(
         if D.ndim != 2 or D.shape[0] != D.shape[1]:
             raise ValueError(f"distances must be a square (n, n) matrix, got shape {D.shape}.")
         n = D.shape[0]
-        _check_dim(dim, n, "the number of points")
+        check_dim(dim, n, "the number of points")
         if not np.all(np.isfinite(D)):
             raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
         if np.any(D < 0):
@@ -266,24 +179,13 @@ def classical_mds(
     B -= row[:, None]
     B -= row[None, :]
     B += row.mean()
-    vals, vecs = _top_eigs(B, dim)
+    vals, vecs = top_eigenpairs(B, dim)
     del B
     X = vecs * np.sqrt(np.maximum(vals, 0.0))
     return fix_signs(X - X.mean(axis=0))
 
 
 # --- landmark MDS -----------------------------------------------------------------------------
-def _check_samples(count: Any, n: int, name: str = "n_samples") -> int:
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 2:
-        raise ValueError(f"{name} must be an integer >= 2, got {count!r}.")
-    if count > n:
-        raise ValueError(
-            f"{name}={count} is more than the mesh's {n} vertices; samples are distinct vertices, "
-            f"so use at most {n} (a few hundred are plenty)."
-        )
-    return int(count)
-
-
 def landmark_mds(
     mesh_or_distances: Mesh | ArrayLike,
     dim: int = 3,
@@ -335,7 +237,7 @@ def landmark_mds(
             raise ValueError("landmarks= goes with a precomputed (q, n) distance array, not with a mesh.")
         mesh = mesh_or_distances
         check_connected(mesh, "landmark MDS")
-        q = _check_samples(n_samples, mesh.n_vertices)
+        q = check_samples(n_samples, mesh.n_vertices)
         idx, delta = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress, select="graph")
     else:
         delta = np.asarray(mesh_or_distances, dtype=np.float64)
@@ -350,14 +252,14 @@ def landmark_mds(
         if not np.all(np.isfinite(delta)):
             raise ValueError("distances contain NaN or inf (a disconnected mesh?).")
     q = delta.shape[0]
-    dim = _check_dim(dim, q, "the number of landmarks")
+    dim = check_dim(dim, q, "the number of landmarks")
     # (q, n) squared distances: in place when the distances are our own, never in the caller's array
     sq = np.square(delta, out=delta) if isinstance(mesh_or_distances, Mesh) else delta**2
     block = sq[:, idx]
     block = 0.5 * (block + block.T)
     mean_col = block.mean(axis=1)
     Bq = -0.5 * (block - mean_col[:, None] - mean_col[None, :] + mean_col.mean())
-    vals, vecs = _top_eigs(Bq, dim)
+    vals, vecs = top_eigenpairs(Bq, dim)
     if np.any(vals <= 1e-12 * max(vals[0], 1e-300)):
         raise ValueError(
             f"the landmarks span fewer than dim={dim} positive directions; use more landmarks or a smaller dim."
@@ -390,7 +292,7 @@ def _check_energy(energy: Any) -> int:
 def scale_mu(
     mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64], *, energy: str = "dirichlet"
 ) -> float:
-    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]**p`` (MATH.md sections 4, 7).
+    """The absolute regulariser ``mu_abs = mu * ||Phi_s.T Phi_s||_2 / lam[k-1]**p`` (docs/maths.md, "Multidimensional scaling").
 
     ``p = 1`` for the Dirichlet energy ``sum lam_i c_i^2`` and ``p = 2`` for the biharmonic one
     ``sum lam_i^2 c_i^2``. ``Phi_s.T Phi_s`` scales with the number of samples and with 1/area, and
@@ -408,26 +310,6 @@ def scale_mu(
     return float(mu) * top / float(eigenvalues[-1]) ** power
 
 
-def _scaling_in_span(gram: NDArray[np.float64], middle: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Top ``dim`` eigenpairs of ``B = C middle C.T`` (n x n) from k x k matrices only.
-
-    ``gram = C.T C``. Any factorisation ``C = Q R`` with Q orthonormal will do: from
-    ``gram = V S V.T``, ``R = S^(1/2) V.T`` and ``Q = C V S^(-1/2)``, so ``B = Q (R middle R.T) Q.T``
-    and only the small matrix is eigendecomposed. Directions that C does not span (S at round-off
-    level) are dropped. Returns ``y`` (k x dim) with ``X = C y`` and the eigenvalues G, descending.
-    Costs one k x k Gram product instead of a Householder QR and never forms Q.
-    """
-    S, V = np.linalg.eigh(0.5 * (gram + gram.T))
-    keep = S > S.max() * len(S) * np.finfo(float).eps
-    S, V = S[keep], V[:, keep]
-    R = np.sqrt(S)[:, None] * V.T
-    small = R @ middle @ R.T
-    G, U = np.linalg.eigh(0.5 * (small + small.T))
-    G, U = G[::-1], U[:, ::-1]
-    y = V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None]))
-    return y, G
-
-
 def _scaling_with_fields(
     phi: NDArray[np.float64], m: NDArray[np.float64], fields: NDArray[np.float64], M: NDArray[np.float64], dim: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -435,7 +317,7 @@ def _scaling_with_fields(
 
     ``F`` = ``fields`` (q x n, squared distances), ``m`` the column means of ``Phi``. Then
     ``B = -1/2 J D2 J = C middle C.T`` with ``C = J [Phi, F.T]`` (n x (k + q)) and
-    ``middle = -1/4 [[0, M], [M.T, 0]]``, and ``_scaling_in_span`` needs only ``C.T C``: built from
+    ``middle = -1/4 [[0, M], [M.T, 0]]``, and ``scaling_in_span`` needs only ``C.T C``: built from
     ``[Phi, F.T].T [Phi, F.T]`` minus the rank-one centring term, O(n (k + q)^2), without a copy of
     ``F``. Returns the (uncentred) embedding and the eigenvalues, descending.
     """
@@ -456,7 +338,7 @@ def _scaling_with_fields(
     middle = np.zeros((k + q, k + q))
     middle[:k, k:] = -0.25 * M
     middle[k:, :k] = -0.25 * M.T
-    y, G = _scaling_in_span(gram * np.outer(unit, unit), middle / np.outer(unit, unit), dim)
+    y, G = scaling_in_span(gram * np.outer(unit, unit), middle / np.outer(unit, unit), dim)
     y *= unit[:, None]
     return phi @ y[:k] + fields.T @ y[k:], G
 
@@ -500,7 +382,7 @@ def spectral_mds(
          q x q block among the samples (the closed form as reimplemented elsewhere); rows need
          about half the samples for the same accuracy;
     4. reduced scaling: with ``C = Q R`` (Q orthonormal; R from the small Gram matrix ``C.T C``,
-       see ``_scaling_in_span``), ``C = J [Phi, F.T]`` (fields) or ``J Phi`` (rows, pairs),
+       see ``scaling_in_span``), ``C = J [Phi, F.T]`` (fields) or ``J Phi`` (rows, pairs),
        eigendecompose the small ``R middle R.T = U G U.T``; ``X = Q U_m G_m^(1/2)``.
 
     Cost O(n (k + q)^2) plus q geodesic solves and the eigenbasis; memory O(n k + q n)
@@ -534,8 +416,10 @@ def spectral_mds(
     sampling : (samples, distances), optional
         A precomputed ``farthest_point_sampling(mesh, count, method=..., select="graph", return_distances=True)``
         with ``count >= n_samples``; its first ``n_samples`` are used (sampling is nested).
-    progress : bool, optional
-        Progress bar for the sampling.
+    progress : bool or None, default None
+        A progress bar over the stages (eigenbasis, samples and their distance fields,
+        embedding). ``None``: only for meshes of 10,000 vertices or more, and only in a notebook
+        or a terminal (never in a log file or under pytest); see :mod:`lbo_notebooks._progress`.
     return_details : bool, default False
         Also return a dict with ``samples``, ``eigenvalues`` (the top ``dim + 1`` of the reduced
         problem), ``eigengap`` (``G[dim-1] / G[dim]``), ``mu_abs``, ``sampled``, ``alpha`` (the k x k
@@ -566,74 +450,85 @@ def spectral_mds(
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= n:
         raise ValueError(f"k must be an integer between 2 and the number of vertices ({n}), got {k!r}.")
     k = int(k)
-    dim = _check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
-    q = _check_samples(n_samples, n)
+    dim = check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
+    q = check_samples(n_samples, n)
     power = _check_energy(energy)
     sampled = _check_sampled(sampled)
     if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
         raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
+    check_progress(progress)
 
-    # 1. eigenbasis
-    if spectrum is None:
-        spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL)
-    elif not isinstance(spectrum, Spectrum):
-        raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
-    elif spectrum.n_vertices != n or spectrum.k < k:
-        raise ValueError(
-            f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
-            f"k={k} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {k})."
-        )
-    phi = spectrum.vectors[:, :k]
-    lam = np.maximum(spectrum.values[:k], 0.0)
-    t1 = time.perf_counter()
-
-    # 2. samples and their squared distances: whole rows (q x n), or only the q x q block among the
-    # samples (each field is still solved on the whole mesh)
-    if sampling is None and sampled != "pairs":
-        samples, ds = farthest_point_sampling(mesh, q, method=method, select="graph", return_distances=True, progress=progress)
-        np.square(ds, out=ds)
-    elif sampling is None:
-        samples = farthest_point_sampling(mesh, q, method=method, select="graph")
-        ds = geodesic_solver(mesh, method).distances(samples, targets=samples, progress=progress) ** 2
-    else:
-        samples, fields = (np.asarray(a) for a in sampling)
-        if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
+    # One BLAS thread throughout (unless the user chose the count): the eigensolver and the heat
+    # method limit themselves anyway, and OpenBLAS threads spinning against another program made
+    # the embedding's products 10-20x slower (0.2-0.5 s -> 3.9-7.3 s at 25k vertices; benchmarks/busy.py).
+    with one_blas_thread(), progress_bar(3, "spectral MDS", progress, long=n >= LARGE_MESH) as bar:
+        # 1. eigenbasis
+        bar.set_postfix_str("eigenbasis", refresh=True)
+        if spectrum is None:
+            spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL)
+        elif not isinstance(spectrum, Spectrum):
+            raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
+        elif spectrum.n_vertices != n or spectrum.k < k:
             raise ValueError(
-                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, k >= {q}, "
-                f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
+                f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
+                f"k={k} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {k})."
             )
-        samples = samples[:q].astype(np.int64)
-        ds = fields[:q] ** 2 if sampled != "pairs" else fields[:q][:, samples] ** 2
-    t2 = time.perf_counter()
+        phi = spectrum.vectors[:, :k]
+        lam = np.maximum(spectrum.values[:k], 0.0)
+        t1 = time.perf_counter()
+        bar.update()
+        bar.set_postfix_str("samples and their distance fields", refresh=True)
 
-    # 3. the interpolation operator M (k x q), then the coefficients alpha (k x k) of D2 ~ Phi alpha Phi.T
-    phi_s = phi[samples]
-    mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
-    M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
-    m = phi.mean(axis=0)
-    if sampled == "fields":
-        X, G = _scaling_with_fields(phi, m, ds, M, dim)
-        alpha = None
-    elif sampled == "rows":
-        # Each row's coefficients are its A-inner products with the eigenfunctions; then the other
-        # direction is interpolated. ds is this function's own array: a lumped mass scales it in place.
-        mass = mass_operator(spectrum.mass)
-        if isinstance(mass, DiagonalMass):
-            ds *= mass.diagonal
-            alpha = M @ (ds @ phi)
+        # 2. samples and their squared distances: whole rows (q x n), or only the q x q block among the
+        # samples (each field is still solved on the whole mesh)
+        if sampling is None and sampled != "pairs":
+            samples, ds = farthest_point_sampling(mesh, q, method=method, select="graph", return_distances=True, progress=False)
+            np.square(ds, out=ds)
+        elif sampling is None:
+            samples = farthest_point_sampling(mesh, q, method=method, select="graph")
+            ds = geodesic_solver(mesh, method).distances(samples, targets=samples, progress=False) ** 2
         else:
-            alpha = M @ (ds @ (mass @ phi))
-    else:
-        alpha = M @ (0.5 * (ds + ds.T)) @ M.T
-    del ds
-    if alpha is not None:
-        alpha = 0.5 * (alpha + alpha.T)
-        # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
-        gram = phi.T @ phi - n * np.outer(m, m)
-        y, G = _scaling_in_span(gram, -0.5 * alpha, dim)
-        X = phi @ y
-    X = fix_signs(X - X.mean(axis=0))
-    t3 = time.perf_counter()
+            samples, fields = (np.asarray(a) for a in sampling)
+            if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
+                raise ValueError(
+                    f"sampling must be (samples, distances) from farthest_point_sampling(mesh, k >= {q}, "
+                    f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
+                )
+            samples = samples[:q].astype(np.int64)
+            ds = fields[:q] ** 2 if sampled != "pairs" else fields[:q][:, samples] ** 2
+        t2 = time.perf_counter()
+        bar.update()
+        bar.set_postfix_str("embedding", refresh=True)
+
+        # 3. the interpolation operator M (k x q), then the coefficients alpha (k x k) of D2 ~ Phi alpha Phi.T
+        phi_s = phi[samples]
+        mu_abs = scale_mu(mu, phi_s, lam, energy=energy)
+        M = scipy.linalg.solve(phi_s.T @ phi_s + mu_abs * np.diag(lam**power), phi_s.T, assume_a="pos")
+        m = phi.mean(axis=0)
+        if sampled == "fields":
+            X, G = _scaling_with_fields(phi, m, ds, M, dim)
+            alpha = None
+        elif sampled == "rows":
+            # Each row's coefficients are its A-inner products with the eigenfunctions; then the other
+            # direction is interpolated. ds is this function's own array: a lumped mass scales it in place.
+            mass = mass_operator(spectrum.mass)
+            if isinstance(mass, DiagonalMass):
+                ds *= mass.diagonal
+                alpha = M @ (ds @ phi)
+            else:
+                alpha = M @ (ds @ (mass @ phi))
+        else:
+            alpha = M @ (0.5 * (ds + ds.T)) @ M.T
+        del ds
+        if alpha is not None:
+            alpha = 0.5 * (alpha + alpha.T)
+            # 4. reduced classical scaling in the span of J Phi (J Phi = Phi - 1 m.T, never formed)
+            gram = phi.T @ phi - n * np.outer(m, m)
+            y, G = scaling_in_span(gram, -0.5 * alpha, dim)
+            X = phi @ y
+        X = fix_signs(X - X.mean(axis=0))
+        t3 = time.perf_counter()
+        bar.update()
     if not return_details:
         return X
     details = {
@@ -648,162 +543,7 @@ def spectral_mds(
     return X, details
 
 
-# --- fast classical scaling -------------------------------------------------------------------
-#: Defaults of :func:`fast_classical_scaling` (mu is dimensionless, see ``_interpolation_operator``).
-#: Checked on the SMDS tuning shapes (``benchmarks/mds.py --fcs-tuning``; none of them is reported
-#: elsewhere): the Gram error against classical MDS is at most 2.3% with 100 samples, 1.5% with
-#: 150 and 0.74% with 200, and changes by under 3% as mu goes from 1e-4 to 0.1. 150 samples keep
-#: a 50k-vertex mesh under 4 s on two cores (200 took 4-5 s); pass ``n_samples=200`` for more.
-FCS_DEFAULTS: dict[str, float] = {"n_samples": 150, "mu": 1e-3}
-
-
-def _interpolation_operator(mesh: Mesh, samples: NDArray[np.int64], mu: float) -> tuple[NDArray[np.float64], float]:
-    """``M = (S.T S + mu_abs E)^-1 S.T`` (n x q) of :func:`fast_classical_scaling`, and ``mu_abs``.
-
-    ``E = W A^-1 W`` is the biharmonic energy. (The Dirichlet energy W alone is cheaper, but
-    harmonic interpolation of point values spikes in 2D: Gram errors 5-13x larger in a quick test
-    at q = 50-100.) ``E`` has a two-ring stencil, and its factorisation fills three times as much
-    as W's, so M is found as a smoothing spline instead (docs/maths.md, "Fast classical scaling"):
-    with ``Z`` solving ``W A^-1 W Z = S.T`` on weights that sum to zero (two solves with the
-    cached factorisation of W, shared with the heat method), the minimiser is ``x = Z w + c``
-    where ``(S Z + mu_abs I) w + c = e`` and ``sum(w) = 0``: a (q+1) x (q+1) system.
-    """
-    from .heat_method import solve_poisson
-    from .operators import mass_matrix
-
-    n, q = mesh.n_vertices, samples.size
-    a = mass_matrix(mesh, "voronoi").diagonal()
-    area = float(a.sum())
-    # Balance the terms for a function of unit size: |S f|^2 ~ q, and the biharmonic energy of the
-    # finest function q samples resolve (lam ~ 4 pi q / area, Weyl) is ~ lam^2 area.
-    mu_abs = mu * q / (area * (4.0 * np.pi * q / area) ** 2)
-    spikes = np.zeros((n, q))
-    spikes[samples, np.arange(q)] = 1.0
-    v = solve_poisson(mesh, spikes)  # W v = S.T w for weights w that sum to zero
-    v -= (a @ v) / area  # A-mean zero, so that A v sums to zero and W Z = A v can be solved
-    Z = solve_poisson(mesh, a[:, None] * v)
-    bordered = np.zeros((q + 1, q + 1))
-    bordered[:q, :q] = 0.5 * (Z[samples] + Z[samples].T) + mu_abs * np.eye(q)
-    bordered[q, :q] = bordered[:q, q] = 1.0
-    unit = np.zeros((q + 1, q))
-    unit[:q] = np.eye(q)
-    coefficients = scipy.linalg.solve(bordered, unit, assume_a="sym")
-    return Z @ coefficients[:q] + coefficients[q], mu_abs
-
-
-def fast_classical_scaling(
-    mesh: Mesh,
-    *,
-    dim: int = 3,
-    n_samples: int = int(FCS_DEFAULTS["n_samples"]),
-    mu: float = FCS_DEFAULTS["mu"],
-    method: GeodesicMethod = "heat",
-    sampling: tuple[ArrayLike, ArrayLike] | None = None,
-    progress: bool | None = None,
-    return_details: bool = False,
-) -> NDArray[np.float64] | tuple[NDArray[np.float64], dict[str, Any]]:
-    """Fast classical scaling (Shamai, Zibulevsky & Kimmel, ICCV 2015 / TPAMI 2018).
-
-    No eigenbasis of the Laplace–Beltrami operator is needed:
-
-    1. q farthest-point samples (chosen in edge-graph distance, see
-       :func:`~lbo_notebooks.geodesics.farthest_point_sampling`) and their squared geodesic
-       distance fields ``F`` (q x n), the rows of the squared-distance matrix ``D2`` at the samples;
-    2. every column of ``D2`` is a smooth function on the surface known at the samples, so it is
-       interpolated by the smoothest function through those values: ``D2 ~ M F`` with
-       ``M = (S.T S + mu E)^-1 S.T`` (n x q), ``S`` the q x n sampling matrix and ``E = W A^-1 W``
-       the biharmonic energy, found as a smoothing spline with 2 q solves of the Laplacian;
-    3. with ``D2 ~ (M F + F.T M.T) / 2`` (symmetrised), ``B = -1/2 J D2 J`` lives in the span of
-       ``[J M, J F.T]``: with ``[J M, J F.T] = Q R``, Q orthonormal, the 2q x 2q eigenproblem of
-       ``-1/4 R [[0, I], [I, 0]] R.T`` give the top ``dim`` eigenpairs of the approximate B.
-
-    Cost O(n q^2) after the sampling, memory O(n q); never an n x n matrix.
-
-    Only the part of each column that is linear in the vertex position survives the double
-    centring on a flat patch, and the discrete (Neumann) biharmonic energy does not vanish on
-    linear functions at boundary vertices: on a flat rectangle the error is about 2% for 40
-    samples and 1.2% for 80, where classical MDS is exact. Closed surfaces have no such term
-    (0.24% Gram error for 150 samples on a bumpy sphere of 4,000 vertices).
-
-    Parameters
-    ----------
-    mesh : Mesh
-        A connected mesh.
-    dim : int, default 3
-        Embedding dimension, ``dim < 2 q``.
-    n_samples : int, default 150
-        Number of samples q, ``2 <= q <= n``.
-    mu : float > 0, default 1e-3
-        Dimensionless weight of the smoothness energy (scaled by the sampling density, so the
-        same value fits every mesh size and unit).
-    method : {"heat", "exact", "fmm"}
-        Geodesic method for the sampling.
-    sampling : (samples, distances), optional
-        Reuse ``farthest_point_sampling(mesh, count >= n_samples, return_distances=True)``.
-    progress : bool, optional
-        Progress bar for the sampling.
-    return_details : bool, default False
-        Also return a dict with ``samples``, the top ``dim + 1`` eigenvalues of B and timings.
-
-    Returns
-    -------
-    ndarray, shape (n, dim)
-        Centred; column signs fixed. With ``return_details``, ``(X, details)``.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes
-    >>> plane = shapes.rectangle(2.0, 1.0, 30, 15)   # flat: geodesic = Euclidean distance
-    >>> X = fast_classical_scaling(plane, dim=2, n_samples=40, method="exact")
-    >>> bool(procrustes_error(X, plane.vertices[:, :2]) < 0.025)
-    True
-    """
-    t0 = time.perf_counter()
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"fast_classical_scaling takes a Mesh, got {type(mesh).__name__}.")
-    check_connected(mesh, "fast classical scaling")
-    n = mesh.n_vertices
-    method = check_method(method)
-    q = _check_samples(n_samples, n)
-    dim = _check_dim(dim, 2 * q, "2 n_samples (the embedding lives in the span of 2q interpolants)")
-    if isinstance(mu, bool) or not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
-        raise ValueError(f"mu must be a positive number (dimensionless; try 1e-3), got {mu!r}.")
-
-    # 1. samples and their squared distance fields
-    if sampling is None:
-        samples, fields = farthest_point_sampling(
-            mesh, q, method=method, return_distances=True, progress=progress, select="graph"
-        )
-    else:
-        samples, fields = (np.asarray(a) for a in sampling)
-        if samples.ndim != 1 or fields.ndim != 2 or fields.shape != (samples.size, n) or samples.size < q:
-            raise ValueError(
-                f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
-                f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
-            )
-        samples, fields = samples[:q].astype(np.int64), fields[:q]
-    F = np.square(fields)  # a new array: the caller's sampling is not modified
-    t1 = time.perf_counter()
-
-    # 2. interpolation operator
-    M, mu_abs = _interpolation_operator(mesh, samples, float(mu))
-    t2 = time.perf_counter()
-
-    # 3. classical scaling in span[J M, J F.T]: D2 ~ (M F + F.T M.T) / 2 gives
-    # B = C (-1/4 [[0, I], [I, 0]]) C.T with C = [J M, J F.T].
-    basis = np.hstack([M - M.mean(axis=0), F.T - F.T.mean(axis=0)])
-    del M
-    swap = np.block([[np.zeros((q, q)), np.eye(q)], [np.eye(q), np.zeros((q, q))]])
-    y, G = _scaling_in_span(basis.T @ basis, -0.25 * swap, dim)
-    X = basis @ y
-    X = fix_signs(X - X.mean(axis=0))
-    t3 = time.perf_counter()
-    if not return_details:
-        return X
-    details = {
-        "samples": samples,
-        "eigenvalues": G[: dim + 1].copy(),
-        "mu_abs": mu_abs,
-        "timings": {"sampling": t1 - t0, "interpolation": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
-    }
-    return X, details
+# fast classical scaling has its own module; the old spellings resolve lazily, with a warning (an
+# import here would put fast_scaling, and the geodesics under it, one level under mds).
+__getattr__ = moved(__name__, {"fast_classical_scaling": "lbo_notebooks.fast_scaling:fast_classical_scaling",
+                               "FCS_DEFAULTS": "lbo_notebooks.fast_scaling:FCS_DEFAULTS"})

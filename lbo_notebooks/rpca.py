@@ -29,6 +29,14 @@ c, the number of data columns), and a Lanczos run as long as :func:`~lbo_noteboo
 memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
 about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
 
+Threads: the sparse path's time goes to sparse solves and Lanczos' level-2 products. On an idle
+machine BLAS threads make the latter faster (25,000 vertices, k = 100: 4.1 s instead of 4.8 s),
+but OpenBLAS threads spin while they wait for a core, and beside one busy program the same call
+took 7.3 s, on a loaded machine up to 7x its time (``benchmarks/busy.py``). So on meshes of
+10,000 vertices or more the solver looks whether the machine's other cores are idle
+(:func:`~lbo_notebooks.idle_cores.machine_is_idle`, 50 ms) and otherwise, as always on smaller
+meshes, runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count the user set is kept).
+
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
 ``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
 
@@ -45,16 +53,19 @@ area`` Weyl's estimate of the k-th Laplace–Beltrami eigenvalue, i.e.
 
 from __future__ import annotations
 
+from contextlib import nullcontext
 from dataclasses import dataclass
 from typing import Literal, Sequence
 
 import numpy as np
 import scipy.linalg
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import renamed, warn
+from ._progress import LARGE_MESH, check_progress, progress_bar
+from .blas_threads import one_blas_thread
+from .idle_cores import machine_is_idle
 from .inner_product import (
     a_orthonormalize,
     check_operators,
@@ -63,7 +74,8 @@ from .inner_product import (
     reconstruct,  # noqa: F401  old spelling (home: inner_product)
     reconstruction_error,  # noqa: F401  old spelling (home: inner_product)
 )
-from .solver_policy import default_shift, start_vector, use_dense
+from .rpca_pencil import complement_lanczos, data_eigenpairs, rayleigh_ritz
+from .solver_policy import default_shift, use_dense
 from .sparse_factor import SymmetricFactor, symmetric_lu
 from .spectrum import eigenbasis
 
@@ -76,33 +88,6 @@ __all__ = [
 ]
 
 Method = Literal["auto", "dense", "sparse"]
-
-# Residual (relative backward error) at which a data eigenpair counts as converged.
-_DATA_TOL = 1e-12
-_MAX_ROUNDS = 8
-
-
-# --- small linear-algebra helpers --------------------------------------------------------------
-def _rayleigh_ritz(
-    basis: NDArray[np.float64], U: NDArray[np.float64], W: sp.csr_matrix, mu: float, k: int
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Top ``k`` Ritz pairs of ``(U U.T - mu W, A)`` on the A-orthonormal columns of ``basis``."""
-    projected_data = basis.T @ U
-    projected = projected_data @ projected_data.T - mu * (basis.T @ (W @ basis))
-    values, vectors = np.linalg.eigh((projected + projected.T) / 2)
-    order = np.argsort(values)[::-1][:k]
-    return values[order], basis @ vectors[:, order]
-
-
-@dataclass(frozen=True)
-class _ShiftedFactor:
-    """A sparse LU of ``mu W + shift A`` with the Woodbury pieces for ``- U U.T``."""
-
-    shift: float
-    factor: SymmetricFactor
-    solved: NDArray[np.float64]  # factor^-1 U
-    capacitance: NDArray[np.float64]  # I - U.T factor^-1 U
-
 
 # --- input checks ------------------------------------------------------------------------------
 def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
@@ -171,7 +156,7 @@ class RPCAResult:
     ----------
     basis : ndarray, shape (n, k)
         A-orthonormal columns, ordered by decreasing ``values``; signs fixed by
-        :func:`~lbo_notebooks.spectrum.fix_signs`.
+        :func:`~lbo_notebooks.inner_product.fix_signs`.
     values : ndarray, shape (k,)
         Generalized eigenvalues ``sigma`` of ``(A X X.T A - mu W) p = sigma A p``, descending.
         At ``mu = 0`` the directions beyond the rank of the data all have ``sigma = 0`` and are
@@ -304,7 +289,7 @@ class RegularizedPCA:
         method : {"auto", "dense", "sparse"}
             ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
             ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
-            ``"auto"`` follows :func:`~lbo_notebooks.inner_product.use_dense`.
+            ``"auto"`` follows :func:`~lbo_notebooks.solver_policy.use_dense`.
 
         Returns
         -------
@@ -319,12 +304,14 @@ class RegularizedPCA:
         if method == "sparse" and 2 * k + c + 2 > n:
             method = "dense"  # Lanczos needs room: k close to n is a small-mesh problem anyway
         if np.isinf(mu):
-            return self._solve_infinite(k)
-        if mu == 0.0:
-            return self._solve_pca_limit(k, method)
-        if method == "dense":
-            return self._solve_dense(k, mu)
-        return self._solve_sparse(k, mu)
+            return self._solve_infinite(k)  # the eigensolver limits its BLAS threads itself
+        if method == "dense":  # small meshes: LAPACK on an n x n matrix, where BLAS threads pay
+            return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_dense(k, mu)
+        # The sparse paths: BLAS threads only on a large mesh and an otherwise idle machine
+        # (module docstring, "Threads").
+        idle = self.n_vertices >= LARGE_MESH and machine_is_idle()
+        with nullcontext() if idle else one_blas_thread():
+            return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis
     def _solve_infinite(self, k: int) -> RPCAResult:
@@ -358,7 +345,7 @@ class RegularizedPCA:
                 _, Y = scipy.linalg.eigh((Zw + Zw.T) / 2, (Za + Za.T) / 2, subset_by_index=[0, k - r - 1])
                 rest = Z @ Y  # already A-orthonormal: Y.T (Z.T A Z) Y = I
             else:
-                rest = self._complement_lanczos(k - r, Q_all, mu=None)
+                rest = complement_lanczos(W, A, U, self._base()[0], self._t0, k - r, Q_all, mu=None)
             basis = np.hstack([pca, rest])
             values = np.concatenate([w[:r], np.zeros(k - r)])
         return RPCAResult(basis=fix_signs(basis, A), values=np.asarray(values, dtype=np.float64), mu=0.0, n_data=min(r, k))
@@ -395,120 +382,42 @@ class RegularizedPCA:
         n_above = int((np.linalg.eigvalsh((H + H.T) / 2) > 1.0).sum())
         n_data = min(n_above, k)
         data_vectors = np.zeros((self.n_vertices, 0))
-        if n_data:
-            data_vectors = self._data_eigenpairs(n_data, mu, tau, Y0)
         rest = np.zeros((self.n_vertices, 0))
+        if n_data:
+            data_vectors = data_eigenpairs(W, A, U, self.data, n_data, mu, tau, Y0)
         if k > n_data:
-            rest = self._complement_lanczos(k - n_data, data_vectors, mu=mu, Y0=Y0)
+            rest = complement_lanczos(W, A, U, F0, self._t0, k - n_data, data_vectors, mu=mu, Y0=Y0)
         subspace = a_orthonormalize(np.hstack([data_vectors, rest]), A, drop_dependent=True)
-        values, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
+        values, ritz = rayleigh_ritz(subspace, U, W, mu, k)
         if ritz.shape[1] < k:  # pragma: no cover - would mean a lost direction
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
         return RPCAResult(basis=fix_signs(ritz, A), values=values, mu=mu, n_data=n_data)
 
-    def _data_eigenpairs(self, k: int, mu: float, tau: float, Y0: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The top ``k`` eigenvectors (all with eigenvalue > tau) by rational Krylov + inverse iteration."""
-        W, A, U, X = self.stiffness, self.mass, self._U, self.data
-        c = U.shape[1]
-        subspace = a_orthonormalize(np.hstack([X, Y0]), A, drop_dependent=True)
-        theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
-        # One factorisation per data eigenvalue, at its current Ritz estimate (Ritz values are lower
-        # bounds; below tau we keep the tau factor, whose block Y0 is already in the subspace).
-        factors: list[_ShiftedFactor] = []
-        for shift in theta:
-            if shift <= tau * (1 + 1e-8):
-                continue
-            factor = symmetric_lu(mu * W + shift * A)
-            solved = factor.solve(np.array(U))
-            factors.append(_ShiftedFactor(float(shift), factor, solved, np.eye(c) - U.T @ solved))
-        if factors:
-            subspace = a_orthonormalize(np.hstack([f.solved for f in factors]), A, prepend=subspace, drop_dependent=True)
-            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
-
-        def shifted_solve(j: int, b: NDArray[np.float64]) -> NDArray[np.float64]:
-            # (mu W + s A - U U.T)^-1 b by Woodbury, with the factor whose shift is nearest theta[j].
-            near = min(factors, key=lambda f: abs(np.log(f.shift / max(theta[j], tau))))
-            z = near.factor.solve(b)
-            try:
-                return z + near.solved @ np.linalg.solve(near.capacitance, U.T @ z)
-            except np.linalg.LinAlgError:  # shift is an exact eigenvalue: solved already holds the vector
-                return z
-
-        scale = abs(theta[0]) + mu * abs(W).sum(axis=1).max() + 1.0
-        for _ in range(_MAX_ROUNDS):
-            residual = U @ (U.T @ ritz) - mu * (W @ ritz) - (A @ ritz) * theta
-            backward_error = np.linalg.norm(residual, axis=0) / (scale * np.sqrt(np.einsum("ij,ij->j", ritz, A @ ritz)) * max(1.0, np.abs(A).max()))
-            if np.all(backward_error < _DATA_TOL) or not factors:
-                break
-            corrections = np.column_stack([shifted_solve(j, A @ ritz[:, j]) for j in range(k)])
-            subspace = a_orthonormalize(corrections, A, prepend=subspace, drop_dependent=True)
-            theta, ritz = _rayleigh_ritz(subspace, U, W, mu, k)
-        return ritz
-
-    def _complement_lanczos(
-        self, count: int, deflate: NDArray[np.float64], *, mu: float | None, Y0: NDArray[np.float64] | None = None
-    ) -> NDArray[np.float64]:
-        """Top ``count`` eigenvectors of the pencil on the A-orthogonal complement of ``deflate``.
-
-        ``mu=None`` means the mu -> 0 limit: the smoothest functions (smallest ``W`` eigenvalues)
-        A-orthogonal to ``deflate``. Otherwise the pencil is ``(U U.T - mu W, A)`` and shift-invert
-        Lanczos runs at ``tau = mu t0``, using the mu-independent factor of ``W + t0 A``.
-        """
-        W, A, U = self.stiffness, self.mass, self._U
-        n = self.n_vertices
-        F0, _ = self._base()
-        D = deflate
-        AD = np.asarray(A @ D)
-
-        def project(x: NDArray[np.float64]) -> NDArray[np.float64]:  # A-orthogonal projector
-            return x - D @ (D.T @ (A @ x)) if D.shape[1] else x
-
-        def project_t(y: NDArray[np.float64]) -> NDArray[np.float64]:  # its transpose
-            return y - AD @ (D.T @ y) if D.shape[1] else y
-
-        if mu is None:
-            # Constrained problem: smallest W eigenpairs on {p : D.T A p = 0}. Span D is not
-            # W-invariant, so the shift-inverse of the *compressed* pencil is needed: the saddle
-            # point solve [[W + t0 A, A D], [D.T A, 0]] (Schur complement on the few columns of D).
-            sigma = -self._t0
-            KD = F0.solve(np.array(AD)) if D.shape[1] else np.zeros((n, 0))
-            schur = AD.T @ KD
-
-            def inner(y: NDArray[np.float64]) -> NDArray[np.float64]:
-                z = F0.solve(y)
-                return z - KD @ np.linalg.solve(schur, AD.T @ z) if D.shape[1] else z
-
-            L = spla.aslinearoperator(W)
-        else:
-            assert Y0 is not None
-            sigma = mu * self._t0
-            C = np.eye(U.shape[1]) - U.T @ Y0
-
-            def inner(y: NDArray[np.float64]) -> NDArray[np.float64]:
-                # (U U.T - mu W - tau A)^-1 y = -(M - U U.T)^-1 y, M = mu (W + t0 A); Woodbury.
-                z = F0.solve(y) / mu
-                return -(z + Y0 @ np.linalg.solve(C, U.T @ z))
-
-            L = spla.LinearOperator((n, n), matvec=lambda x: U @ (U.T @ x) - mu * (W @ x), dtype=np.float64)
-
-        def opinv(y: NDArray[np.float64]) -> NDArray[np.float64]:
-            y = np.asarray(y, dtype=np.float64).reshape(n)
-            return project(inner(project_t(y)))
-
-        op = spla.LinearOperator((n, n), matvec=opinv, dtype=np.float64)
-        v0 = project(start_vector(n))
-        values, vectors = spla.eigsh(L, k=count, M=A, sigma=sigma, which="LM", OPinv=op, v0=v0)
-        order = np.argsort(values)[::-1] if mu is not None else np.argsort(values)
-        return a_orthonormalize(project(vectors[:, order]), A, refine=True)
-
     @renamed({"m": "k"})
-    def sweep(self, k: int, *, betas: Sequence[float] | None = None, mus: Sequence[float] | None = None) -> list[RPCAResult]:
-        """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation."""
+    def sweep(
+        self,
+        k: int,
+        *,
+        betas: Sequence[float] | None = None,
+        mus: Sequence[float] | None = None,
+        progress: bool | None = None,
+    ) -> list[RPCAResult]:
+        """Solve for every weight in ``betas`` (or ``mus``), reusing the factorisation.
+
+        ``progress`` shows a bar over the weights (:mod:`lbo_notebooks._progress`): ``True``
+        always, ``False`` never, ``None`` (default) only for meshes of 10,000 vertices or more and
+        only in a notebook or a terminal (never in a log file or under pytest).
+        """
         if (betas is None) == (mus is None):
             raise ValueError("give exactly one of betas or mus.")
-        if betas is not None:
-            return [self.solve(k, beta=b) for b in betas]
-        return [self.solve(k, mu) for mu in mus]  # type: ignore[union-attr]
+        check_progress(progress)
+        weights = [("beta", b) for b in betas] if betas is not None else [("mu", m) for m in mus]  # type: ignore[union-attr]
+        results = []
+        with progress_bar(len(weights), "regularized PCA", progress, long=self.n_vertices >= LARGE_MESH) as bar:
+            for name, value in weights:
+                results.append(self.solve(k, beta=value) if name == "beta" else self.solve(k, value))
+                bar.update()
+        return results
 
 
 # --- functional interface ----------------------------------------------------------------------

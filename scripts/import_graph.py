@@ -33,7 +33,7 @@ from pathlib import Path
 LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
     ("support", "tools every layer uses: deprecation shims, argument checks, optional open3d, progress bars, "
      "BLAS threads and platform details, cost measurement",
-     ("_deprecation", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "cost")),
+     ("_deprecation", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "idle_cores", "cost")),
     ("data", "the mesh and point cloud, units, files in and out, repair",
      ("mesh", "units", "io", "formats", "formats.*", "repair", "pointcloud")),
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
@@ -42,7 +42,8 @@ LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
      ("inner_product", "solver_policy", "sparse_factor", "krylov", "slicing", "eigensolver")),
     ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
     ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
-     ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "rpca",
+     ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "scaling", "fast_scaling",
+      "embedding_error", "rpca", "rpca_pencil",
       "functional_maps", "matching", "shape_distribution")),
     ("shapes and pictures", "procedural test shapes, the creatures, plotting",
      ("shapes", "creatures", "creatures.*", "plotting", "plotting.*")),

@@ -257,6 +257,9 @@ def test_nearest_rows_is_the_exhaustive_nearest_neighbour():
     d = np.linalg.norm(queries - points[single], axis=1), np.linalg.norm(queries - points[exact], axis=1)
     assert np.mean(single == exact) > 0.999
     np.testing.assert_allclose(d[0], d[1], rtol=1e-5)
+    # The blocks of queries are shared among threads: the same answer for any number of them.
+    for workers in (1, 2, 3):
+        np.testing.assert_array_equal(fm._nearest_rows(queries, points, dtype=np.float32, workers=workers), single)
 
 
 def test_points_from_map_is_the_k_d_tree_answer(dog, dog_walking):

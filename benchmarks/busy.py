@@ -1,0 +1,205 @@
+"""Benchmark: each heavy public call quiet and beside one CPU-bound process (issue 30, item 4).
+
+On Binder a container sees all the host's cores under a small CPU quota, and on a laptop other
+programs run; a call that fills every core with BLAS threads then competes with them. This runs
+each heavy call in a fresh process, once on a quiet machine and once beside a child process that
+spins (``while True: pass``), interleaved, and prints the slowdown (busy / quiet wall time).
+
+The BLAS thread variables (``OPENBLAS_NUM_THREADS`` and the others of
+:data:`lbo_notebooks.blas_threads.ENVIRONMENT`) are *removed* from the children's environment,
+as on a user's machine: OpenBLAS then starts one thread per core.
+
+With ``--baseline REV`` the same calls also run from ``git archive REV`` (a copy of that commit in
+a temporary directory), interleaved with this tree, so the quiet times of the two are compared in
+the same run (new / old) and both slowdowns are shown.
+
+Run (2 cores; other helpers were running too, so read the ratios)::
+
+    python benchmarks/busy.py [--calls rpca smds match eigenbasis distances] [--repeats 2] [--baseline HEAD]
+
+Calls and sizes (``--n`` scales the meshes):
+
+* ``rpca``: :class:`~lbo_notebooks.rpca.RegularizedPCA` of two poses (6 columns) of a 25k-vertex
+  torus, ``solve(100, beta=0.5)``;
+* ``smds``: :func:`~lbo_notebooks.mds.spectral_mds` with its defaults, deformed torus of 25k;
+* ``match``: :func:`~lbo_notebooks.match` with its defaults, dog standing -> walking, 12k, target shuffled;
+* ``eigenbasis``: ``eigenbasis(mesh, 100)`` on the 25k dog;
+* ``distances``: ``geodesic_distances`` from every vertex of a 4k dog (a 4k x 4k matrix).
+
+Recorded in ``benchmarks/results/busy.json`` (2 cores, other helpers' jobs running too, load
+about 2 at the end; old = ad1a75d, before issue 30 item 4; medians of 2 interleaved rounds)::
+
+    python benchmarks/busy.py --repeats 2 --baseline ad1a75d --record
+
+    call       code  quiet s   busy s busy/quiet quiet cpu busy cpu  quiet new/old
+    rpca       old      8.62    16.35       1.90     10.78    13.99
+    rpca       new      5.17     8.03       1.55      6.55     5.13           0.75
+    smds       old      4.22     7.22       1.71      5.47     6.13
+    smds       new      3.59     4.19       1.17      4.86     4.92           0.87
+    match      old      2.70     6.25       2.31      5.09     8.17
+    match      new      2.68     2.81       1.05      2.86     2.83           0.99
+    eigenbasis old      1.12     1.53       1.37      1.75     1.85
+    eigenbasis new      1.16     1.58       1.36      1.82     1.85           1.04
+    distances  old      1.28     1.91       1.49      2.11     1.85
+    distances  new      1.32     1.93       1.46      2.16     1.88           1.02
+
+The cause was OpenBLAS's threads, which spin while they wait for a core: beside another program
+a call filling both cores with them burnt 1.5-4x the CPU time it needs. Earlier the same day, on
+a machine loaded by other jobs (load 5-8, so "quiet" is not quiet), one round each:
+
+    rpca  old 42.6-59.9 s (22.3-22.5 s CPU)   new 9.2-9.9 s (5.1-5.8 s CPU)
+    match old 29.7 s (19.2 s CPU)              new 11.5 s (3.7 s CPU)
+    smds  old 11.0-16.9 s (6.0-8.6 s CPU)      new 7.1-7.5 s (5.0-6.6 s CPU)
+    SMDS's embedding step alone: 3.9-7.3 s with OpenBLAS's threads, 0.2-0.5 s on one.
+
+The fix, by call: ``spectral_mds``, ``fast_classical_scaling`` and ``match`` run BLAS on one
+thread (:func:`~lbo_notebooks.blas_threads.one_blas_thread`), ``match``'s nearest-neighbour search
+shares its blocks among its own worker threads; the eigensolver and the heat method did so
+already. Regularized PCA does gain from BLAS threads on an idle machine (25k vertices, 2 rounds
+on a quiet machine: 4.06 s with them, 4.86 s on one thread, ratio 1.00 busy/quiet on one thread
+and 1.81 with them), so it keeps them on large meshes when the rest of the machine is idle
+(:func:`~lbo_notebooks.idle_cores.machine_is_idle`) and takes one thread otherwise; with that
+rule, 2 rounds: quiet new/old 1.00, busy/quiet 1.15 against the old code's 1.89.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+BLAS_VARIABLES = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+CALLS = ("rpca", "smds", "match", "eigenbasis", "distances")
+SIZES = {"rpca": 25000, "smds": 25000, "match": 12000, "eigenbasis": 25000, "distances": 4000}
+
+
+def _setup(call: str, n: int):
+    """Inputs of ``call`` (not timed) and the timed function."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import lbo_notebooks as lbo
+
+    if call == "rpca":
+        from rpca import two_poses
+
+        from lbo_notebooks.rpca import RegularizedPCA
+
+        mesh, X = two_poses(n)
+        W, A = lbo.stiffness_matrix(mesh), lbo.mass_matrix(mesh)
+        return lambda: RegularizedPCA(X, W, A, center=True).solve(100, beta=0.5)
+    if call == "smds":
+        from mds import deformed_torus
+
+        mesh = deformed_torus(n)
+        _ = mesh.edges, mesh.face_areas
+        return lambda: lbo.spectral_mds(mesh, progress=False)
+    if call == "match":
+        a = lbo.creature("dog", "standing", n_vertices=n)
+        b = lbo.creature("dog", "walking", n_vertices=n)
+        perm = np.random.default_rng(0).permutation(b.n_vertices)
+        b = lbo.Mesh(b.vertices[perm], np.argsort(perm)[b.faces])
+        return lambda: lbo.match(a, b, progress=False)
+    if call == "eigenbasis":
+        mesh = lbo.creature("dog", "standing", n_vertices=n)
+        _ = mesh.edges, mesh.face_areas
+        return lambda: lbo.eigenbasis(mesh, 100)
+    if call == "distances":
+        mesh = lbo.creature("dog", "standing", n_vertices=n)
+        return lambda: lbo.geodesic_distances(mesh, np.arange(mesh.n_vertices), progress=False)
+    raise ValueError(call)
+
+
+def child(call: str, n: int) -> None:
+    fn = _setup(call, n)
+    c0, t0 = time.process_time(), time.perf_counter()
+    fn()
+    print(json.dumps({"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0}))
+
+
+def run(tree: Path, call: str, n: int, busy: bool) -> dict:
+    env = {k: v for k, v in os.environ.items() if k not in BLAS_VARIABLES}
+    env["PYTHONPATH"] = str(tree)
+    spinner = subprocess.Popen([sys.executable, "-c", "while True: pass"]) if busy else None
+    try:
+        if spinner is not None:
+            time.sleep(0.2)
+        out = subprocess.run([sys.executable, __file__, "--child", call, str(n)], env=env,
+                             capture_output=True, text=True, check=False)
+    finally:
+        if spinner is not None:
+            spinner.kill()
+            spinner.wait()
+    if out.returncode != 0:
+        raise RuntimeError(f"{call} in {tree} failed:\n{out.stderr}")
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--calls", nargs="+", choices=CALLS, default=list(CALLS))
+    parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--scale", type=float, default=1.0, help="multiply every mesh size")
+    parser.add_argument("--baseline", help="a git revision to compare with (run from git archive)")
+    parser.add_argument("--record", action="store_true", help="also write the table to benchmarks/results/busy.json")
+    parser.add_argument("--child", nargs=2, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child:
+        child(args.child[0], int(args.child[1]))
+        return
+    trees = {"new": ROOT}
+    with tempfile.TemporaryDirectory() as tmp:
+        if args.baseline:
+            old = Path(tmp) / "old"
+            old.mkdir()
+            archive = subprocess.run(["git", "-C", str(ROOT), "archive", args.baseline, "lbo_notebooks"],
+                                     capture_output=True, check=True).stdout
+            subprocess.run(["tar", "-x", "-C", str(old)], input=archive, check=True)
+            trees = {"old": old, "new": ROOT}
+        times: dict = {}
+        for r in range(args.repeats):
+            for call in args.calls:
+                n = int(SIZES[call] * args.scale)
+                order = [(name, busy) for name in trees for busy in (False, True)]
+                if r % 2:
+                    order.reverse()
+                for name, busy in order:
+                    t = run(trees[name], call, n, busy)
+                    times.setdefault((call, name, busy), []).append(t)
+                    print(f"{call:10s} {name:3s} {'busy ' if busy else 'quiet'} wall {t['wall']:7.2f} s  cpu {t['cpu']:7.2f} s",
+                          flush=True)
+    print(f"\nload average at the end: {os.getloadavg()[0]:.2f}; medians over {args.repeats} round(s)")
+    print(f"{'call':10s} {'code':4s} {'quiet s':>8s} {'busy s':>8s} {'busy/quiet':>10s} {'quiet cpu':>9s} {'busy cpu':>8s}"
+          + ("  quiet new/old" if len(trees) > 1 else ""))
+    rows = []
+    for call in args.calls:
+        for name in trees:
+            quiet = np.median([t["wall"] for t in times[(call, name, False)]])
+            busy = np.median([t["wall"] for t in times[(call, name, True)]])
+            cpu = np.median([t["cpu"] for t in times[(call, name, False)]])
+            busy_cpu = np.median([t["cpu"] for t in times[(call, name, True)]])
+            extra = ""
+            if len(trees) > 1 and name == "new":
+                ratios = [a["wall"] / b["wall"] for a, b in zip(times[(call, "new", False)], times[(call, "old", False)])]
+                extra = f"  {np.median(ratios):13.2f}"
+            print(f"{call:10s} {name:4s} {quiet:8.2f} {busy:8.2f} {busy / quiet:10.2f} {cpu:9.2f} {busy_cpu:8.2f}{extra}")
+            rows.append({"call": call, "code": name, "n": int(SIZES[call] * args.scale), "quiet_s": float(quiet),
+                         "busy_s": float(busy), "slowdown": float(busy / quiet), "quiet_cpu_s": float(cpu),
+                         "busy_cpu_s": float(busy_cpu), "runs": {("busy" if b else "quiet"): times[(call, name, b)] for b in (False, True)}})
+    if args.record:
+        out = ROOT / "benchmarks" / "results" / "busy.json"
+        out.write_text(json.dumps({"command": " ".join(["python benchmarks/busy.py"] + sys.argv[1:]),
+                                   "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+                                   "baseline": args.baseline, "load_at_end": os.getloadavg()[0],
+                                   "cores": os.cpu_count(), "rows": rows}, indent=1) + "\n")
+        print(f"written to {out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,104 @@
+"""Regularized PCA, spectral MDS, fast classical scaling and match run BLAS on one thread and restore the caller's count.
+
+OpenBLAS threads spin while they wait for a core, so beside another busy program these calls
+took 4-20x the CPU time they need (benchmarks/busy.py). They now hold
+:func:`~lbo_notebooks.blas_threads.one_blas_thread` (match's nearest-neighbour search runs its
+own worker threads instead), which must leave the caller's process-wide count as it found it and
+must not touch a count the user set by an environment variable. (rPCA keeps the caller's threads
+on a large mesh when the rest of the machine is idle, where they make it faster.) The set-up is that of
+test_threads.py: the caller's count is 2, set by no environment variable.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lbo_notebooks as lbo
+from lbo_notebooks import fast_scaling, functional_maps, mds, rpca, shapes
+from tests.test_threads import blas_threads, caller_threads  # noqa: F401 - caller_threads is a fixture
+
+
+def _recording(module, name: str, seen: list, monkeypatch) -> None:
+    original = getattr(module, name)
+
+    def recorded(*args, **kwargs):
+        seen.append(blas_threads())
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, recorded)
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    return shapes.bumpy_sphere(3)  # 642 vertices: above the dense limit, so rPCA takes the sparse path
+
+
+def test_heavy_calls_run_one_blas_thread_and_restore_the_callers_count(sphere, caller_threads, monkeypatch):  # noqa: F811
+    seen: list = []
+    _recording(rpca, "rayleigh_ritz", seen, monkeypatch)
+    _recording(mds, "_scaling_with_fields", seen, monkeypatch)
+    _recording(fast_scaling, "scaling_in_span", seen, monkeypatch)
+    _recording(functional_maps, "_nearest_rows", seen, monkeypatch)
+    W, A = lbo.stiffness_matrix(sphere), lbo.mass_matrix(sphere)
+    X = np.hstack([sphere.vertices, sphere.vertices**2])
+    solver = rpca.RegularizedPCA(X, W, A, center=True)
+    solver.solve(20, beta=0.5)
+    solver.solve(20, mu=0.0)
+    assert blas_threads() == caller_threads
+    mds.spectral_mds(sphere, n_samples=40, k=30)
+    assert blas_threads() == caller_threads
+    lbo.fast_classical_scaling(sphere, n_samples=30)
+    assert blas_threads() == caller_threads
+    lbo.match(sphere, sphere, k=10, k_final=20)
+    assert blas_threads() == caller_threads
+    assert len(seen) >= 4, seen
+    assert all(counts == [1] * len(counts) for counts in seen), seen
+
+
+def test_a_count_the_user_set_is_left_alone(sphere, caller_threads, monkeypatch):  # noqa: F811
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")
+    seen: list = []
+    _recording(mds, "_scaling_with_fields", seen, monkeypatch)
+    mds.spectral_mds(sphere, n_samples=40, k=30)
+    assert seen == [caller_threads]
+    assert blas_threads() == caller_threads
+
+
+def test_rpca_keeps_blas_threads_on_a_large_mesh_only_when_the_machine_is_idle(sphere, caller_threads, monkeypatch):  # noqa: F811
+    seen: list = []
+    _recording(rpca, "rayleigh_ritz", seen, monkeypatch)
+    W, A = lbo.stiffness_matrix(sphere), lbo.mass_matrix(sphere)
+    solver = rpca.RegularizedPCA(np.hstack([sphere.vertices, sphere.vertices**2]), W, A, center=True)
+    reference = solver.solve(20, beta=0.5)
+    monkeypatch.setattr(rpca, "LARGE_MESH", 100)  # as if the sphere were large
+    for idle, inside in ((True, caller_threads), (False, [1] * len(caller_threads))):
+        monkeypatch.setattr(rpca, "machine_is_idle", lambda idle=idle: idle)
+        seen.clear()
+        result = solver.solve(20, beta=0.5)
+        assert seen and all(counts == inside for counts in seen), (idle, seen)
+        assert blas_threads() == caller_threads
+        np.testing.assert_allclose(result.values, reference.values, rtol=1e-9)
+
+
+def test_machine_is_idle_reads_the_cpu_counters(monkeypatch):
+    from lbo_notebooks import idle_cores
+
+    monkeypatch.setattr(idle_cores, "usable_cores", lambda: 2.0)
+    monkeypatch.setattr(idle_cores.os, "cpu_count", lambda: 2)
+    samples = iter([(100, 1000), (300, 1200)])  # 200 of 200 jiffies idle: both cores idle
+    monkeypatch.setattr(idle_cores, "_cpu_times", lambda: next(samples))
+    assert idle_cores.machine_is_idle(0.0)
+    samples = iter([(100, 1000), (200, 1200)])  # half idle: another program holds a core
+    monkeypatch.setattr(idle_cores, "_cpu_times", lambda: next(samples))
+    assert not idle_cores.machine_is_idle(0.0)
+
+    def unreadable():
+        raise OSError("no /proc/stat")
+
+    monkeypatch.setattr(idle_cores, "_cpu_times", unreadable)
+    assert not idle_cores.machine_is_idle(0.0)  # the safe side
+    monkeypatch.setattr(idle_cores, "usable_cores", lambda: 1.0)
+    assert not idle_cores.machine_is_idle(0.0)  # one core: nothing to share
+    monkeypatch.undo()
+    assert idle_cores.usable_cores() >= 1
