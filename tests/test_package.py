@@ -68,17 +68,11 @@ def test_no_public_name_has_two_homes():
     assert not twice, twice
 
 
-#: Modules still over the limit, split by another branch (the speed work on mds and rpca); the
-#: lead empties this set when it lands.
-OVER_THE_LIMIT = {"mds.py", "rpca.py"}
-
-
 def test_no_module_is_over_600_lines():
     """Issue 27: one concept per module, at most 600 lines each."""
     from pathlib import Path
 
     root = Path(lbo.__file__).parent
     sizes = {str(p.relative_to(root)): len(p.read_text().splitlines()) for p in root.rglob("*.py")}
-    over = {name: n for name, n in sizes.items() if n > 600 and name not in OVER_THE_LIMIT}
-    assert not over, over
-    assert OVER_THE_LIMIT <= set(sizes), "a module of the allow-list is gone: remove it from OVER_THE_LIMIT"
+    over = {name: n for name, n in sizes.items() if n > 600}
+    assert not over, f"split these by concept: {over}"
