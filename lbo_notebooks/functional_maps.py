@@ -38,6 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
 from .eigensolver import default_workers
@@ -63,12 +64,8 @@ def _check_spectrum(spectrum: Spectrum, name: str) -> Spectrum:
 
 
 def _check_k(k: int, spectrum: Spectrum, name: str = "k") -> int:
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= spectrum.k:
-        raise ValueError(
-            f"{name} must be an integer between 1 and the number of eigenpairs computed ({spectrum.k}), got {k!r}; "
-            "compute more eigenpairs with eigenbasis(mesh, k)."
-        )
-    return int(k)
+    what = f"an integer between 1 and the number of eigenpairs computed ({spectrum.k})"
+    return check_integer(k, name, 1, spectrum.k, what=what, hint="compute more eigenpairs with eigenbasis(mesh, k)")
 
 
 def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64]:
@@ -268,8 +265,7 @@ def zoomout(
     source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
     C = _check_map(C, source, target)
     k_final = min(source.k, target.k) if k_final is None else _check_k(k_final, source if source.k <= target.k else target, "k_final")
-    if isinstance(step, bool) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise ValueError(f"step must be a positive integer, got {step!r}.")
+    step = check_integer(step, "step", 1)
     picked = None if samples is None else _check_samples(samples, source, target)
     if picked is not None and picked[1].size < k_final:
         raise ValueError(
@@ -445,8 +441,7 @@ def estimate_map(
     for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
         if not (np.isscalar(w) and np.isfinite(w) and w >= 0):
             raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
-    if isinstance(n_operators, bool) or not isinstance(n_operators, (int, np.integer)) or n_operators < 1:
-        raise ValueError(f"n_operators must be a positive integer, got {n_operators!r}.")
+    n_operators = check_integer(n_operators, "n_operators", 1)
     D1, D2 = _unit_columns(D1, source.mass), _unit_columns(D2, target.mass)
     A = source.project(D1, k)  # (k, p)
     B = target.project(D2, k)

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
 from .functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
@@ -55,10 +56,8 @@ N_SAMPLES = 2000
 EIGEN_TOL = 1e-6
 
 
-def _check_count(name: str, value: Any, minimum: int, hint: str = "") -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}.{hint}")
-    return int(value)
+def _check_count(name: str, value: Any, minimum: int, hint: str | None = None) -> int:
+    return check_integer(value, name, minimum, what=f"an integer >= {minimum}", hint=hint)
 
 
 def match(
@@ -137,15 +136,15 @@ def match(
         raise ValueError(f"k_final ({k_final}) must be smaller than the vertex count of the smaller shape ({n_min}).")
     if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
         raise ValueError(f"alpha must be a number in [0, 1] (the exponent of the metric |K|^alpha g), got {alpha!r}.")
-    n_descriptors = _check_count("n_descriptors", n_descriptors, 1, " It is the number of WKS energies.")
+    n_descriptors = _check_count("n_descriptors", n_descriptors, 1, "it is the number of WKS energies")
     for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
         if isinstance(w, bool) or not (np.isscalar(w) and np.isfinite(w) and w >= 0):
             raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
-    zoomout_step = _check_count("zoomout_step", zoomout_step, 1, " It is the number of functions ZoomOut adds per iteration.")
+    zoomout_step = _check_count("zoomout_step", zoomout_step, 1, "it is the number of functions ZoomOut adds per iteration")
     if n_samples is not None:
         n_samples = _check_count(
             "n_samples", n_samples, 2 * k_final,
-            f" ZoomOut fits maps of up to k_final={k_final} functions on the samples; use n_samples=None for every vertex.",
+            f"ZoomOut fits maps of up to k_final={k_final} functions on the samples; use n_samples=None for every vertex",
         )
     check_progress(progress)
 

@@ -34,6 +34,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from ._deprecation import moved, renamed
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
@@ -447,9 +448,7 @@ def spectral_mds(
         k = min(SMDS_DEFAULTS["k"], n)
     if n_samples is None:
         n_samples = min(SMDS_DEFAULTS["n_samples"], n)
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 2 <= k <= n:
-        raise ValueError(f"k must be an integer between 2 and the number of vertices ({n}), got {k!r}.")
-    k = int(k)
+    k = check_integer(k, "k", 2, n, what=f"an integer between 2 and the number of vertices ({n})")
     dim = check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
     q = check_samples(n_samples, n)
     power = _check_energy(energy)

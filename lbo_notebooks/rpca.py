@@ -62,6 +62,7 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from ._validation import check_integer
 from ._deprecation import renamed, warn
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
@@ -105,8 +106,7 @@ def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
 
 
 def _check_k(k: int, n: int) -> int:
-    if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
-        raise ValueError(f"k must be an integer number of basis functions, got {k!r}.")
+    k = check_integer(k, "k", what="an integer number of basis functions")
     if not 1 <= k <= n:
         raise ValueError(f"k must be between 1 and the number of vertices ({n}), got {k}.")
     return int(k)

@@ -17,6 +17,7 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
+from ._validation import check_integer
 from .solver_policy import start_vector, use_dense
 
 __all__ = ["check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
@@ -24,8 +25,7 @@ __all__ = ["check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
 
 def check_dim(dim: Any, limit: int, what: str) -> int:
     """``dim`` checked to be a positive integer below ``limit`` (``what`` names the limit in the message)."""
-    if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
-        raise ValueError(f"dim must be a positive integer (the embedding dimension), got {dim!r}.")
+    dim = check_integer(dim, "dim", 1, what="a positive integer (the embedding dimension)")
     if dim >= limit:
         raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
     return int(dim)
@@ -33,8 +33,7 @@ def check_dim(dim: Any, limit: int, what: str) -> int:
 
 def check_samples(count: Any, n: int, name: str = "n_samples") -> int:
     """A number of samples checked to be an integer in ``2..n``."""
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 2:
-        raise ValueError(f"{name} must be an integer >= 2, got {count!r}.")
+    count = check_integer(count, name, 2)
     if count > n:
         raise ValueError(
             f"{name}={count} is more than the mesh's {n} vertices; samples are distinct vertices, "
