@@ -78,7 +78,8 @@ def test_rpca_keeps_blas_threads_on_a_large_mesh_only_when_the_machine_is_idle(s
         result = solver.solve(20, beta=0.5)
         assert seen and all(counts == inside for counts in seen), (idle, seen)
         assert blas_threads() == caller_threads
-        np.testing.assert_allclose(result.values, reference.values, rtol=1e-9)
+        scale = np.abs(reference.values).max()  # one eigenvalue is round-off zero: compare on the spectrum's scale
+        np.testing.assert_allclose(result.values, reference.values, rtol=1e-9, atol=1e-12 * scale)
 
 
 def test_machine_is_idle_reads_the_cpu_counters(monkeypatch):
