@@ -46,7 +46,10 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
                                    line=dict(color="white", width=6), name="plane"))
         fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
                                    marker=dict(color="red", size=6), name=f"min on plane = {value:.3f}"))
-    fig.update_layout(height=450, margin=dict(l=0, r=0, t=30, b=0), scene=dict(aspectmode="data"))
+    # The legend sits top left, away from the colour bar and its title on the right.
+    fig.update_layout(height=450, margin=dict(l=0, r=0, t=30, b=0), scene=dict(aspectmode="data"),
+                      legend=dict(x=0.0, y=1.0, xanchor="left", yanchor="top", bgcolor="rgba(70,70,70,0.75)",
+                                  font=dict(color="white")))  # a dark box: the white circle shows in it
     return fig
 
 
