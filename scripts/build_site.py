@@ -289,6 +289,11 @@ def run_sphinx(src: Path, out: Path) -> int:
     return subprocess.run(command, cwd=REPO).returncode
 
 
+#: Written first into the Sphinx source folder, so that a build interrupted before ``index.md``
+#: exists is still recognised as ours (and replaced) by the next run.
+SOURCE_MARKER = ".lbo-site-source"
+
+
 def _fresh(folder: Path, *markers: str) -> None:
     """Empty ``folder`` (a previous build of ours, recognised by one of ``markers``), or create it."""
     if folder.exists() and any(folder.iterdir()):
@@ -320,7 +325,8 @@ def main(argv: list[str] | None = None) -> int:
     out = args.out.resolve()
     src = out.with_name(out.name + "-src")
     _fresh(out, ".buildinfo", "plotly.min.js")   # Sphinx's build, or the site before Sphinx
-    _fresh(src, "index.md")
+    _fresh(src, SOURCE_MARKER, "index.md")
+    (src / SOURCE_MARKER).write_text("a source folder written by scripts/build_site.py; rebuilt on each run\n")
     (src / "notebooks").mkdir()
     (src / "_clean").mkdir()
 

@@ -131,6 +131,9 @@ def test_build_executes_and_lists_only_the_series(site, tmp_path, monkeypatch, c
     assert site.main(["--out", str(out), "--no-reference"]) == 0 and not (rendered[1] / "reference.rst").exists()
     with pytest.raises(SystemExit, match="not a previous site build"):
         site.main(["--out", str(repo)])
+    # A build interrupted while executing (no index.md yet) does not block the next one.
+    (rendered[1] / "index.md").unlink()
+    assert site.main(["--out", str(out), "--no-reference"]) == 0
 
 
 def test_mathjax_is_found_locally_and_copied_without_what_pages_never_load(conf, tmp_path):
