@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
@@ -90,6 +91,7 @@ def slice_eigsh(
     workers: int | None = None,
     order: NDArray[np.intp] | None = None,
     tol: float = TOL,
+    on_progress: Callable[[int], None] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The ``k`` smallest eigenpairs of ``stiffness phi = lam mass phi`` by spectrum slicing.
 
@@ -131,6 +133,11 @@ def slice_eigsh(
         Lanczos convergence: each returned pair's residual in the shift-inverted problem,
         relative to its eigenvalue there (see :func:`~lbo_notebooks.krylov.nearest_eigenpairs`).
         Eigenvalues converge as its square: 1e-8 still gives them to about 1e-14 relative.
+    on_progress : callable, optional
+        Called in the calling thread (never in a worker) each time a Lanczos set has finished,
+        with the number of the ``k`` eigenpairs that set stands for (about ``k / n_sets``; the
+        numbers add up to at most ``k``). A progress bar's ``update``, e.g.; it does not change
+        the result.
 
     Returns
     -------
@@ -175,11 +182,14 @@ def slice_eigsh(
     # One BLAS thread per worker (unless the user chose the count): no oversubscription, and the
     # same round-off for any `workers`. The count is process-wide: blas_threads owns it.
     with one_blas_thread(), ThreadPoolExecutor(max_workers=int(workers)) as pool:
-        slices = _submit_sets(pool, int(workers), pencil, float(shift), k, n_sets)
+        slices = _submit_sets(pool, int(workers), pencil, float(shift), k, n_sets, on_progress)
         return _stitch(pencil, k, slices)
 
 
-def _submit_sets(pool: ThreadPoolExecutor, workers: int, pencil: Pencil, shift: float, k: int, n_sets: int) -> _Slices:
+def _submit_sets(
+    pool: ThreadPoolExecutor, workers: int, pencil: Pencil, shift: float, k: int, n_sets: int,
+    on_progress: Callable[[int], None] | None = None,
+) -> _Slices:
     """Place the shifts (in this thread), from the top down, and start each one's Lanczos set in ``pool`` at once.
 
     Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
@@ -196,6 +206,8 @@ def _submit_sets(pool: ThreadPoolExecutor, workers: int, pencil: Pencil, shift: 
     ``-shift`` no count is needed: when the first interval holds exactly its count, no eigenvalue
     can lie below ``-shift``.
     Returns the slices in ascending order (the first, at ``-shift``, has no set) and the top count.
+    ``on_progress(pairs)`` is called here, in this thread, as each set is found finished: set
+    ``j`` stands for the eigenpairs ``round((j - 1) k / n_sets) .. round(j k / n_sets)``.
     """
     # Weyl's law N(lam) ~ area lam / (4 pi) places the top shift; the others interpolate the
     # measured counts (N grows about linearly in lam on a surface).
@@ -221,6 +233,8 @@ def _submit_sets(pool: ThreadPoolExecutor, workers: int, pencil: Pencil, shift: 
         finished = [j for j in alive if placed[j].result.done()]
         for j in finished:
             del alive[j]
+            if on_progress is not None:
+                on_progress(round(j * per_set) - round((j - 1) * per_set))
         if finished:
             return_freed_memory()
 

@@ -158,10 +158,10 @@ def match(
 
         s1, s2 = _unit_area(source), _unit_area(target)
         stage("eigenbasis of the source")
-        e1 = eigenbasis(s1, k_final, alpha=alpha, tol=EIGEN_TOL)
+        e1 = eigenbasis(s1, k_final, alpha=alpha, tol=EIGEN_TOL, progress=False)
         bar.update()
         stage("eigenbasis of the target")
-        e2 = eigenbasis(s2, k_final, alpha=alpha, tol=EIGEN_TOL)
+        e2 = eigenbasis(s2, k_final, alpha=alpha, tol=EIGEN_TOL, progress=False)
         bar.update()
         stage("descriptors")
         d1 = wks(e1, n_energies=n_descriptors)

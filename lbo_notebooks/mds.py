@@ -464,7 +464,7 @@ def spectral_mds(
         # 1. eigenbasis
         bar.set_postfix_str("eigenbasis", refresh=True)
         if spectrum is None:
-            spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL)
+            spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL, progress=False)
         elif not isinstance(spectrum, Spectrum):
             raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
         elif spectrum.n_vertices != n or spectrum.k < k:

@@ -315,7 +315,7 @@ class RegularizedPCA:
 
     # mu = inf: the Laplace–Beltrami eigenbasis
     def _solve_infinite(self, k: int) -> RPCAResult:
-        spectrum = eigenbasis((self.stiffness, self.mass), k)
+        spectrum = eigenbasis((self.stiffness, self.mass), k, progress=False)
         P = np.array(spectrum.vectors)
         kernel = spectrum.values <= 1e-9 * max(float(spectrum.values[-1]), 1e-300)
         PU = P.T @ self._U

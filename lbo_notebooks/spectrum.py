@@ -9,7 +9,7 @@ product.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Union
+from typing import Any, Callable, Union
 
 import numpy as np
 import scipy.linalg
@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from ._deprecation import moved, renamed, warn
+from ._progress import LARGE_MESH, check_progress, progress_bar
 from ._validation import check_integer, check_number
 from .inner_product import (
     a_orthonormalize,
@@ -36,6 +37,22 @@ from .units import unit_area_exponent
 __all__ = ["Spectrum", "eigenbasis"]
 
 Operators = tuple[sp.spmatrix, sp.spmatrix]
+
+
+def _is_long(n: int, k: int) -> bool:
+    """Whether ``eigenbasis`` of ``k`` pairs on ``n`` vertices takes more than about two seconds (a bar by default).
+
+    Measured: ``eigenbasis(mesh, k)`` timed with ``time.perf_counter`` (operators included, one
+    BLAS thread, two shared cores, after a warm-up call) on ``shapes.bumpy_sphere(5)`` (10k
+    vertices): 0.3 s at k = 20, 0.7 s at k = 100, 2.1 s at k = 300; ``torus(n_major=125,
+    n_minor=80)`` (10k): 0.9 s at k = 200; ``torus(n_major=250, n_minor=100)`` (25k): 1.0 s at
+    k = 20 and at k = 100, 2.8 s at k = 120; ``bumpy_sphere(6)`` (41k): 1.8 s at k = 20, 3.7 s
+    at k = 60; ``torus(n_major=400, n_minor=125)`` (50k): 2.7 s at k = 20, 3.6 s at k = 100,
+    10 s at k = 300. The Lanczos sets cost about 7e-7 s per vertex and pair, and from 40k
+    vertices even a small k takes about 2 s (the factorisation grows faster than ``n``): a bar
+    from 40,000 vertices, or from 10,000 when ``n k >= 3e6`` (10k at k >= 300, 25k at k >= 120).
+    """
+    return n >= LARGE_MESH and (n >= 4 * LARGE_MESH or n * k >= 3_000_000)
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,6 +152,7 @@ def eigenbasis(
     n_neighbors: int = 30,
     solver: str = "auto",
     tol: float | None = None,
+    progress: bool | None = None,
 ) -> Spectrum:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``.
 
@@ -192,6 +210,15 @@ def eigenbasis(
         round-off either way; a looser ``1e-8`` is faster at large ``k`` (at 51k vertices and
         ``k = 300``, 15-20%) and still gives the eigenvalues to about 1e-14 and the span of all
         but the last few eigenvectors to round-off (:func:`spectral_mds` asks for ``1e-6``).
+    progress : bool or None, default None
+        A progress bar over the ``k`` eigenpairs, with the stage it is in (ordering, Lanczos sets
+        or ARPACK, orthonormalising). Spectrum slicing advances it as each Lanczos set finishes
+        (a few steps: 2 sets at ``k = 100``, 4 at ``k = 300``); ARPACK has no progress to report,
+        so its bar names the stage and fills when the run ends. ``True``: always; ``False``:
+        never; ``None``: only for calls that take more than a few seconds (40,000 vertices or
+        more, or 10,000 or more with ``n_vertices * k >= 3e6``, e.g. ``k = 300`` at 10k) and only
+        in a notebook or a terminal (never in a log file or under pytest); see
+        :mod:`lbo_notebooks._progress`. The result does not depend on it.
 
     Returns
     -------
@@ -204,6 +231,7 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
+    check_progress(progress)
     if isinstance(mesh, tuple):  # the caller's own operators
         if laplacian != "auto":
             raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
@@ -229,7 +257,8 @@ def eigenbasis(
     # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
     # with the heat method's factorisations.
     order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) else (lambda: None)
-    values, vectors = _solve_in_unit_area(W, A, int(k), shift=shift, solver=solver, tol=tol, order=order)
+    with progress_bar(int(k), "eigenbasis", progress, long=_is_long(n, int(k))) as bar:
+        values, vectors = _solve_in_unit_area(W, A, int(k), shift=shift, solver=solver, tol=tol, order=order, bar=bar)
     return Spectrum(values=values, vectors=vectors, stiffness=W, mass=A)
 
 
@@ -242,6 +271,7 @@ def _solve_in_unit_area(
     solver: str,
     tol: float | None,
     order: Callable[[], NDArray[np.intp] | None],
+    bar: Any,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The ``k`` smallest eigenpairs of ``W phi = lam A phi``, independent of the units of ``A``.
 
@@ -252,7 +282,13 @@ def _solve_in_unit_area(
     make both steps exact, so the caller's ``shift`` (in the caller's units) and every tolerance
     act on a surface of about unit area, whatever its units: ARPACK's convergence test, relative in
     name, lost copies of repeated eigenvalues on a mesh scaled by 1e-8 before this.
+
+    ``bar`` (a :func:`~lbo_notebooks._progress.progress_bar` over the ``k`` pairs, silent or not,
+    updated only in this thread) is told the stage and the pairs found; it changes nothing else.
     """
+    def stage(name: str) -> None:
+        bar.set_postfix_str(name, refresh=True)
+
     n = W.shape[0]
     q = unit_area_exponent(A.data)
     if abs(q) > 500:  # 4**q would leave the eigenvalues or the eigenvectors out of double precision
@@ -269,31 +305,44 @@ def _solve_in_unit_area(
             raise ValueError("shift is out of range for this mesh's units; leave it at its default.")
 
     if use_dense(n) or 2 * k + 1 > n:
+        stage("dense eigh")
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
         from .eigensolver import SLICE_SIZE, TOL, slice_eigsh
 
         def sliced() -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
             try:
-                return slice_eigsh(W, A, k, v0=start_vector(n), shift=shift, order=order(), tol=TOL if tol is None else float(tol))[:2]
+                stage("ordering")
+                fill_order = order()
+                stage("Lanczos sets (spectrum slicing)")
+                return slice_eigsh(
+                    W, A, k, v0=start_vector(n), shift=shift, order=fill_order, tol=TOL if tol is None else float(tol),
+                    on_progress=bar.update,
+                )[:2]
             except RuntimeError as error:
                 if solver == "slicing":
                     raise
                 warn(f"{error} Falling back to one ARPACK run for k={k}.", RuntimeWarning)
+                bar.update(-bar.n)  # back to no pair found: ARPACK starts over
                 return None
 
         pairs = sliced() if solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE) else None
         if pairs is None:
+            stage("ARPACK (shift-invert Lanczos)")
             values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n), tol=tol or 0.0)
             ascending = np.argsort(values)
             values, vectors = values[ascending], vectors[:, ascending]
-            if solver == "auto" and k < SLICE_SIZE and not _arpack_is_complete(W, A, values, shift, order):
-                pairs = sliced()  # certified by inertia counts
+            if solver == "auto" and k < SLICE_SIZE:
+                stage("inertia count (is ARPACK's set complete?)")
+                if not _arpack_is_complete(W, A, values, shift, order):
+                    pairs = sliced()  # certified by inertia counts
         if pairs is not None:
             values, vectors = pairs
         # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
         # in order (no mixing) keeps Phi.T A Phi = I to machine precision. The arrays are the
         # solver's own: refined and sign-fixed in place (no second and third n x k copy).
+        bar.update(k - bar.n)  # every pair found
+        stage("orthonormalising, fixing signs")
         if cholesky_qr(vectors, A, out=vectors) is None:  # not nearly orthonormal: Gram-Schmidt
             vectors = a_orthonormalize(vectors, A)
     vectors = fix_signs_in_place(np.ascontiguousarray(vectors, dtype=np.float64), A)

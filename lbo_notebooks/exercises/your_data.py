@@ -200,7 +200,7 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            values = eigenbasis(load_mesh(path, clean=True, keep_largest_component=True), 16).values
+            values = eigenbasis(load_mesh(path, clean=True, keep_largest_component=True), 16, progress=False).values
         exact = np.array([_sphere_eigenvalue(k) for k in range(16)])
         true_zeros = int(np.sum(np.abs(values) < 1e-8 * values[-1]))
         ref = float(np.max(np.abs(values[1:] / exact[1:] - 1)))
