@@ -97,7 +97,7 @@ def test_eigenbasis_bar_rule_for_long_calls():
 
 def test_slice_eigsh_reports_finished_sets_in_the_calling_thread(sparse_sphere):
     W, A = lbo.stiffness_matrix(sparse_sphere), lbo.mass_matrix(sparse_sphere)
-    args = dict(v0=np.ones(sparse_sphere.n_vertices), shift=0.01, slice_size=10, workers=2)
+    args = {"v0": np.ones(sparse_sphere.n_vertices), "shift": 0.01, "slice_size": 10, "workers": 2}
     plain = slice_eigsh(W, A, 40, **args)
     calls = []
     reported = slice_eigsh(W, A, 40, on_progress=lambda pairs: calls.append((pairs, threading.get_ident())), **args)
