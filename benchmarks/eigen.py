@@ -14,6 +14,39 @@ and the ratios ``plain / ours`` (> 1: ours is faster) and ``|lam_k(ours) / lam_k
 ``--family`` runs k=100 on six different 10k-vertex shapes (closed, with boundary, genus 1, thin
 parts, elongated, scan-like: holes, noise, two pieces) and checks plain/ours >= 1.5 on each
 (issue 30, item 5); ours and plain alternate, best of three fresh processes each.
+
+``--family`` in the user's default environment (no thread variable set: the peer's BLAS uses both
+cores, ours limits itself to one per worker), quiet 2-core machine, 2026-11-26 11:27 UTC::
+
+    env -u OPENBLAS_NUM_THREADS python benchmarks/eigen.py --family
+
+                 shape vertices pieces boundary  ours s plain s plain/ours  goal
+          bumpy sphere    10242      1        0    0.50    0.74       1.46  MISSED
+       disk (boundary)    10267      1      348    0.50    0.66       1.32  MISSED
+       torus (genus 1)    10240      1        0    0.52    0.93       1.79  met
+       dog (thin legs)    10044      1        0    0.47    0.75       1.59  met
+        thin ellipsoid    10242      1        0    0.52    0.70       1.36  MISSED
+            scan proxy    10908      2      374    0.51    0.64       1.25  MISSED
+
+(With ``OPENBLAS_NUM_THREADS=1`` for both, plain/ours is 1.98-2.71 on all six: the peer gains 1.5x
+from a second BLAS thread, ours does not.) Why ours does not gain from the second core at this
+size, measured on the scan proxy (one BLAS thread, in-process unless said):
+
+- SciPy's (1.17) ``SuperLU.solve`` holds the GIL. Fifty 4-column solves with the 10.9k factor in
+  each of two threads take as long as the hundred in one (0.169 s against 0.167 s: 1.01x), while
+  the Krylov projections (BLAS-3) scale 1.92x and the factorisations 1.5x. So the two Lanczos sets
+  of ``eigenbasis(mesh, 100)``, 0.23 s and 0.17 s alone, take 0.46 s side by side: 0.89x of
+  running them one after the other. In a fresh process the timeline is: operators and METIS
+  75 ms, the top shift's factorisation and count 64 ms, the top set 142-499 ms, meanwhile the
+  count above lam_k and the lower shift (in the calling thread), the lower set 241-513 ms.
+- A GIL-free triangular solve (a prototype in numba, ``nogil``, same speed as SuperLU's one
+  thread) brings the two sets to 1.52x side by side, but ``eigenbasis`` end to end only 5-8%
+  (fresh processes, best of 3: scan proxy 0.556 -> 0.517 s, disk 0.537 -> 0.509 s, ellipsoid
+  0.575 -> 0.533 s) and 1-4% at 50k vertices, k = 300 (7.36/7.02 -> 7.05/6.94 s). Not adopted: a
+  compiler dependency (numba and llvmlite, about 50 MB, a JIT at the first call) for that.
+- One worker with two BLAS threads (one set of 100, or two sets in turn) is slower: 0.65-0.98 s.
+  Blocks of 2, 3, 5, 6 or 8 vectors instead of 4 are 2-50% slower (both sets, one thread);
+  ``tol=1e-8`` instead of 1e-10 saves 5-10% of the sets, but the default accuracy stays.
 """
 
 from __future__ import annotations
