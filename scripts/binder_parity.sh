@@ -52,6 +52,10 @@ log "running binder/postBuild"
 PATH="$work/venv/bin:$PATH" VIRTUAL_ENV="$work/venv" bash binder/postBuild
 page_config="$work/venv/etc/jupyter/labconfig/page_config.json"
 [ -f "$page_config" ] || { log "postBuild did not write $page_config"; exit 1; }
+# The kernels' sockets encrypted, as ./make.sh lab has them: the server the environment starts reads it.
+encryption=$("$VPY" -c 'from jupyter_server.serverapp import ServerApp
+app = ServerApp.instance(); app.initialize([]); print(app.kernel_manager.transport_encryption)' 2>/dev/null | tail -1)
+[ "$encryption" = auto ] || { log "postBuild did not set MappingKernelManager.transport_encryption = auto (got '$encryption')"; exit 1; }
 "$VPY" -c 'import lbo_notebooks, sys; print("lbo_notebooks from", lbo_notebooks.__file__, file=sys.stderr)'
 # The student edition the Binder link opens: built by postBuild, without solutions, and nbgrader
 # (used in a throw-away environment) left nothing in the student's environment.
