@@ -70,6 +70,23 @@ threads, so on a quiet machine ``match`` takes less wall time than CPU time. Whe
 7.7 / 6.2 and 6.5 / 6.0, WKS 0.1, ``estimate_map`` 3.7 / 3.0, farthest-point samples 1.1 / 1.1,
 ZoomOut on the samples with the final search over every vertex 4.1 / 3.8.
 
+``matching.EIGEN_TOL`` on pairs that played no part in choosing it (other species, poses, part
+scalings, sizes and metrics; quiet machine but beside other jobs, so the times are rough),
+2026-11-26 11:40 UTC::
+
+    env -u OPENBLAS_NUM_THREADS python benchmarks/matching.py --tolerance-check
+
+    pair                                              n alpha  same map  err tol  err dflt  s tol  s dflt
+    horse standing -> galloping                   12063   0.0    1.0000   0.0040    0.0040    4.6     3.7
+    horse sitting -> tail_raised {'neck': 1.3}    19574   0.0    1.0000   0.0133    0.0133    7.5     8.3
+    dog sitting -> head_turned                    15777   0.4    1.0000   0.0050    0.0050    8.1     7.3
+    horse walking -> head_turned {'head': 1.6}     8795   1.0    1.0000   0.0661    0.0661    3.2     3.2
+    dog galloping -> tail_raised {'legs': 1.3}    29637   0.0    1.0000   0.0258    0.0258   10.7    20.4
+
+The point maps are identical on all five ("same map": the share of target vertices mapped alike).
+(The errors of the two pairs with a rescaled part at alpha 0 and 1 are the metric's limits, notebook
+12, not the tolerance's: they are the same at the default tolerance.)
+
 How ``match`` got there (issue 30; before: 135 s at 25k vertices, 129 s of it in the 26
 k-d-tree queries of ZoomOut's point maps). CPU seconds, one thread, dog pair at 25k vertices
 unless said otherwise; the machine was loaded, so CPU rather than wall time:
