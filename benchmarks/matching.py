@@ -84,8 +84,8 @@ scalings, sizes and metrics; quiet machine but beside other jobs, so the times a
     dog galloping -> tail_raised {'legs': 1.3}    29637   0.0    1.0000   0.0258    0.0258   10.7    20.4
 
 The point maps are identical on all five ("same map": the share of target vertices mapped alike).
-(The errors of the two pairs with a rescaled part at alpha 0 and 1 are the metric's limits, notebook
-12, not the tolerance's: they are the same at the default tolerance.)
+(The larger errors come with a rescaled part, which is no isometry; they are the same at the
+default tolerance, so they are not the tolerance's doing.)
 
 How ``match`` got there (issue 30; before: 135 s at 25k vertices, 129 s of it in the 26
 k-d-tree queries of ZoomOut's point maps). CPU seconds, one thread, dog pair at 25k vertices
