@@ -85,6 +85,23 @@ no classical reference fits in memory)::
      17747    0.0076    0.0103
      23197    0.0079    0.0108
 
+At 47,781 vertices two float64 matrices of classical MDS (36 GB) do not fit; the reference is
+``lean_classical_mds`` (squared distances in float32, 9 GB; 2.1e-7 Gram error against
+``classical_mds`` at 3,067 vertices). ``--growth 48000``, 2026-11-26 11:40 UTC, beside other jobs::
+
+         n  Gram err  previous  reference
+     47781    0.0084    0.0115  lean (float32 D2)
+
+So the defaults stay under 1% at 48k vertices (the previous ones did not), and the end-to-end
+time at that size, on a quiet machine (``--speed 5fb7d99 --pairs 3``, 2026-11-26 11:38 UTC, load
+1.3-1.4 from nothing else), is::
+
+    spectral_mds defaults, deformed torus of 51200 vertices, 3 interleaved pairs (old = 5fb7d99, new = this tree)
+           median s   min s   CPU s   eig s  samp s   emb s
+    old        9.88    9.81   17.09    6.86    2.62    0.40
+    new        7.10    6.96   11.43    4.23    2.54    0.32
+    old/new per pair: wall median 1.38 (min 1.38), CPU median 1.48
+
 Paper section 5, higher resolution at the same cost (``--resolution``, 2026-11-26 06:15 UTC; CPU
 seconds under load average ~13, read them as rough): reference classical MDS on 11,896 vertices of
 the walking dog; every embedding interpolated to its vertices::
