@@ -46,7 +46,8 @@ size, measured on the scan proxy (one BLAS thread, in-process unless said):
   compiler dependency (numba and llvmlite, about 50 MB, a JIT at the first call) for that.
   SciPy's module-level ``_superlu.gstrs`` (private API) also releases the GIL, given the factors
   in SuperLU's own layout (the diagonal of ``U`` in ``L``'s columns): the same results to
-  1e-14 and about the same gain (-4 to -11% on five shapes, one run beside a browser test).
+  1e-14 and about the same gain (-4 to -11% on five shapes, +7% on the scan proxy; one run beside
+  a browser test, so noisy).
 - One worker with two BLAS threads (one set of 100, or two sets in turn) is slower: 0.65-0.98 s.
   Blocks of 2, 3, 5, 6 or 8 vectors instead of 4 are 2-50% slower (both sets, one thread);
   ``tol=1e-8`` instead of 1e-10 saves 5-10% of the sets, but the default accuracy stays.
