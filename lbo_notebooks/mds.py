@@ -204,6 +204,7 @@ def landmark_mds(
     3. every vertex a is placed by distance-based triangulation
        ``x_a = -1/2 L^# (delta_a - delta_mean)``, with ``L^# = Gamma_m^(-1/2) U_m.T`` and
        ``delta_mean`` the mean column of the landmarks' squared distances.
+
     The result is then centred over all vertices. O(n q dim) time, O(n q) memory.
 
     Parameters
