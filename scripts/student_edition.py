@@ -58,6 +58,9 @@ c.ClearSolutions.code_stub = {{"python": {stub!r}}}
 c.ClearSolutions.text_stub = "YOUR ANSWER HERE"
 c.Execute.timeout = 600
 c.Autograde.create_student = True
+# Kernels on local IPC sockets, not TCP: ipykernel warns at each start that TCP is unencrypted.
+c.KernelManager.transport = "ipc"
+c.KernelManager.ip = {sockets!r}
 """
 
 
@@ -114,7 +117,7 @@ def course(root: Path) -> Path:
     for nb in series(NOTEBOOKS):
         shutil.copy2(nb, source_dir / nb.name)
     (root / "nbgrader_config.py").write_text(CONFIG.format(root=str(root), db_url=f"sqlite:///{root / 'gradebook.db'}",
-                                                           stub=CODE_STUB), encoding="utf-8")
+                                                           stub=CODE_STUB, sockets=str(root / "kernel")), encoding="utf-8")
     return source_dir
 
 
@@ -182,13 +185,16 @@ def execute_unanswered(paths: list[Path], results: Path) -> subprocess.Popen:
     code = (
         "import sys, nbformat\n"
         "from nbclient import NotebookClient\n"
-        "for path, target in zip(sys.argv[1::2], sys.argv[2::2]):\n"
+        "from traitlets.config import Config\n"
+        "# Kernels on local IPC sockets (no TCP: no 'unencrypted' warning), started and shut down by the client.\n"
+        "ipc = Config({'KernelManager': {'transport': 'ipc', 'ip': sys.argv[1]}})\n"
+        "for path, target in zip(sys.argv[2::2], sys.argv[3::2]):\n"
         "    nb = nbformat.read(path, as_version=4)\n"
-        "    NotebookClient(nb, timeout=600, kernel_name='python3', resources={'metadata': {'path': str(__import__('pathlib').Path(path).parent)}}).execute()\n"
+        "    NotebookClient(nb, config=ipc, timeout=600, kernel_name='python3', resources={'metadata': {'path': str(__import__('pathlib').Path(path).parent)}}).execute()\n"
         "    nbformat.write(nb, target)\n"
     )
     results.mkdir(parents=True, exist_ok=True)
-    args = [a for p in paths for a in (str(p), str(results / p.name))]
+    args = [str(results / "kernel")] + [a for p in paths for a in (str(p), str(results / p.name))]
     return subprocess.Popen([sys.executable, "-c", code, *args])
 
 
