@@ -22,8 +22,8 @@
   const MAX_SCENES = 12;        // live WebGL contexts we allow ourselves (Chromium's limit is 16)
   const NEAR = "50% 0px";       // "near the viewport": within half its height above or below
   const SCENE_TYPES = new Set(["mesh3d", "scatter3d", "surface", "cone", "streamtube", "isosurface", "volume"]);
-  const newPlot = Plotly.newPlot, addFrames = Plotly.addFrames;
-  const figures = new Map();    // graph div -> {gd, figure: {data, layout, config, frames}, scenes, live, near, visible, drawing, standIn}
+  const newPlot = Plotly.newPlot, addFrames = Plotly.addFrames, animate = Plotly.animate;
+  const figures = new Map();    // graph div -> {gd, figure: {data, layout, config, frames}, scenes, live, near, visible, drawing, standIn, afterDraw}
   let liveScenes = 0;
 
   function graphDiv(div) {
@@ -65,6 +65,7 @@
         rec.drawing = null;
         if (rec.standIn) rec.standIn.remove();
         rec.standIn = null;
+        rec.afterDraw.splice(0).forEach(call => call());
         if (!rec.near && !rec.visible && rec.scenes) hide(rec);
       });
   }
@@ -161,13 +162,14 @@
       if (known.near || known.visible) show(known, known.visible);
       return Promise.resolve(gd);
     }
-    figures.set(gd, {gd, figure, scenes: sceneCount(figure.data), live: false, near: false, visible: false, drawing: null, standIn: null});
+    figures.set(gd, {gd, figure, scenes: sceneCount(figure.data), live: false, near: false, visible: false, drawing: null, standIn: null, afterDraw: []});
     nearby.observe(gd);
     onScreen.observe(gd);
     return Promise.resolve(gd);
   };
 
-  // plotly's HTML export adds animation frames after newPlot: keep them with a figure not yet drawn.
+  // plotly's HTML export adds animation frames after newPlot, then plays them (Plotly.animate): for
+  // a figure not drawn yet, the frames are kept with it and the animation is played once it is drawn.
   Plotly.addFrames = function (div, frames, indices) {
     const rec = figures.get(graphDiv(div));
     if (rec && !rec.live) {
@@ -175,5 +177,14 @@
       return Promise.resolve();
     }
     return addFrames.apply(this, arguments);
+  };
+  Plotly.animate = function (div) {
+    const rec = figures.get(graphDiv(div));
+    if (rec && !rec.live) {
+      const args = arguments;
+      rec.afterDraw.push(() => animate.apply(Plotly, args));
+      return Promise.resolve();
+    }
+    return animate.apply(this, arguments);
   };
 })();
