@@ -43,12 +43,18 @@ the test), and the browser's own resolver maps every other name to nowhere.
 the "running over TCP without encryption" warning (the server provisions CurveZMQ keys).
 
 ``test_static_site`` builds the site (``scripts/build_site.py``: Sphinx, myst-nb, numpydoc) for
-``SITE_NOTEBOOKS`` and the API reference (or opens an existing build named by
+``SITE_NOTEBOOKS``, a test page ``MANY_SCENES`` with more 3D scenes than Chromium keeps WebGL contexts
+for (16), and the API reference (or opens an existing build named by
 ``LBO_BROWSER_SITE=/path/to/site``), serves it from 127.0.0.1 and checks each notebook page the
-same way, plus: formulas typeset by the site's own MathJax (no ``$...$`` left as text), no request
-that fails, no slider title with a negative zero. ``test_site_reference_and_search``: the reference
-page of ``eigenbasis`` shows its docstring (its summary line and a Parameters section naming every
-parameter), and a public name typed into the search page finds that page.
+same way (each figure scrolled into view and drawn there: the site draws figures only near the
+viewport, ``docs/_static/lazy_plotly.js``), plus: formulas typeset by the site's own MathJax (no
+``$...$`` left as text), no request that fails, no slider title with a negative zero, no WebGL
+context dropped by the browser, the first 3D figure drawn again when scrolled back to.
+``test_site_figures_come_back``: a 3D figure scrolled far away is replaced by a picture of it and
+comes back as the reader left it (camera, slider step, colours, animation frames).
+``test_site_reference_and_search``: the reference page of ``eigenbasis`` shows its docstring (its
+summary line and a Parameters section naming every parameter), and a public name typed into the
+search page finds that page.
 
 Select notebooks with pytest's ``-k``, e.g. ``-k "laplace or static_site"``.
 
@@ -967,7 +973,7 @@ def test_site_figures_come_back(browser, site, offline: Offline) -> None:
     if chosen.stem == MANY_SCENES:
         assert scenes > 16 and frames_figure is not None, f"{name}: {scenes} scenes, frames figure {frames_figure}"
 
-    # The reader moves the slider to its last step and turns the first scene.
+    # The reader moves the slider to its last step and turns the first scene (a horizontal drag).
     fig = figures.nth(slider_figure)
     fig.scroll_into_view_if_needed()
     _wait_until_drawn(page, fig, f"{name}: slider figure")
@@ -977,7 +983,7 @@ def test_site_figures_come_back(browser, site, offline: Offline) -> None:
     x, y = (scene[0] + scene[2]) / 2, (scene[1] + scene[3]) / 2
     page.mouse.move(x, y)
     page.mouse.down()
-    page.mouse.move(x + 120, y + 40, steps=8)
+    page.mouse.move(x + 120, y, steps=8)   # turntable: about the vertical, the view stays upright
     page.mouse.up()
     page.mouse.move(2, 2)
     page.wait_for_timeout(1000)
