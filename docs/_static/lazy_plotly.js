@@ -71,7 +71,10 @@
   }
 
   /* A static copy of the drawn figure (titles, colour bars, slider), each scene's canvas replaced by
-     a picture of it (Scene.toImage, plotly's own export of one scene: it reads the live context). */
+     a picture of it: Scene.toImage, plotly's own export of one scene, reads its live context
+     (Plotly.toImage would draw a copy of the figure, needing as many new contexts). These are
+     plotly internals (_fullLayout.sceneN._scene); should they change, the scenes' pictures stay
+     blank and nothing else is lost. */
   function picture(gd) {
     const container = gd.querySelector(".plot-container");
     if (!container) return null;
