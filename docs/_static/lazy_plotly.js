@@ -141,11 +141,12 @@
     changed.filter(r => !r.near && r.scenes).forEach(hide);   // free contexts before drawing others
     changed.filter(r => r.near).forEach(r => show(r, false));
   }, {rootMargin: NEAR});
-  // A figure on screen is always drawn (a near one may have waited for room).
+  // A figure on screen is always drawn (a near one may have waited for room). One that only touches
+  // the viewport's edge (no area on screen) is not on screen.
   const onScreen = new IntersectionObserver(entries => {
     for (const e of entries) {
       const rec = figures.get(e.target);
-      rec.visible = e.isIntersecting;
+      rec.visible = e.isIntersecting && e.intersectionRatio > 0;
       if (rec.visible) show(rec, true);
     }
   });
