@@ -17,7 +17,9 @@ Everything the pages load is in the site (it works offline, from ``file://`` or 
   ``jupyter-server-mathjax`` (``LBO_SITE_MATHJAX`` names another local MathJax 2 folder, e.g.
   Debian's ``/usr/share/javascript/mathjax``); Sphinx's default MathJax comes from a CDN;
 - plotly figures call ``Plotly.newPlot`` on the one ``_static/plotly.min.js`` copied from the
-  installed plotly.
+  installed plotly; ``_static/lazy_plotly.js`` draws each figure only when it comes near the
+  viewport and releases the WebGL contexts of 3D figures far from it (a page may hold more 3D
+  scenes than the browser keeps contexts for).
 
 The source folder is the one ``scripts/build_site.py`` assembles (the executed notebooks under
 ``notebooks/``, ``docs/*.md`` under ``docs/``, ``index.md``, ``reference.rst``); this folder is
@@ -52,8 +54,10 @@ exclude_patterns = ["_clean", ".doctrees", "**/.ipynb_checkpoints"]
 templates_path = [str(Path(__file__).resolve().parent / "_templates")]
 html_static_path = ["_static"]
 html_css_files = ["site.css"]
-# Not deferred: each figure's inline script calls Plotly.newPlot as the page is parsed.
-html_js_files = ["plotly.min.js"]
+# Not deferred: each figure's inline script calls Plotly.newPlot as the page is parsed, and
+# lazy_plotly.js wraps it first, so that only figures near the viewport are drawn (a browser keeps
+# only so many WebGL contexts, one per 3D scene; Chromium 16): see the comment at its top.
+html_js_files = ["plotly.min.js", "lazy_plotly.js"]
 html_theme = "pydata_sphinx_theme"
 html_theme_options = {
     "navigation_with_keys": False,

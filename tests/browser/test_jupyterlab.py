@@ -43,12 +43,18 @@ the test), and the browser's own resolver maps every other name to nowhere.
 the "running over TCP without encryption" warning (the server provisions CurveZMQ keys).
 
 ``test_static_site`` builds the site (``scripts/build_site.py``: Sphinx, myst-nb, numpydoc) for
-``SITE_NOTEBOOKS`` and the API reference (or opens an existing build named by
+``SITE_NOTEBOOKS``, a test page ``MANY_SCENES`` with more 3D scenes than Chromium keeps WebGL contexts
+for (16), and the API reference (or opens an existing build named by
 ``LBO_BROWSER_SITE=/path/to/site``), serves it from 127.0.0.1 and checks each notebook page the
-same way, plus: formulas typeset by the site's own MathJax (no ``$...$`` left as text), no request
-that fails, no slider title with a negative zero. ``test_site_reference_and_search``: the reference
-page of ``eigenbasis`` shows its docstring (its summary line and a Parameters section naming every
-parameter), and a public name typed into the search page finds that page.
+same way (each figure scrolled into view and drawn there: the site draws figures only near the
+viewport, ``docs/_static/lazy_plotly.js``), plus: formulas typeset by the site's own MathJax (no
+``$...$`` left as text), no request that fails, no slider title with a negative zero, no WebGL
+context dropped by the browser, the first 3D figure drawn again when scrolled back to.
+``test_site_figures_come_back``: a 3D figure scrolled far away is replaced by a picture of it and
+comes back as the reader left it (camera, slider step, colours, animation frames).
+``test_site_reference_and_search``: the reference page of ``eigenbasis`` shows its docstring (its
+summary line and a Parameters section naming every parameter), and a public name typed into the
+search page finds that page.
 
 Select notebooks with pytest's ``-k``, e.g. ``-k "laplace or static_site"``.
 
@@ -123,6 +129,10 @@ ALLOWED_FAILURES = [
 ]
 RESOURCE_FAILURE = "console error: Failed to load resource:"
 SITE_NOTEBOOKS = ["00_start_here", "03_laplace_beltrami"]
+# A test page the default site build adds (written by _many_scenes_notebook): more 3D scenes than
+# Chromium keeps WebGL contexts for (16), a mesh_slider and a figure with animation frames.
+MANY_SCENES = "99_many_3d_scenes"
+WEBGL_LIMIT_WARNING = "Too many active WebGL contexts"   # Chromium's console warning when it drops one
 ARTIFACTS = Path(os.environ.get("LBO_BROWSER_ARTIFACTS", REPO / "artifacts" / "browser"))
 RUN_TIMEOUT = float(os.environ.get("LBO_BROWSER_TIMEOUT", "900"))  # seconds for Run All Cells
 VIEWPORT = {"width": 1400, "height": 1000}
@@ -678,6 +688,38 @@ class _QuietHandler(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+def _many_scenes_notebook(path: Path) -> Path:
+    """A notebook for the site test: 8 figures of 3 scenes each, a mesh_slider and a figure whose
+    slider steps through animation frames, 26 scenes in all (Chromium keeps 16 WebGL contexts)."""
+    import nbformat
+
+    cells = [
+        nbformat.v4.new_markdown_cell("# Many 3D scenes on one page\n\nA test page with more 3D scenes than a "
+                                      "browser keeps WebGL contexts for: every one must render, $n > 16$."),
+        nbformat.v4.new_code_cell(
+            "import numpy as np\nimport plotly.graph_objects as go\nfrom lbo_notebooks import shapes\n"
+            "from lbo_notebooks.plotting import mesh_slider, plot_mesh, plot_meshes\n\n"
+            "sphere = shapes.icosphere(2)\nx, y, z = sphere.vertices.T"),
+        nbformat.v4.new_code_cell(
+            "mesh_slider(sphere, lambda k: np.cos(k) * x + np.sin(k) * y, range(6), 'k', height=400)"),
+        nbformat.v4.new_code_cell(
+            "animated = plot_mesh(sphere, x, title='frames', height=400)\n"
+            "animated.frames = [go.Frame(name=str(k), data=[go.Mesh3d(intensity=np.cos(k) * x + np.sin(k) * z)]) "
+            "for k in range(4)]\n"
+            "animated.update_layout(sliders=[dict(active=0, steps=[dict(method='animate', label=str(k), args=[[str(k)], "
+            "dict(mode='immediate', frame=dict(duration=0, redraw=True), transition=dict(duration=0))]) "
+            "for k in range(4)])])\nanimated"),
+    ]
+    for i in range(8):
+        cells.append(nbformat.v4.new_code_cell(
+            f"plot_meshes([sphere] * 3, [x, y, z], titles=['x ({i})', 'y ({i})', 'z ({i})'], height=300)"))
+    nb = nbformat.v4.new_notebook(cells=cells)
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    nbformat.write(nb, path)
+    return path
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """The site, built for SITE_NOTEBOOKS with the reference (or LBO_BROWSER_SITE), served from 127.0.0.1."""
@@ -685,6 +727,7 @@ def site(tmp_path_factory):
     if root is None:
         root = tmp_path_factory.mktemp("site") / "site"
         notebooks = [str(REPO / "notebooks" / f"{stem}.ipynb") for stem in SITE_NOTEBOOKS]
+        notebooks.append(str(_many_scenes_notebook(root.parent / "extra" / f"{MANY_SCENES}.ipynb")))
         build = subprocess.run([sys.executable, str(REPO / "scripts" / "build_site.py"), "--out", str(root), *notebooks],
                                capture_output=True, text=True, timeout=1800)
         (ARTIFACTS / "site").mkdir(parents=True, exist_ok=True)
@@ -717,6 +760,19 @@ def _wait_for_math(page: Page) -> dict:
     return page.evaluate(MATH_STATE)
 
 
+# A site figure has been drawn: plotly's frame is there, with a WebGL canvas per 3D scene.
+DRAWN = """el => !!el._fullLayout && !!el.querySelector('.plot-container')
+    && el.querySelectorAll('canvas').length >= Object.keys(el._fullLayout).filter(k => /^scene\\d*$/.test(k)).length"""
+
+
+def _wait_until_drawn(page: Page, figure, what: str, timeout: float = 60) -> None:
+    """Wait until a site figure (on screen) has been drawn: plotly's frame, a canvas per 3D scene."""
+    try:
+        page.wait_for_function(DRAWN, arg=figure.element_handle(), timeout=timeout * 1000)
+    except Exception as exc:   # playwright's TimeoutError
+        raise AssertionError(f"{what}: not drawn {timeout:.0f} s after it scrolled into view") from exc
+
+
 def test_static_site(browser, site, offline: Offline) -> None:
     root, url = site
     out = ARTIFACTS / "site"
@@ -740,20 +796,24 @@ def test_static_site(browser, site, offline: Offline) -> None:
         page.screenshot(path=str(out / f"{stem}.png"), full_page=True)
         assert math["typeset"] > 0 and not math["raw"] and not math["failed"], f"{name}: formulas left as LaTeX: {math}"
         assert all(s.startswith(url) for s in math["scripts"]), f"{name}: scripts from elsewhere: {math['scripts']}"
-        figures = page.locator(".js-plotly-plot")
+        # Every plotly figure (drawn only once near the viewport: docs/_static/lazy_plotly.js).
+        figures = page.locator(".plotly-graph-div")
         # Every page shows a figure: interactive plotly, or a static one (matplotlib's PNG, e.g. the warm-up's).
         images = page.locator("article .cell_output img")
         assert figures.count() + images.count() > 0, f"{name}: no figure"
         for i in range(images.count()):
             size = images.nth(i).evaluate("el => [el.naturalWidth, el.naturalHeight]")
             assert min(size) > 50, f"{name}: image {i} did not load ({size})"
+        drawn_3d = []
         for i in range(figures.count()):
             fig = figures.nth(i)
             fig.scroll_into_view_if_needed()
+            _wait_until_drawn(page, fig, f"{name}: figure {i}")
             page.wait_for_timeout(300)
             info = _figure_info(page, fig)
             assert info["width"] > 100 and info["height"] > 100 and not info["noWebGL"], f"{name}: figure {i}: {info}"
             if info["is3d"]:
+                drawn_3d.append(i)
                 assert info["glCanvas"], f"{name}: 3D figure {i} has no WebGL canvas: {info}"
                 fig.screenshot(path=str(out / f"{stem}_figure_{i:02d}.png"))
                 _check_figure_layout(page, fig, f"{stem}_figure_{i:02d}", out)
@@ -761,6 +821,14 @@ def test_static_site(browser, site, offline: Offline) -> None:
                                   ".concat((el.layout && el.layout.sliders || []).flatMap(s => s.steps.map("
                                   "st => JSON.stringify(st.args[1] || {}))))")
             assert not any(re.search(r"(?<![\w.])-0\.0*(?!\d)", t) for t in titles), f"{name}: negative zero in {titles}"
+        # Scrolling back, the first 3D figure is drawn again (it was released if far enough).
+        if drawn_3d:
+            first_3d = figures.nth(drawn_3d[0])
+            first_3d.scroll_into_view_if_needed()
+            _wait_until_drawn(page, first_3d, f"{name}: first 3D figure, scrolled back to")
+            _check_figure_layout(page, first_3d, f"{stem}_figure_first_again", out)
+        dropped = [line for line in offline.console if WEBGL_LIMIT_WARNING in line]
+        assert not dropped, f"{name}: the browser dropped WebGL contexts (some scenes went blank): {dropped[:3]}"
         offline.check(name)
     local_failures = [f for f in offline.failed if f.startswith(url)]
     assert not local_failures, f"requests to the site that failed: {local_failures[:10]}"
@@ -806,3 +874,147 @@ def test_site_reference_and_search(browser, site, offline: Offline) -> None:
     page.wait_for_load_state("load")
     assert "farthest_point_sampling" in page.locator("article h1").inner_text()
     offline.check("search page")
+
+
+# What a reader sees of a drawn site figure: each scene's camera, each slider's step, the colours of
+# the first trace and the number of animation frames.
+READER_STATE = """el => ({
+    cameras: Object.keys(el._fullLayout).filter(k => /^scene\\d*$/.test(k))
+        .map(k => JSON.stringify(el._fullLayout[k].camera)),
+    sliders: (el._fullLayout.sliders || []).map(s => s.active),
+    colours: JSON.stringify(Array.from(el._fullData[0].intensity || []).slice(0, 300)),
+    frames: el._transitionData && el._transitionData._frames ? el._transitionData._frames.length : 0,
+})"""
+# The picture lazy_plotly.js leaves in place of a released figure: for each of its scene pictures,
+# the fraction of pixels drawn on (not background).
+STAND_IN = """el => {
+    const standIn = el.parentNode.querySelector('.lbo-plot-standin');
+    if (!standIn || el.querySelector('canvas')) return null;
+    return Array.from(standIn.querySelectorAll('img')).map(img => {
+        const c = document.createElement('canvas');
+        c.width = img.naturalWidth; c.height = img.naturalHeight;
+        if (!c.width || !c.height) return 0;
+        const g = c.getContext('2d');
+        g.drawImage(img, 0, 0);
+        const px = g.getImageData(0, 0, c.width, c.height).data;
+        let drawn = 0;
+        for (let i = 0; i < px.length; i += 4) if (px[i + 3] > 0 && Math.min(px[i], px[i + 1], px[i + 2]) < 235) drawn++;
+        return drawn / (px.length / 4);
+    });
+}"""
+
+
+def _click_step(page: Page, figure, last: bool = True) -> None:
+    """Click an end of the figure's (first) slider rail, as a reader would: its last or first step."""
+    box = figure.locator(".slider-rail-touch-rect").first.bounding_box()
+    page.mouse.click(box["x"] + (box["width"] - 3 if last else 3), box["y"] + box["height"] / 2)
+    page.wait_for_timeout(1000)
+
+
+def _away_and_back(page: Page, figure, what: str) -> list[float]:
+    """Scroll far from the figure until it is released, then back until it is drawn again.
+
+    Returns the drawn fractions of its stand-in's scene pictures, read while it was away.
+    """
+    page.mouse.move(2, 2)   # no hover label or mode bar in the pictures
+    far = figure.evaluate("el => el.getBoundingClientRect().top + window.scrollY > document.body.scrollHeight / 2 ? 0 "
+                          ": document.body.scrollHeight")
+    page.evaluate(f"window.scrollTo(0, {far})")
+    try:
+        page.wait_for_function(f"el => ({STAND_IN})(el) !== null", arg=figure.element_handle(), timeout=30_000)
+    except Exception as exc:
+        raise AssertionError(f"{what}: not released when scrolled far away (a picture in its place)") from exc
+    pictures = figure.evaluate(STAND_IN)
+    figure.scroll_into_view_if_needed()
+    _wait_until_drawn(page, figure, f"{what}, scrolled back to")
+    page.mouse.move(2, 2)
+    page.wait_for_timeout(500)
+    return pictures
+
+
+def test_site_figures_come_back(browser, site, offline: Offline) -> None:
+    """A 3D figure far from view is released (docs/_static/lazy_plotly.js) and drawn again when the
+    reader comes back, as the reader left it: the camera they chose, the slider's step and the
+    colours it set; a figure with animation frames keeps them. Meanwhile a picture of the figure
+    stands in its place, and the browser never drops a WebGL context.
+
+    On the test page MANY_SCENES (default build), or on the notebook page with the most figures
+    among those with a slider (a build given by LBO_BROWSER_SITE).
+    """
+    from PIL import Image, ImageChops, ImageStat
+
+    root, url = site
+    out = ARTIFACTS / "site"
+    out.mkdir(parents=True, exist_ok=True)
+    candidates = [p for p in (root / "notebooks").glob("*.html") if p.name != "index.html"]
+    chosen = root / "notebooks" / f"{MANY_SCENES}.html"
+    if not chosen.exists():
+        with_sliders = [p for p in candidates if '"sliders"' in p.read_text()]
+        assert with_sliders, "no notebook page has a figure with a slider"
+        chosen = max(with_sliders, key=lambda p: p.read_text().count('class="plotly-graph-div"'))
+    name, page = chosen.stem, offline.page
+    page.goto(f"{url}/notebooks/{chosen.name}", timeout=180_000)
+    _wait_for_math(page)
+    figures = page.locator(".plotly-graph-div")
+    slider_figure = frames_figure = None
+    scenes = 0
+    for i in range(figures.count()):
+        fig = figures.nth(i)
+        fig.scroll_into_view_if_needed()
+        _wait_until_drawn(page, fig, f"{name}: figure {i}")
+        state = fig.evaluate(READER_STATE)
+        scenes += len(state["cameras"])
+        if state["cameras"] and state["sliders"]:
+            if state["frames"] and frames_figure is None:
+                frames_figure = i
+            elif not state["frames"] and slider_figure is None:
+                slider_figure = i
+    assert slider_figure is not None, f"{name}: no 3D figure with a slider"
+    if chosen.stem == MANY_SCENES:
+        assert scenes > 16 and frames_figure is not None, f"{name}: {scenes} scenes, frames figure {frames_figure}"
+
+    # The reader moves the slider to its last step and turns the first scene (a horizontal drag).
+    fig = figures.nth(slider_figure)
+    fig.scroll_into_view_if_needed()
+    _wait_until_drawn(page, fig, f"{name}: slider figure")
+    start = fig.evaluate(READER_STATE)
+    _click_step(page, fig)
+    scene = fig.evaluate(FIGURE_LAYOUT)["scenes"][0]
+    x, y = (scene[0] + scene[2]) / 2, (scene[1] + scene[3]) / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 120, y, steps=8)   # turntable: about the vertical, the view stays upright
+    page.mouse.up()
+    page.mouse.move(2, 2)
+    page.wait_for_timeout(1000)
+    left = fig.evaluate(READER_STATE)
+    assert left["sliders"] != start["sliders"] and left["colours"] != start["colours"], f"{name}: the slider did not move"
+    assert left["cameras"][0] != start["cameras"][0], f"{name}: dragging did not turn the scene"
+    before = Image.open(io.BytesIO(fig.screenshot())).convert("L")
+    before.save(out / f"{name}_slider_figure_before_leaving.png")
+
+    pictures = _away_and_back(page, fig, f"{name}: slider figure")
+    assert pictures and min(pictures) > 0.01, f"{name}: the picture standing in for the figure is blank: {pictures}"
+    back = fig.evaluate(READER_STATE)
+    assert back == left, f"{name}: the figure came back changed:\n{left}\n{back}"
+    after = Image.open(io.BytesIO(fig.screenshot())).convert("L")
+    after.save(out / f"{name}_slider_figure_back.png")
+    difference = ImageStat.Stat(ImageChops.difference(before, after)).mean[0] if before.size == after.size else 255
+    assert difference < 2, f"{name}: the figure looks different after coming back (mean grey difference {difference:.1f})"
+    _check_figure_layout(page, fig, f"{name}_slider_figure_back", out)
+
+    if frames_figure is not None:
+        fig = figures.nth(frames_figure)
+        fig.scroll_into_view_if_needed()
+        _wait_until_drawn(page, fig, f"{name}: frames figure")
+        start = fig.evaluate(READER_STATE)
+        _away_and_back(page, fig, f"{name}: frames figure")
+        assert fig.evaluate(READER_STATE) == start, f"{name}: the frames figure came back changed"
+        _click_step(page, fig, last=start["sliders"][0] == 0)   # its animation frames still play
+        moved = fig.evaluate(READER_STATE)
+        assert moved["colours"] != start["colours"] and moved["sliders"] != start["sliders"], (
+            f"{name}: the frames figure's slider does nothing after coming back")
+
+    dropped = [line for line in offline.console if WEBGL_LIMIT_WARNING in line]
+    assert not dropped, f"{name}: the browser dropped WebGL contexts: {dropped[:3]}"
+    offline.check(f"{name} (figures released and drawn again)")
