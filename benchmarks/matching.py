@@ -70,6 +70,20 @@ threads, so on a quiet machine ``match`` takes less wall time than CPU time. Whe
 7.7 / 6.2 and 6.5 / 6.0, WKS 0.1, ``estimate_map`` 3.7 / 3.0, farthest-point samples 1.1 / 1.1,
 ZoomOut on the samples with the final search over every vertex 4.1 / 3.8.
 
+The same command with two rounds, quiet machine (load 1.4, nothing else running),
+2026-11-26 12:09 UTC (medians; ratio: median of the per-round ratios)::
+
+    env -u OPENBLAS_NUM_THREADS -u OMP_NUM_THREADS -u MKL_NUM_THREADS python benchmarks/matching.py --sizes 25000 50000 --repeats 2
+
+         n method                    error  wall (s)  cpu (s)  pyFM wall / ours
+     24705 lbo.match                0.0023      5.96     6.43              2.17
+     24705 pyFM default             0.0094     12.95    24.78
+     49124 lbo.match                0.0018     15.17    16.90              2.29
+     49124 pyFM default             0.0100     34.72    66.73
+
+(A run of it 10 minutes earlier beside a browser test, load about 3, gave ratios of 6.97 and 4.62:
+pyFM's two BLAS threads suffer far more from a busy machine than ``match``'s one.)
+
 ``matching.EIGEN_TOL`` on pairs that played no part in choosing it (other species, poses, part
 scalings, sizes and metrics; quiet machine but beside other jobs, so the times are rough),
 2026-11-26 11:40 UTC::
