@@ -20,6 +20,8 @@ from lbo_notebooks import mds, rpca, shapes, spectrum
 from lbo_notebooks.eigensolver import slice_eigsh
 from lbo_notebooks.slicing import plan_sets
 
+from .kernel import cell_outputs, is_widget
+
 
 class _Terminal(io.StringIO):
     """A stderr that says it is a terminal."""
@@ -146,8 +148,6 @@ def test_bad_progress_argument(sphere, solver, sparse_sphere):
 
 
 def test_default_bars_show_in_a_notebook():
-    nbformat = pytest.importorskip("nbformat")
-    nbclient = pytest.importorskip("nbclient")
     code = (
         "import numpy as np\n"
         "import lbo_notebooks as lbo\n"
@@ -159,9 +159,7 @@ def test_default_bars_show_in_a_notebook():
         "results = rpca.RegularizedPCA(sphere.vertices, W, A).sweep(6, betas=[0.2, 0.8])\n"
         "s = lbo.eigenbasis(lbo.shapes.bumpy_sphere(3), 20)"  # 642 vertices, as if 64,200
     )
-    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
-    nbclient.NotebookClient(nb, timeout=300, kernel_name="python3").execute()
-    outputs = nb.cells[0].outputs
+    outputs = cell_outputs(code)
     assert not any(o.get("output_type") == "error" for o in outputs), outputs
-    widgets = [o for o in outputs if "application/vnd.jupyter.widget-view+json" in o.get("data", {})]
+    widgets = [o for o in outputs if is_widget(o)]
     assert len(widgets) == 3, outputs  # one bar for each call (none for spectral MDS's eigenbasis)
