@@ -32,7 +32,7 @@ from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from typing import Any, Iterator
 
-__all__ = ["ENVIRONMENT", "one_blas_thread", "user_chose_threads"]
+__all__ = ["ENVIRONMENT", "one_blas_thread", "rebuild_thread_pools", "user_chose_threads"]
 
 #: Environment variables by which a user sets the BLAS thread count of a process.
 ENVIRONMENT = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
@@ -99,3 +99,24 @@ def one_blas_thread() -> Iterator[None]:
             if _open == 0 and _limiter is not None:
                 limiter, _limiter = _limiter, None
                 _in_owner_thread(lambda: limiter.__exit__(None, None, None))
+
+
+def rebuild_thread_pools() -> None:
+    """Have each BLAS library set its own thread count again, from the thread that owns the setting.
+
+    Nothing changes but this: OpenBLAS, which drops its thread pool in a forked child, builds it
+    again now rather than at the child's first change of the count (see
+    :func:`lbo_notebooks.cost.measure_in_fresh_process`). Done in the owner thread, like every
+    change here, so that threadpoolctl still lets :func:`one_blas_thread` set the count later.
+
+    Examples
+    --------
+    >>> rebuild_thread_pools()  # the counts are as they were
+    """
+    from threadpoolctl import ThreadpoolController
+
+    def again() -> None:
+        for library in ThreadpoolController().lib_controllers:
+            library.set_num_threads(library.num_threads)
+
+    _in_owner_thread(again)

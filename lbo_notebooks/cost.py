@@ -104,9 +104,32 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
 
 
+def _settle_blas_threads(timeout: float = 1.0) -> None:
+    """Give a forked child the idle BLAS thread pools a process of its own has.
+
+    OpenBLAS tears its thread pool down across ``fork`` and builds it again at the child's first
+    change of its thread count. The new threads spin for about 0.1 s before they sleep: on two cores,
+    a first call that limits BLAS to one thread (as the package's solvers do) competed with two
+    spinning pools and took 10-20% longer than in a new interpreter, where the pools were built
+    and went idle at import. So the pools are rebuilt here, before any timing (setting each
+    library's own count again changes nothing else), and the child waits until it is idle: less
+    than a tenth of a core used over 20 ms, at most ``timeout`` seconds.
+    """
+    from .blas_threads import rebuild_thread_pools
+
+    rebuild_thread_pools()
+    deadline = time.perf_counter() + timeout
+    while time.perf_counter() < deadline:
+        cpu = time.process_time()
+        time.sleep(0.02)
+        if time.process_time() - cpu < 0.002:
+            return
+
+
 def _in_child(function: Any, args: tuple, queue: Any) -> None:
     import resource
 
+    _settle_blas_threads()
     base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     start = time.perf_counter()
     result = function(*args)
@@ -121,7 +144,9 @@ def measure_in_fresh_process(function: Any, *args: Any) -> dict[str, Any]:
     The child starts as a copy of this process (``fork``, so Linux or macOS), and its peak
     resident memory is read before and after the call: ``rss_growth_mib`` is what the call added,
     compiled libraries included, and peaks of earlier measurements do not leak in. The result
-    comes back pickled.
+    comes back pickled. Before the clock starts, the child's BLAS thread pools are rebuilt and left
+    to go idle, as they are in a process of its own (OpenBLAS drops them across ``fork``; see
+    ``_settle_blas_threads``).
 
     Examples
     --------
