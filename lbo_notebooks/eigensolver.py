@@ -32,7 +32,7 @@ from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .slicing import Pencil, WindowPlan, place_shift, plan_sets, plan_window
-from .sparse_factor import SliceFactor, fill_reducing_order, symmetric_lu
+from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, symmetric_lu
 
 __all__ = ["SLICE_SIZE", "TOL", "slice_eigsh"]
 
@@ -128,7 +128,9 @@ def slice_eigsh(
     order : ndarray (n,), optional
         A fill-reducing order shared by every shift, e.g. the mesh's
         :func:`~lbo_notebooks.sparse_factor.mesh_order`; default: METIS on the pattern of
-        ``stiffness`` and ``mass``.
+        ``stiffness`` and ``mass`` from :data:`~lbo_notebooks.sparse_factor.NESTED_DISSECTION_MIN`
+        unknowns on, below that the first factorisation's own (SuperLU's minimum degree), kept
+        for the others.
     tol : float
         Lanczos convergence: each returned pair's residual in the shift-inverted problem,
         relative to its eigenvalue there (see :func:`~lbo_notebooks.krylov.nearest_eigenpairs`).
@@ -176,7 +178,7 @@ def slice_eigsh(
     else:
         check_integer(workers, "workers", 1)
     n_sets = plan_sets(k, slice_size, int(workers))
-    if order is None:
+    if order is None and n >= NESTED_DISSECTION_MIN:
         order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
     pencil = Pencil(W, A, order, v0, tol)
     # One BLAS thread per worker (unless the user chose the count): no oversubscription, and the

@@ -29,12 +29,15 @@ MIN_SET = 20
 OVERLAP = 0.05
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(eq=False)
 class Pencil:
     """The problem ``W phi = lam A phi`` as the eigensolver's steps share it.
 
-    ``order`` is the fill-reducing order every shift's ``W - b A`` shares (``None``: chosen per
-    factorisation), ``v0`` the Lanczos start vector of every set and ``tol`` their tolerance.
+    ``order`` is the fill-reducing order every shift's ``W - b A`` shares. When it is ``None``
+    the first factorisation orders the matrix itself (SuperLU's minimum degree, what pays below
+    :data:`~lbo_notebooks.sparse_factor.NESTED_DISSECTION_MIN` unknowns) and its order is kept
+    for the others, which then skip that step. ``v0`` is the Lanczos start vector of every set and
+    ``tol`` their tolerance.
     """
 
     W: sp.csr_matrix
@@ -50,7 +53,10 @@ class Pencil:
 
     def factor(self, shift: float) -> SliceFactor:
         """``W - shift A`` factorised, with its inertia count (:meth:`SliceFactor.of`)."""
-        return SliceFactor.of(self.W, self.A, shift, self.order)
+        factor = SliceFactor.of(self.W, self.A, shift, self.order)
+        if self.order is None:
+            self.order = factor.lu.permutation
+        return factor
 
 
 def plan_sets(k: int, slice_size: int, workers: int) -> int:

@@ -12,7 +12,8 @@ factorisation 3.1x faster (1.3x counting the ordering's own time) and each solve
 depends only on the sparsity pattern, so matrices that share one can share it
 (:func:`fill_reducing_order`), as the eigensolver's shifts do. Below
 :data:`NESTED_DISSECTION_MIN` unknowns METIS's own run costs more than it saves, so a matrix given
-without an order is ordered by SuperLU's minimum degree there.
+without an order is ordered by SuperLU's minimum degree there
+(:attr:`SymmetricFactor.permutation` hands that order on to matrices of the same pattern).
 
 Pivots are taken on the diagonal, in the symmetric order: ``P M P^T = L U`` with ``U = D L^T``,
 so for an indefinite ``M`` the signs of ``D`` are its inertia (Sylvester's law), which is how
@@ -38,6 +39,10 @@ __all__ = [
 # Below this many unknowns a matrix with no order given is ordered by SuperLU itself (minimum
 # degree on A + A^T): at 2.5k vertices METIS's run plus the factorisation took 2.2x as long as
 # SuperLU's alone, at 10k they were about even (0.7x-1.1x on two meshes), at 51k 1.3x faster.
+# The eigensolver follows the same rule with its several shifts (the first factorisation's order
+# serves the others): eigenbasis(mesh, 100) on six 10k-vertex shapes took 0.80-1.02 times as long
+# as with METIS's order (whose run alone took 31-47 ms of about 0.45 s), 0.83-0.97 times at
+# 15.5k-19.4k vertices (k = 100 and 300). benchmarks/eigen.py has the measurements.
 NESTED_DISSECTION_MIN = 20_000
 
 
@@ -82,7 +87,8 @@ def mesh_order(mesh: Mesh) -> NDArray[np.intp]:
 
     Every operator assembled on the mesh's own triangles (``W``, ``A``, ``W - b A``, ``A + t W``,
     the pinned ``W``) has the pattern of the edge graph, so they all share this order: one METIS
-    run (0.25 s at 51k vertices) serves the eigensolver and the heat method's Poisson step. Not
+    run (0.25 s at 51k vertices) serves the eigensolver and the heat method's Poisson step (from
+    :data:`NESTED_DISSECTION_MIN` vertices on; below, neither asks for it). Not
     the intrinsic Delaunay operators of :mod:`~lbo_notebooks.robust`: their flipped edges cross
     this order's separators (on a stretched 51k-vertex torus, 3x the fill), so they are ordered
     on their own pattern.
@@ -151,6 +157,17 @@ class SymmetricFactor:
             for copy in (L, U):
                 copy.data, copy.indices = copy.data[:0].copy(), copy.indices[:0].copy()
         return self._summary
+
+    @property
+    def permutation(self) -> NDArray[np.intp]:
+        """The symmetric order this factorisation used: the one given, or SuperLU's minimum degree.
+
+        Matrices with the same pattern can be given it (``order=``) and skip the ordering step.
+        """
+        if self.order is not None:
+            return self.order
+        # SuperLU moves column j to position perm_c[j]: the order is its inverse.
+        return np.argsort(self._lu.perm_c)
 
     @property
     def nnz(self) -> int:

@@ -31,7 +31,7 @@ from .laplacians import laplace_beltrami
 from .mesh import Mesh
 from .operators import MassKind
 from .solver_policy import default_shift, start_vector, use_dense
-from .sparse_factor import mesh_order
+from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order
 from .units import unit_area_exponent
 
 __all__ = ["Spectrum", "eigenbasis"]
@@ -255,8 +255,9 @@ def eigenbasis(
         check_number(tol, "tol", 0, 1, open_low=True, open_high=True,
                      what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default")
     # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
-    # with the heat method's factorisations.
-    order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) else (lambda: None)
+    # with the heat method's factorisations. Below NESTED_DISSECTION_MIN vertices METIS's own run
+    # costs more than it saves (sparse_factor): the solver orders the first matrix it factorises.
+    order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) and n >= NESTED_DISSECTION_MIN else (lambda: None)
     with progress_bar(int(k), "eigenbasis", progress, long=_is_long(n, int(k))) as bar:
         values, vectors = _solve_in_unit_area(W, A, int(k), shift=shift, solver=solver, tol=tol, order=order, bar=bar)
     return Spectrum(values=values, vectors=vectors, stiffness=W, mass=A)
@@ -363,13 +364,13 @@ def _arpack_is_complete(
     eigenvalues below a point exactly, so a count just below the last value's cluster proves the
     set complete, or sends the problem to spectrum slicing, which completes it.
     """
-    from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor
+    from .sparse_factor import SliceFactor
 
     top = float(values[-1])
     point = top - max(1e-9 * abs(top), 1e-3 * shift)
-    # One factorisation: the METIS order pays only on large meshes (sparse_factor).
+    # One factorisation (the METIS order only on large meshes: see eigenbasis).
     try:
-        count = SliceFactor.of(W, A, point, order() if W.shape[0] >= NESTED_DISSECTION_MIN else None).n_below
+        count = SliceFactor.of(W, A, point, order()).n_below
     except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
         return False
     return count == int(np.count_nonzero(values < point))

@@ -302,3 +302,42 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
     assert n_below >= 60 and count_below(W, A, values[-1] * (1 + 1e-9)) <= n_below
     assert len(runs) == plan_sets(60, 20, 2)  # every set ran once: none was redone
     assert deflated.count(True) == 1
+
+
+def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(monkeypatch):
+    """Below NESTED_DISSECTION_MIN no METIS run: SuperLU's minimum degree orders the first shift's
+    matrix, and every later factorisation reuses that order (the same fill, no ordering step)."""
+    from lbo_notebooks import eigensolver, sparse_factor, spectrum
+
+    def no_metis(*args):
+        raise AssertionError("METIS ran below NESTED_DISSECTION_MIN")
+
+    monkeypatch.setattr(eigensolver, "fill_reducing_order", no_metis)
+    monkeypatch.setattr(spectrum, "mesh_order", no_metis)
+    orders: list = []
+    original = sparse_factor.symmetric_lu
+    monkeypatch.setattr(sparse_factor, "symmetric_lu", lambda matrix, order=None: orders.append(order) or original(matrix, order))
+    mesh = shapes.bumpy_sphere(3)
+    W, A = operators(mesh)
+    values, vectors, _ = slice_eigsh(W, A, 60, v0=start(W.shape[0]), shift=0.01, slice_size=20, workers=2)
+    assert orders[0] is None and len(orders) >= 4
+    assert all(order is orders[1] for order in orders[1:])  # one order, made by the first factorisation
+    np.testing.assert_allclose(values[1:], dense_values(W, A)[1:60], rtol=1e-9)
+    check_pairs(W, A, values, vectors)
+    assert abs(eigenbasis(mesh, 60).values[-1] / values[-1] - 1) < 1e-12  # eigenbasis takes the same path
+
+
+def test_the_first_factorisations_order_gives_the_same_fill_and_pencils_keep_it():
+    from lbo_notebooks.sparse_factor import symmetric_lu
+
+    W, A = operators(shapes.torus(1.0, 0.4, 60, 24))
+    own = symmetric_lu(W - 30.0 * A)
+    reused = symmetric_lu(W - 70.0 * A, own.permutation)
+    assert sorted(own.permutation.tolist()) == list(range(W.shape[0]))
+    assert reused.nnz == own.nnz and np.array_equal(reused.permutation, own.permutation)
+    pencil = Pencil(W, A, None, start(W.shape[0]), 1e-10)
+    first = pencil.factor(30.0)
+    assert np.array_equal(pencil.order, first.lu.permutation)
+    assert np.array_equal(pencil.order, own.permutation)  # SuperLU's minimum degree depends on the pattern only
+    second = pencil.factor(70.0)
+    assert second.lu.order is pencil.order and second.n_below == count_below(W, A, 70.0)
