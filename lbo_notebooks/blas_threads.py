@@ -119,4 +119,5 @@ def rebuild_thread_pools() -> None:
         for library in ThreadpoolController().lib_controllers:
             library.set_num_threads(library.num_threads)
 
-    _in_owner_thread(again)
+    with _lock:  # like one_blas_thread: one owner thread, made once, whoever calls first
+        _in_owner_thread(again)
