@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 from ._platform import default_workers
 from .blas_threads import one_blas_thread
 from .mesh import Mesh, MeshError, per_mesh
-from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order, symmetric_lu
+from .sparse_factor import mesh_order_where_it_pays, symmetric_lu
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
 
@@ -109,11 +109,6 @@ def _in_blocks(work: Callable[[slice], None], total: int, block: int) -> None:
                 list(pool.map(work, blocks))
 
 
-def _order(mesh: Mesh) -> NDArray[np.intp] | None:
-    """The mesh's shared METIS order where METIS pays (see :data:`NESTED_DISSECTION_MIN`), else ``None``."""
-    return mesh_order(mesh) if mesh.n_vertices >= NESTED_DISSECTION_MIN else None
-
-
 def _factor(matrix: sp.spmatrix, order: NDArray[np.intp] | None = None) -> Any:
     try:
         return symmetric_lu(matrix, order)
@@ -137,7 +132,7 @@ def _poisson_factor(mesh: Mesh) -> Any:
     # finite on zero-area faces. It is singular (constants); pinning vertex 0 makes it definite
     # on a connected mesh.
     G, divergence = _gradient(mesh)
-    order = _order(mesh)
+    order = mesh_order_where_it_pays(mesh)
     if order is not None:  # the same order without vertex 0
         order = order[order != 0] - 1
     return _factor((divergence @ G).tocsc()[1:, 1:], order)

@@ -33,7 +33,8 @@ from numpy.typing import ArrayLike, NDArray
 from .mesh import Mesh, per_mesh
 
 __all__ = [
-    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "mesh_order", "symmetric_lu",
+    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "mesh_order",
+    "mesh_order_where_it_pays", "symmetric_lu",
 ]
 
 # Below this many unknowns a matrix with no order given is ordered by SuperLU itself (minimum
@@ -104,6 +105,20 @@ def mesh_order(mesh: Mesh) -> NDArray[np.intp]:
     edges, n = mesh.edges, mesh.n_vertices
     graph = sp.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
     return fill_reducing_order(graph)
+
+
+def mesh_order_where_it_pays(mesh: Mesh) -> NDArray[np.intp] | None:
+    """:func:`mesh_order` from :data:`NESTED_DISSECTION_MIN` vertices on, else ``None`` (SuperLU orders the matrix).
+
+    The one rule for callers that factorise operators of a mesh (the eigensolver, the heat method).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes
+    >>> mesh_order_where_it_pays(shapes.icosphere(2)) is None  # 162 vertices: METIS would not pay
+    True
+    """
+    return mesh_order(mesh) if mesh.n_vertices >= NESTED_DISSECTION_MIN else None
 
 
 class SymmetricFactor:

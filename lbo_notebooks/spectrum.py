@@ -31,7 +31,7 @@ from .laplacians import laplace_beltrami
 from .mesh import Mesh
 from .operators import MassKind
 from .solver_policy import default_shift, start_vector, use_dense
-from .sparse_factor import NESTED_DISSECTION_MIN, mesh_order
+from .sparse_factor import mesh_order_where_it_pays
 from .units import unit_area_exponent
 
 __all__ = ["Spectrum", "eigenbasis"]
@@ -254,10 +254,10 @@ def eigenbasis(
     if tol is not None:
         check_number(tol, "tol", 0, 1, open_low=True, open_high=True,
                      what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default")
-    # A Mesh's operators have its edge pattern: the METIS order is made once per mesh and shared
-    # with the heat method's factorisations. Below NESTED_DISSECTION_MIN vertices METIS's own run
-    # costs more than it saves (sparse_factor): the solver orders the first matrix it factorises.
-    order = (lambda: mesh_order(mesh)) if isinstance(mesh, Mesh) and n >= NESTED_DISSECTION_MIN else (lambda: None)
+    # A Mesh's operators have its edge pattern: on large meshes the METIS order is made once per
+    # mesh and shared with the heat method's factorisations; below, the solver orders the first
+    # matrix it factorises (sparse_factor).
+    order = (lambda: mesh_order_where_it_pays(mesh)) if isinstance(mesh, Mesh) else (lambda: None)
     with progress_bar(int(k), "eigenbasis", progress, long=_is_long(n, int(k))) as bar:
         values, vectors = _solve_in_unit_area(W, A, int(k), shift=shift, solver=solver, tol=tol, order=order, bar=bar)
     return Spectrum(values=values, vectors=vectors, stiffness=W, mass=A)

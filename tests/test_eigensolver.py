@@ -307,13 +307,13 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
 def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(monkeypatch):
     """Below NESTED_DISSECTION_MIN no METIS run: SuperLU's minimum degree orders the first shift's
     matrix, and every later factorisation reuses that order (the same fill, no ordering step)."""
-    from lbo_notebooks import eigensolver, sparse_factor, spectrum
+    from lbo_notebooks import eigensolver, sparse_factor
 
     def no_metis(*args):
         raise AssertionError("METIS ran below NESTED_DISSECTION_MIN")
 
     monkeypatch.setattr(eigensolver, "fill_reducing_order", no_metis)
-    monkeypatch.setattr(spectrum, "mesh_order", no_metis)
+    monkeypatch.setattr(sparse_factor, "mesh_order", no_metis)
     orders: list = []
     original = sparse_factor.symmetric_lu
     monkeypatch.setattr(sparse_factor, "symmetric_lu", lambda matrix, order=None: orders.append(order) or original(matrix, order))
