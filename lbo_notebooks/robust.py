@@ -106,9 +106,11 @@ def non_manifold_vertices(mesh: Mesh) -> NDArray[np.int64]:
         rows = np.concatenate([lo_corner[h1], hi_corner[h1]])
         cols = np.concatenate([lo_corner[h2], hi_corner[h2]])
         graph = sp.coo_matrix((np.ones(rows.size), (rows, cols)), shape=(n_corners, n_corners))
-        _, label = connected_components(graph, directed=False)
-        fans = np.unique(f.ravel() * np.int64(n_corners) + label)  # distinct (vertex, fan) pairs
-        per_vertex = np.bincount(fans // n_corners, minlength=n)
+        n_fans, label = connected_components(graph, directed=False)
+        # Joined corners share their vertex, so each fan (component) belongs to one vertex.
+        fan_vertex = np.empty(n_fans, dtype=np.int64)
+        fan_vertex[label] = f.ravel()
+        per_vertex = np.bincount(fan_vertex, minlength=n)
         out = np.flatnonzero(per_vertex > 1).astype(np.int64)
         out.setflags(write=False)
         return out

@@ -96,6 +96,43 @@ def test_non_manifold_vertex_detection():
     assert "1 non-manifold vertex" in cotan_defects(bowtie)[0]
 
 
+def _fans_by_brute_force(mesh: Mesh) -> list[int]:
+    """Vertices whose faces split into more than one group joined by shared edges, face pair by face pair."""
+    from scipy.sparse.csgraph import connected_components
+
+    f = mesh.faces
+    out = []
+    for v in range(mesh.n_vertices):
+        around = f[(f == v).any(axis=1)]
+        shared = np.array([[len(set(a) & set(b)) >= 2 for b in around] for a in around])
+        if around.shape[0] > 1 and connected_components(sp.csr_matrix(shared), directed=False)[0] > 1:
+            out.append(v)
+    return out
+
+
+def _glued(a: Mesh, b: Mesh, vertex_a: int, vertex_b: int) -> Mesh:
+    """``a`` and a moved copy of ``b`` sharing one vertex and nothing else."""
+    index = np.arange(b.n_vertices) + a.n_vertices - (np.arange(b.n_vertices) > vertex_b)
+    index[vertex_b] = vertex_a
+    v = np.vstack([a.vertices, np.delete(b.vertices + 3.0, vertex_b, axis=0)])
+    return Mesh(v, np.vstack([a.faces, index[b.faces]]), check=False)
+
+
+def test_non_manifold_vertices_agree_with_a_face_by_face_count():
+    # Two closed fans (two spheres touching), a closed and an open one, two open ones, and random
+    # pieces of a sphere (bowties wherever a fan breaks): each vertex's faces, grouped directly.
+    ball, disk = shapes.icosphere(1), shapes.disk(n_rings=3)
+    meshes = [_glued(ball, ball, 0, 5), _glued(disk, ball, 0, 3), _glued(disk, disk, 7, 7)]
+    rng = np.random.default_rng(3)
+    for _ in range(8):
+        faces = shapes.icosphere(2).faces[rng.random(320) < 0.6]
+        used, faces = np.unique(faces, return_inverse=True)
+        meshes.append(Mesh(shapes.icosphere(2).vertices[used], faces.reshape(-1, 3), check=False))
+    for mesh in meshes:
+        expected = _fans_by_brute_force(mesh)
+        assert expected and non_manifold_vertices(mesh).tolist() == expected
+
+
 def test_needle_triangle_is_a_defect():
     v = [[0, 0, 0], [1, 0, 0], [0.5, 1e-6, 0], [0.5, -1, 0]]
     mesh = Mesh(v, [[0, 1, 2], [1, 0, 3]])
