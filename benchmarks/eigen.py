@@ -33,8 +33,12 @@ forked measurement is fair. Two runs each, 2026-11-26::
             scan proxy  1.54    1.75       1.53    1.54
 
 So the goal (>= 1.5 on each) is met in most runs and missed by up to 0.06 in some: at the noise of
-this machine, not clear of it. At 11:27 UTC, before the two changes below, the forked run gave
-1.46, 1.32, 1.79, 1.59, 1.36, 1.25. The two changes:
+this machine, not clear of it. Again at 17:12 UTC (eab22c4), forked / new interpreters: bumpy
+sphere 1.61 / 1.64, disk 1.66 / 1.63, torus 2.19 / 2.28, dog 2.12 / 2.16, ellipsoid 1.51 / 1.59,
+scan proxy 1.60 / 1.72. The two weakest are the subdivided icosahedra (bumpy sphere, ellipsoid),
+on which SuperLU's minimum degree is slowest (47-56 ms for the first factorisation against
+21-36 ms on the others) and leaves 27% more fill than METIS. At 11:27 UTC, before the two
+changes below, the forked run gave 1.46, 1.32, 1.79, 1.59, 1.36, 1.25. The two changes:
 
 - The measurement. OpenBLAS drops its thread pool across ``fork`` and builds it again at the
   child's first change of its thread count; the new threads then spin for about 0.1 s (0.2 s of
@@ -59,7 +63,11 @@ Measured before those two changes: with ``OPENBLAS_NUM_THREADS=1`` for both, pla
 does not gain from the second core at this size, measured on the scan proxy (one BLAS thread,
 in-process unless said):
 
-- SciPy's (1.17) ``SuperLU.solve`` holds the GIL. Fifty 4-column solves with the 10.9k factor in
+- SciPy's (1.17) ``SuperLU.solve`` does not run side by side with another. It releases the GIL,
+  but a supernodal solve on a surface mesh is thousands of tiny ``dtrsm``/``dgemm`` calls, and
+  such calls into SciPy's OpenBLAS do not run in parallel from two threads (measured without
+  Python in ``benchmarks/superlu_threads.py``; this docstring said "holds the GIL" until
+  2026-11-26). Fifty 4-column solves with the 10.9k factor in
   each of two threads take as long as the hundred in one (0.169 s against 0.167 s: 1.01x), while
   the Krylov projections (BLAS-3) scale 1.92x and the factorisations 1.5x. So the two Lanczos sets
   of ``eigenbasis(mesh, 100)``, 0.23 s and 0.17 s alone, take 0.46 s side by side: 0.89x of
@@ -75,6 +83,19 @@ in-process unless said):
   in SuperLU's own layout (the diagonal of ``U`` in ``L``'s columns): the same results to
   1e-14 and about the same gain (-4 to -11% on five shapes, +7% on the scan proxy; one run beside
   a browser test, so noisy).
+- METIS beside the first factorisation (the first ordered by minimum degree, METIS's order for
+  every later one; METIS called through ctypes, since pymetis holds the GIL throughout): new /
+  old 0.93, 0.99, 0.99, 1.01, 0.97, 1.09 on the six shapes, then 0.98, 0.98, 1.035 on the
+  bumpy sphere, dog and scan proxy (new interpreters, best of 5 and 7), and no less peak memory
+  (one run each: 48.2 against 48.6 MiB on the bumpy sphere, 49.8 against 47.4 on the
+  ellipsoid). Not kept.
+- Reverse Cuthill-McKee before minimum degree: 13% less fill and half the first factorisation's
+  time on subdivided icosahedra, but 13-17% more fill on the tori and 1-6% more on the disk,
+  rectangle and scan proxy (fill decides by the vertex order's tie-breaking, not by the shape).
+  Not kept.
+- Four sets for k = 100 instead of two (``slice_size`` 34 or 25) take 1.4-3.1x as long. Blocks
+  of 6 and 8 with both sets running: 2-33% slower than 4 (in-process, best of 4).
+- ``sys.setswitchinterval`` of 0.5 or 0.1 ms instead of 5: no change (the GIL is not the limit).
 - One worker with two BLAS threads (one set of 100, or two sets in turn) is slower: 0.65-0.98 s.
   Blocks of 2, 3, 5, 6 or 8 vectors instead of 4 are 2-50% slower (both sets, one thread);
   ``tol=1e-8`` instead of 1e-10 saves 5-10% of the sets, but the default accuracy stays.

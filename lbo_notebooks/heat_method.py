@@ -14,7 +14,8 @@ two solves, and step 2 (not linear: it normalises) acts on each source's field a
 of b sources is b right-hand sides of the same two factorisations, and the triangular solves work
 on b columns at once: at 50k vertices a source costs 11-12 ms in blocks of 8, against 22 ms alone
 (``benchmarks/geodesics.py``). The two factorisations run in two threads (SuperLU releases the
-GIL while it factorises, not while it solves).
+GIL while it factorises; its solves release it too but gain little from a second thread, see
+``benchmarks/superlu_threads.py``).
 
 Step 1 uses the intrinsic Delaunay Laplacian of robust-laplacian (Sharp & Crane 2020): its
 weights are non-negative, so the diffused heat has no spurious extrema on meshes with obtuse or
