@@ -882,6 +882,27 @@ def test_load_error(tmp_path):
     _status(ex.check_load_error(7, show=False), WRONG, "exception object")
     for placeholder in PLACEHOLDERS:
         _status(ex.check_load_error(placeholder, show=False), NOT_ATTEMPTED)
+    # Every way load_mesh names a missing vertex is right; a MeshError about another defect (a
+    # duplicate face, a header that promises more vertices than the file has) is not.
+    right = {
+        "past.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+        "zero.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
+        "past.ply": "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+    }
+    wrong = {
+        "twice.off": "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
+        "short.off": "OFF\n5 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    }
+    for answers, status in ((right, CORRECT), (wrong, WRONG)):
+        for name, text in answers.items():
+            (tmp_path / name).write_text(text)
+            with pytest.raises(lbo.MeshError) as info:
+                lbo.load_mesh(tmp_path / name)
+            _status(ex.check_load_error(info.value, show=False), status, "MeshError" if status == CORRECT else "another defect")
+    with pytest.raises(lbo.MeshError) as info:
+        lbo.Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 5]])
+    _status(ex.check_load_error(info.value, show=False), CORRECT, "MeshError")
 
 
 def test_rpca_limits():

@@ -6,6 +6,7 @@ see :mod:`lbo_notebooks.exercises` for how an exercise works.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from functools import lru_cache
 from typing import Any
@@ -163,6 +164,11 @@ def check_eigenfunction(phi: Any, index: int = 6, *, show: bool = True) -> Feedb
     return run_check("00-torus", show, body)
 
 
+# What load_mesh says of a face whose vertex does not exist: an index outside the file's range
+# (OFF and PLY count from 0, OBJ from 1 and refuses 0 outright; a Mesh built from arrays says it too).
+_MISSING_VERTEX = re.compile(r"vertex ind(?:ex|ices) .*outside -?\d+\.\.-?\d+|vertex index 0; OBJ indices are 1-based", re.S)
+
+
 def check_load_error(error: Any, *, show: bool = True) -> Feedback:
     """Exercise 00-missing: the exception ``load_mesh`` raised for a face naming a vertex that does not exist."""
     from ..mesh import Mesh, MeshError
@@ -170,7 +176,10 @@ def check_load_error(error: Any, *, show: bool = True) -> Feedback:
     def body() -> str:
         require_attempt(error)
         if isinstance(error, MeshError):
-            return "Right: a `MeshError` that names the face and the vertex index that does not exist."
+            if _MISSING_VERTEX.search(str(error)):
+                return "Right: a `MeshError` that names the face and the vertex index that does not exist."
+            raise Stop(WRONG, "That `MeshError` is about another defect of the file: read its message. Make one face "
+                              "use an index past the last vertex (faces count vertices from 0).")
         if isinstance(error, type):
             raise Stop(WRONG, "That is an exception class; keep the exception object: `except lbo.MeshError as err: error = err`.")
         if isinstance(error, str):
