@@ -92,8 +92,9 @@ SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 
 SMDS_EIGEN_TOL = 1e-6
 
 #: How :func:`spectral_mds` uses the samples' squared-distance rows ``F = D2[S, :]`` (q x n):
-#: ``"fields"`` keeps them whole and interpolates only the columns, ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``,
-#: so the embedding lives in the span of the eigenfunctions *and* of the sampled fields;
+#: ``"fields"`` uses them as they are, not projected onto the eigenfunctions, and interpolates only
+#: the columns, ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2`` (which does not reproduce the sampled rows
+#: exactly), so the embedding lives in the span of the eigenfunctions *and* of the sampled fields;
 #: ``"rows"`` also projects the rows onto the eigenfunctions, ``D2 ~ Phi alpha Phi.T`` with
 #: ``alpha = M F A Phi`` (the paper's form of the result, ``X = Phi B``); ``"pairs"`` uses only
 #: the pairs among the samples ``D2[S, S]`` (q x q), ``alpha = M D2[S, S] M.T`` (the closed form of
@@ -279,7 +280,7 @@ ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 def _check_sampled(sampled: Any) -> str:
     if not isinstance(sampled, str) or sampled not in SAMPLED:
         raise ValueError(
-            f"sampled must be 'fields' (the samples' distance fields kept whole), 'rows' (those fields "
+            f"sampled must be 'fields' (the samples' distance fields, unprojected), 'rows' (those fields "
             f"projected onto the eigenfunctions) or 'pairs' (the distances among the samples only), got {sampled!r}."
         )
     return sampled
@@ -373,10 +374,11 @@ def spectral_mds(
        column;
     3. the approximate ``D2``, from which ``B = -1/2 J D2 J`` is scaled:
 
-       - ``sampled="fields"`` (default): ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``. The sampled rows
-         are kept as they are, so B lives in the span of ``J [Phi, F.T]`` (k + q columns) and the
-         embedding is not confined to the span of the eigenfunctions (whose projection of the
-         classical embedding is the floor of the other two forms);
+       - ``sampled="fields"`` (default): ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``. The sampled fields
+         enter as they are, not projected onto the eigenfunctions (the approximation does not
+         reproduce the sampled rows exactly), so B lives in the span of ``J [Phi, F.T]`` (k + q
+         columns) and the embedding is not confined to the span of the eigenfunctions (whose
+         projection of the classical embedding is the floor of the other two forms);
        - ``sampled="rows"``: ``D2 ~ Phi alpha Phi.T`` with ``alpha = M F A Phi`` (symmetrised):
          each sampled row is also projected onto the eigenfunctions (its A-inner products). This is
          the paper's form of the result, ``X = Phi B``;
