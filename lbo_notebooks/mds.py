@@ -11,13 +11,13 @@ theirs nearly coincide.
 * :func:`landmark_mds` — de Silva & Tenenbaum (2004): classical MDS of q landmarks, then every
   vertex is placed by distance-based triangulation from its distances to the landmarks.
 * :func:`spectral_mds` — Aflalo & Kimmel (2013): every column of the squared-distance matrix is
-  interpolated in the span of the first ``k`` Laplace–Beltrami eigenfunctions from its values at
-  q samples, whose whole distance fields are computed (the smoothest interpolant: least
-  biharmonic energy as in the paper, or least Dirichlet energy), and the scaling is done in a
+  fitted in the span of the first ``k`` Laplace–Beltrami eigenfunctions to its values at q
+  samples, whose whole distance fields are computed (least squares with a smoothness penalty:
+  biharmonic energy as in the paper, or Dirichlet energy), and the scaling is done in a
   (k + q)-dimensional space (k x k in the paper's form, ``sampled="rows"`` or ``"pairs"``).
   O(n (k + q)^2) time, O(n k + q n) memory; never forms an n x n matrix.
 * :func:`~lbo_notebooks.fast_scaling.fast_classical_scaling` (:mod:`lbo_notebooks.fast_scaling`) — the
-  columns interpolated by a smoothing spline on the surface instead of eigenfunctions.
+  columns fitted by a smoothing spline on the surface instead of eigenfunctions.
 
 Accuracy is compared without aligning anything by :func:`~lbo_notebooks.embedding_error.gram_error`
 (the relative Frobenius error of the Gram matrices), and after an optimal rotation by
@@ -367,11 +367,11 @@ def spectral_mds(
     1. ``Phi`` (n x k), ``Lam``: the first ``k`` LBO eigenpairs; q farthest-point samples S and
        their squared geodesic distance fields ``F = D2[S, :]`` (q x n); ``Phi_s`` the rows of Phi
        at the samples;
-    2. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` (k x q) interpolates values at the samples
-       by the smoothest function of the span: least biharmonic energy (``p = 2``, the paper's
-       choice, default) or least Dirichlet energy (``p = 1``). Column j of D2 is the distance
-       field of vertex j, known at the samples (``F[:, j]``), so ``Phi M F`` interpolates every
-       column;
+    2. ``M = (Phi_s.T Phi_s + mu_abs Lam^p)^-1 Phi_s.T`` (k x q) fits values at the samples in
+       the span: least squares plus ``mu_abs`` times the biharmonic energy (``p = 2``, the
+       paper's choice, default) or the Dirichlet energy (``p = 1``); as ``mu -> 0`` with
+       ``q <= k`` it becomes the smoothest interpolant. Column j of D2 is the distance field of
+       vertex j, known at the samples (``F[:, j]``), so ``Phi M F`` fits every column;
     3. the approximate ``D2``, from which ``B = -1/2 J D2 J`` is scaled:
 
        - ``sampled="fields"`` (default): ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2``. The sampled fields
