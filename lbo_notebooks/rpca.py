@@ -47,8 +47,10 @@ A raw ``mu`` depends on the units of the data and of the mesh. The dimensionless
 
 with ``s_B`` the largest data eigenvalue (top eigenvalue of ``X.T A X``) and ``lam_ref = 4 pi k /
 area`` Weyl's estimate of the k-th Laplace–Beltrami eigenvalue, i.e.
-``mu = beta / (1 - beta) * s_B / lam_ref`` (:func:`mu_from_beta`). ``beta = 0`` is PCA,
-``beta = 1`` the eigenbasis, and the same ``beta`` means the same balance on every shape and scale.
+``mu = beta / (1 - beta) * s_B / lam_ref`` (:func:`mu_from_beta`). ``beta = 0`` is the ``mu -> 0``
+limit (the PCA directions, then the smoothest functions A-orthogonal to the data), ``beta = 1`` the
+eigenbasis, and a given ``beta`` gives the same basis whatever the shape's size and units (the best
+``beta`` for a task still depends on the shape and the data).
 """
 
 from __future__ import annotations
