@@ -120,14 +120,14 @@ def _check_mu(mu: float) -> float:
     if mu < 0:
         raise ValueError(
             f"mu must be >= 0, got {mu!r}: a negative weight would reward rough functions. "
-            "Use mu = 0 for PCA or a beta in [0, 1] (see mu_from_beta)."
+            "Use mu = 0 for the PCA end or a beta in [0, 1] (see mu_from_beta)."
         )
     return float(mu)
 
 
 def _check_beta(beta: float) -> float:
     if isinstance(beta, bool) or not np.isscalar(beta) or not (0.0 <= float(beta) <= 1.0):
-        raise ValueError(f"beta must be a number in [0, 1] (0 = PCA, 1 = Laplace–Beltrami eigenbasis), got {beta!r}.")
+        raise ValueError(f"beta must be a number in [0, 1] (0: the PCA end, 1: the Laplace–Beltrami eigenbasis), got {beta!r}.")
     return float(beta)
 
 
