@@ -92,7 +92,7 @@ SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 
 SMDS_EIGEN_TOL = 1e-6
 
 #: How :func:`spectral_mds` uses the samples' squared-distance rows ``F = D2[S, :]`` (q x n):
-#: ``"fields"`` uses them as they are, not projected onto the eigenfunctions, and interpolates only
+#: ``"fields"`` uses them as they are, not projected onto the eigenfunctions, and fits only
 #: the columns, ``D2 ~ (Phi M F + F.T M.T Phi.T) / 2`` (which does not reproduce the sampled rows
 #: exactly), so the embedding lives in the span of the eigenfunctions *and* of the sampled fields;
 #: ``"rows"`` also projects the rows onto the eigenfunctions, ``D2 ~ Phi alpha Phi.T`` with
