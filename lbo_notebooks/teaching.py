@@ -25,7 +25,7 @@ def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
     """Unit normal of a plane through the origin of R^3, rotated by ``angle`` degrees.
 
     At 0 the plane is orthogonal to the first eigenvector ``v0`` of the symmetric 3 x 3 ``matrix``
-    (eigenvalues ``lam_0 <= lam_1 <= lam_2``, indices from 0; the optimal plane of Courant–Fischer,
+    (eigenvalues ``lam_0 <= lam_1 <= lam_2``, indices from 0; an optimal plane of Courant–Fischer,
     minimum quotient ``lam_1``); the normal then turns towards ``(v1 + v2) / sqrt(2)``, reaching it
     at 90 degrees.
 

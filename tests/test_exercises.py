@@ -584,6 +584,9 @@ def test_gauss_bonnet_and_scaling():
     _status(ex.check_metric_scaling([1, 2], scale=3, show=False), WRONG, "dict")
     _status(ex.check_metric_scaling({0.0: ..., 0.4: ..., 1.0: ...}, scale=3, show=False), NOT_ATTEMPTED)
     _status(ex.check_metric_scaling({**right, 0.4: ...}, scale=3, show=False), WRONG, "every part")
+    # Right values for only some of the three α are not the answer.
+    _status(ex.check_metric_scaling({1.0: 1.0}, scale=3, show=False), WRONG, "0, 0.4 missing")
+    _status(ex.check_metric_scaling({0.0: 1 / 9, 1.0: 1.0}, scale=3, show=False), WRONG, "0.4 missing")
 
 
 def test_floor_fraction():

@@ -234,7 +234,7 @@ def check_stationary_frame(answer: Any, *, show: bool = True) -> Feedback:
 
 
 def check_recap_ties(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of the ties notebook (04, part 2): (1) only eigenspaces tie?, (2) what `complement_ratio` gives,
+    """Recap of the ties notebook (06): (1) only eigenspaces tie?, (2) what `complement_ratio` gives,
     (3) the power of the tilt angle in a near-tie's excess."""
     return recap("06-ties-recap", [q1, q2, q3], [
         pick({"yes": "section 3 found an interval of tilted eigenbases that tie, none of them an eigenspace.",
@@ -278,7 +278,7 @@ def check_plane_minimum(value: Any, M: Any, normal: Any, *, show: bool = True) -
         if close_to(got, low, 1e-6):
             return "Right: the smaller eigenvalue of M restricted to the plane; below λ_1, as every plane but the optimal ones."
         for slip, hint in (
-            (lam[1], "That is λ_1, the value of the optimal plane (normal v_0); this normal is not v_0."),
+            (lam[1], "That is λ_1, the value of an optimal plane (normal v_0); this normal is not v_0."),
             (float(u @ M_ @ u / (u @ u)), "That is R at the normal, which is not in the plane: minimise over the vectors orthogonal to u."),
             (high, "That is the maximum of R on the plane, where a min(...) also lands when one of its candidates "
                    "is not a unit vector (xᵀMx without dividing by xᵀx): the question asks for the minimum of R."),
@@ -364,7 +364,7 @@ def check_recap_min_max(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feed
         pick({"lam_n-1": "the bound is the eigenvalue whose index is the codimension.",
                       "lam_n": None,
                       "lam_n+1": "the bound is the eigenvalue whose index is the codimension."}),
-        pick({"yes": "section 2 tilted the optimal plane and found a whole arc of maximisers.", "no": None}),
+        pick({"yes": "section 2 tilted an optimal plane and found a whole arc of maximisers.", "no": None}),
         number_judge(t_star, [(np.degrees(np.arctan(2.0)), "tan² t* is the ratio, not tan t*."),
                                 (np.degrees(np.arctan(np.sqrt(0.5))), "the ratio is (λ_2 − λ_1)/(λ_1 − λ_0), upside down?"),
                                 (np.arctan(np.sqrt(2.0)), "give degrees, not radians.")],
@@ -428,6 +428,10 @@ def check_metric_scaling(factors: Any, scale: float = 3.0, *, show: bool = True)
             if a != 1 and close_to(got, 1.0, 1e-6):
                 raise Stop(WRONG, f"alpha = {alpha}: only α = 1 cancels the area's s² completely.")
             raise Stop(WRONG, f"alpha = {alpha}: W does not change; A_α = diag(ρ^α a) with a → s² a and ρ → s⁻² ρ.")
+        missing = [a for a in (0.0, 0.4, 1.0) if not any(close_to(float(given), a, 1e-9) for given in factors)]
+        if missing:
+            raise Stop(WRONG, "Right so far; now give the factor for every α the exercise asks: "
+                              + ", ".join(f"{a:g}" for a in missing) + " missing.")
         return "Right: A_α grows by s^(2(1−α)), so λ scales by s^(−2(1−α)); α = 1 is exactly invariant."
     return run_check("08-scaling", show, body)
 
