@@ -31,7 +31,7 @@ from ._validation import check_integer, check_number
 from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
-from .slicing import Pencil, WindowPlan, place_shift, plan_sets, plan_window
+from .slicing import Pencil, WindowPlan, centred_target, place_shift, plan_sets, plan_window
 from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, symmetric_lu
 
 __all__ = ["SLICE_SIZE", "TOL", "slice_eigsh"]
@@ -244,7 +244,11 @@ def _submit_sets(
     top_count: int | None = None
     for j in range(n_sets, 0, -1):
         make_room()
-        target = (j - 0.5) * per_set
+        if above is None:
+            target = (j - 0.5) * per_set
+        else:  # centred in its window, with room below for the j - 1 sets still to place
+            target = centred_target(above.window, above.n_below, first.shift, per_set, j == 1, slope)
+            target = min(max(target, 0.5 * (j - 1) * per_set + 1), above.n_below - 1)
         reference = first if above is None else SliceFactor(shift=above.shift, n_below=above.n_below, lu=None)
         factor = place_shift(pencil, target, max(1.0, per_set / 3), first, None if above is None else reference, slope)
         if factor is None:  # one cluster fills the rest of the bracket: the neighbours cover it

@@ -368,22 +368,26 @@ def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) 
     if v.size == 0:
         return v
     a = np.ones(v.shape[0]) if mass is None else np.asarray(mass.sum(axis=1)).ravel()
-    # A few columns at a time: the temporaries stay small for (n_vertices, 300) bases.
-    for start in range(0, v.shape[1], 32):
-        block = v[:, start : start + 32]
+    # Row blocks: contiguous in a C-ordered basis, and the temporaries stay small for (n, 300) bases.
+    moment, size = np.zeros(v.shape[1]), np.zeros(v.shape[1])
+    for start in range(0, v.shape[0], _ROWS):
+        block = v[start : start + _ROWS]
         cube = block * block * block  # not block**3: the generic power is several times slower
-        moment = a @ cube
+        moment += a[start : start + _ROWS] @ cube
         np.abs(cube, out=cube)
-        sign = np.sign(moment)
-        vanishing = np.flatnonzero(np.abs(moment) <= 1e-6 * (a @ cube))
-        if vanishing.size:
-            # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
-            # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign.
-            mag = np.abs(block[:, vanishing])
-            first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
-            sign[vanishing] = np.sign(block[first_peak, vanishing])
-        sign[sign == 0] = 1.0
-        block *= sign
+        size += a[start : start + _ROWS] @ cube
+    sign = np.sign(moment)
+    vanishing = np.flatnonzero(np.abs(moment) <= 1e-6 * size)
+    # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
+    # magnitude is within a relative 1e-6 of the largest, so round-off cannot pick the sign. (A
+    # few columns at a time: a symmetric shape has many such columns.)
+    for start in range(0, vanishing.size, 32):
+        columns = vanishing[start : start + 32]
+        mag = np.abs(v[:, columns])
+        first_peak = np.argmax(mag >= (1.0 - 1e-6) * mag.max(axis=0), axis=0)
+        sign[columns] = np.sign(v[first_peak, columns])
+    sign[sign == 0] = 1.0
+    v *= sign
     return v
 
 

@@ -205,7 +205,9 @@ def nearest_eigenpairs(
     cur = 0  # first column of the block T is applied to next
     local = 0  # T Q_cur lies in span(Q[:, local:m]) in exact arithmetic (Lanczos)
     restarts = 0
-    next_check = nev + 2 * b
+    # The sets measured at 10k vertices, k = 100 needed 2.5-3.5 basis vectors per pair before all
+    # converged: a look before 2 per pair only costs its O(m^3).
+    next_check = max(nev + 2 * b, 2 * nev)
     while True:
         Y = np.asfortranarray(solve(mass @ Q[:, cur : cur + b]))
         if deflate is not None:  # span(deflate) is invariant: only round-off and residuals land there
@@ -220,7 +222,7 @@ def nearest_eigenpairs(
         H[:m, cur : cur + b] = C
         H[cur : cur + b, :m] = C.T
         if m >= next_check or m + b > m_max:
-            theta, S = scipy.linalg.eigh(H[:m, :m])
+            theta, S = np.linalg.eigh(H[:m, :m])  # LAPACK's divide and conquer: 20-30% sooner than evr here
             nearest = np.argsort(-np.abs(theta), kind="stable")
             if window is None:
                 wanted = nearest[:nev]

@@ -3,7 +3,8 @@
 :mod:`~lbo_notebooks.eigensolver` slices the spectrum of ``W phi = lam A phi`` into windows, one
 block Lanczos set per window. This module decides where: :func:`plan_sets` how many sets,
 :func:`place_shift` each shift (a factorisation whose inertia count is near a target), and
-:func:`plan_window` the window of eigenvalues the set at a shift returns. :class:`Pencil` is the
+:func:`plan_window` the window of eigenvalues the set at a shift returns (and :func:`centred_target`
+where the next shift down should go for its window to be centred on it). :class:`Pencil` is the
 problem every step shares (``W``, ``A``, the fill-reducing order, the Lanczos start vector and
 tolerance), so that they do not travel as five separate arguments.
 """
@@ -18,7 +19,7 @@ from numpy.typing import NDArray
 
 from .sparse_factor import SliceFactor
 
-__all__ = ["MIN_SET", "OVERLAP", "Pencil", "WindowPlan", "place_shift", "plan_sets", "plan_window"]
+__all__ = ["MIN_SET", "OVERLAP", "Pencil", "WindowPlan", "centred_target", "place_shift", "plan_sets", "plan_window"]
 
 # Fewest eigenpairs worth a Lanczos set of their own (a set costs a factorisation).
 MIN_SET = 20
@@ -27,6 +28,18 @@ MIN_SET = 20
 # more time at 50k vertices than 0.05 and redid no fewer windows on spheres, tori, rectangles and
 # bumpy spheres of 10-50k vertices.
 OVERLAP = 0.05
+# Lanczos converges last at the window's edge farthest from the shift, and a lopsided window costs
+# a set more than its extra pairs: a window reaches down at most this many times as far as up.
+# Shift-invert at 10k vertices, k = 100 (the top set alone, its window fixed, the shift moved): 206
+# ms at the window's middle against 231 ms with the shift 10% of the window above it and 333 ms
+# 25% above (a disk). With the lower windows aimed at their middle too (centred_target),
+# eigenbasis took 0.83-0.94 of the time on the six 10k shapes of benchmarks/eigen.py --family
+# (2026-11-26). 1.2, 1.3 and 1.4 were within 5% of 1.0 in time; 1.2 let the pairs either side of
+# a split come out up to 2e-10 from A-orthogonal on a small bumpy sphere (4e-12 at 1.0 and before).
+REACH = 1.0
+# Where the lowest set's shift sits between the floor and the top of its window (its low
+# eigenvalues lie far apart, so their side converges early); 0.5 and 0.65 were within 5%.
+LOWEST_CENTRE = 0.55
 
 
 @dataclass(eq=False)
@@ -96,27 +109,40 @@ def plan_window(
 ) -> WindowPlan:
     """The window of the set at ``shift`` (``count`` eigenvalues below it).
 
-    It reaches from about the middle of the interval below to about the middle of the interval
-    above. Shifts are placed from the top down, so the shift above (``above``: its shift and count)
-    and its set's window are known, and the shift below is not: its target count
-    ``target_below`` and the local density ``slope`` stand in for it (the lowest set, with no
-    target below, reaches down to ``floor``). The top set reaches past ``lam_k`` instead, so that
-    the final count can sit in a gap above ``lam_k``. Windows of neighbouring sets overlap by twice
-    ``OVERLAP`` of the interval between them, so that the split between them can sit in a gap.
+    The top set reaches past ``lam_k``, so that the final count can sit in a gap above ``lam_k``;
+    every other set reaches past the bottom of the window above (``above_plan``) by ``2 OVERLAP``
+    of the interval between their shifts, so that the split between them can sit in a gap. Down,
+    a window reaches at most ``REACH`` times as far as it reaches up (centred on its shift), and at
+    most about halfway to the shift below. Shifts are placed from the top down, so the shift above (``above``: its shift
+    and count) is known and the shift below is not: its target count ``target_below`` and the
+    local density ``slope`` stand in for it (the lowest set, with no target below, reaches down
+    to ``floor``).
     """
     if above is None:
         n_above = max(k - count, 0) + max(3, k // (10 * n_sets))
         high = shift + n_above / slope
     else:
         width = above[0] - shift
-        high = max(shift + (0.5 + OVERLAP) * width, above_plan.low + OVERLAP * width)
+        high = max(above_plan.low + 2 * OVERLAP * width, shift + OVERLAP * width)
         n_above = np.ceil((above[1] - count) * (high - shift) / width)
     if target_below is None:
         low, n_below = floor, count
     else:
-        n_below = max(count - target_below, 1.0) * (0.5 + OVERLAP)
-        low = shift - n_below / slope
+        low = max(shift - max(count - target_below, 1.0) * (0.5 + OVERLAP) / slope, shift - REACH * (high - shift))
+        n_below = (shift - low) * slope
     return WindowPlan(shift=shift, low=low, high=high, expected=int(np.ceil(n_below) + np.ceil(n_above)) + 2)
+
+
+def centred_target(above: WindowPlan, above_count: int, floor: float, per_set: float, lowest: bool, slope: float) -> float:
+    """The count to aim the next shift down at, so that its window is about centred on it.
+
+    That window reaches up to just past the bottom of ``above`` (see :func:`plan_window`). The
+    lowest one reaches down to ``floor`` and its shift sits ``LOWEST_CENTRE`` of the way up; any
+    other holds about ``per_set`` eigenvalues, ``slope`` per unit of ``lam`` (the local density).
+    """
+    top = above.low + 2 * OVERLAP * (above.shift - above.low) / (0.5 + OVERLAP)  # about as plan_window will
+    shift = floor + LOWEST_CENTRE * (top - floor) if lowest else top - (0.5 + OVERLAP) * per_set / slope
+    return above_count - (above.shift - shift) * slope
 
 
 def place_shift(

@@ -195,6 +195,32 @@ def test_sets_start_from_the_top_of_the_spectrum(monkeypatch):
     np.testing.assert_allclose(values[1:], dense_values(W, A)[1:80], rtol=1e-8)
 
 
+@pytest.mark.parametrize("mesh, k, slice_size", [(shapes.disk(n_rings=30), 100, 100), (shapes.bumpy_sphere(3), 80, 20)])
+def test_windows_are_centred_on_their_shifts(monkeypatch, mesh, k, slice_size):
+    # Lanczos converges last at the window edge farthest from its shift: every window reaches
+    # down at most REACH times as far as up (the lowest reaches the floor, its shift about
+    # LOWEST_CENTRE of the way up), neighbouring windows overlap, and the result is unchanged.
+    import lbo_notebooks.eigensolver as eigensolver
+    from lbo_notebooks.slicing import LOWEST_CENTRE, REACH
+
+    seen = []
+    stitch = eigensolver._stitch
+    monkeypatch.setattr(eigensolver, "_stitch", lambda pencil, k, slices: seen.append(slices.slices) or stitch(pencil, k, slices))
+    W, A = operators(mesh)
+    values, vectors, _ = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size)
+    floor, *sets = seen[0]
+    assert len(sets) == plan_sets(k, slice_size, 2)
+    lowest, *others = [s.window for s in sets]
+    assert lowest.low == floor.shift and 0.3 < (lowest.shift - lowest.low) / (lowest.high - lowest.low) < 0.8
+    assert abs((lowest.shift - lowest.low) / (lowest.high - lowest.low) - LOWEST_CENTRE) < 0.25
+    for window in others:
+        assert window.shift - window.low <= REACH * (window.high - window.shift) * (1 + 1e-12)
+    for below, above in zip([lowest, *others], others):
+        assert above.low < below.high and below.shift < above.low
+    np.testing.assert_allclose(values[1:], dense_values(W, A)[1:k], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
 def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
     from lbo_notebooks.slicing import place_shift
 
