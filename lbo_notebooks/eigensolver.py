@@ -95,10 +95,11 @@ def slice_eigsh(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The ``k`` smallest eigenpairs of ``stiffness phi = lam mass phi`` by spectrum slicing.
 
-    About ``k / slice_size`` shifts (a multiple of ``workers``) are placed so that each holds about
-    the same number of eigenvalues around it; each is factorised once, which counts the
-    eigenvalues below it. At each shift a block Lanczos run returns the eigenpairs in a window
-    reaching about halfway to the neighbouring shifts, the windows overlapping a little; the runs
+    About ``k / slice_size`` shifts (a multiple of ``workers``) are placed, each in the middle of
+    a window of about the same number of eigenvalues; each is factorised once, which counts the
+    eigenvalues below it. At each shift a block Lanczos run returns the eigenpairs in its window,
+    centred on the shift (Lanczos converges last at the edge farthest from it), neighbouring
+    windows overlapping a little (:mod:`~lbo_notebooks.slicing`); the runs
     go in ``workers`` threads while the next shifts are placed, from the top of the spectrum down
     (higher windows take longer, so they start first). The interval between two shifts
     takes the lower set's eigenvalues below a split point and the upper set's above it, the split
