@@ -95,8 +95,9 @@ def slice_eigsh(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
     """The ``k`` smallest eigenpairs of ``stiffness phi = lam mass phi`` by spectrum slicing.
 
-    About ``k / slice_size`` shifts (a multiple of ``workers``) are placed, each in the middle of
-    a window of about the same number of eigenvalues; each is factorised once, which counts the
+    About ``k / slice_size`` shifts (a multiple of ``workers``) are placed: the top one about half
+    a set's share of eigenvalues (``k / n_sets``) below ``lam_k``, each lower one in the middle of
+    the window left to it (windows need not hold equally many); each is factorised once, which counts the
     eigenvalues below it. At each shift a block Lanczos run returns the eigenpairs in its window,
     centred on the shift (Lanczos converges last at the edge farthest from it), neighbouring
     windows overlapping a little (:mod:`~lbo_notebooks.slicing`); the runs
