@@ -33,21 +33,21 @@ forked measurement is fair. 2026-11-26, quiet 2-core machine::
         thin ellipsoid  1.75    1.95           1.58    1.48        1.45    1.59
             scan proxy  1.79    1.95           1.54    1.75        1.53    1.54
 
-Since aa57219 the goal (>= 1.5 on each) is met with a margin: 1.74-2.67. Before, it was met in
-most runs and missed by up to 0.06 in some, at the noise of this machine. What changed (each a
-commit with its own measurements): every Lanczos window is centred on its shift
-(``slicing.REACH``; the top window had reached 464 below its shift and 300 above on the disk, and
-Lanczos converges last at the edge farthest from the shift), each lower shift is aimed at the
-middle of its window (``slicing.centred_target``), the Krylov runs look at their Ritz values from 2
-basis vectors per pair on and with numpy's divide-and-conquer ``eigh``, and ``fix_signs_in_place``
-works in row blocks. In-process, best of 5, two rounds interleaved with the commit before
-(2a4cc9f): 0.83-0.94 of the time on the six shapes. The same run on seven 10k-ish shapes that were
-not used to choose anything (``HELD_OUT``: two horses, a sitting dog, an icosphere, a rectangle,
-a jittered torus, all 9-10k vertices, and a 15.5k dog; forked, best of 3): plain/ours 2.01-2.34
-at 20:05 UTC, against 1.72-2.13 for 2a4cc9f in the same hour; ``--held-out`` at 20:30 UTC (aa57219):
-horse 2.22, galloping horse 2.12, sitting dog 2.29, icosphere 1.98, rectangle 2.10, jittered torus
-2.43, 15.5k dog 2.26. ``--quick`` at 50k vertices, k = 300: 7.60 s
-against 8.29 s, 4.27x the peer, peak 381 MiB against 377 MiB.
+Since aa57219 the goal (>= 1.5 on each) is met with a margin: 1.74-2.67. Before, it was met in most
+runs and missed by up to 0.06 in some, at the noise of this machine. What changed (each a commit
+with its own measurements): every Lanczos window is centred on its shift (``slicing.REACH``; the
+top window had reached 464 below its shift and 300 above on the disk, and Lanczos converges last at
+the edge farthest from the shift), each lower shift is aimed at the middle of its window
+(``slicing.centred_target``), the Krylov runs look at their Ritz values from 2 basis vectors per
+pair on (nev + 8 for small sets) and with numpy's divide-and-conquer ``eigh``, and
+``fix_signs_in_place`` works in row blocks. In-process, best of 5, two rounds interleaved with the
+commit before (2a4cc9f): 0.83-0.94 of the time on the six shapes. The same run on seven 10k-ish
+shapes that were not used to choose anything (``HELD_OUT``: two horses, a sitting dog, an
+icosphere, a rectangle, a jittered torus, all 9-10.3k vertices, and a 15.5k dog; forked, best of
+3): plain/ours 2.01-2.34 at 20:05 UTC, against 1.72-2.13 for 2a4cc9f in the same hour;
+``--held-out`` at 20:30 UTC (aa57219): horse 2.22, galloping horse 2.12, sitting dog 2.29,
+icosphere 1.98, rectangle 2.10, jittered torus 2.43, 15.5k dog 2.26. ``--quick`` at 50k vertices,
+k = 300: 7.60 s against 8.29 s, 4.27x the peer, peak 381 MiB against 377 MiB.
 
 Earlier (14:28 and 14:37 above; again at 17:12 UTC on eab22c4, forked / new interpreters: bumpy
 sphere 1.61 / 1.64, disk 1.66 / 1.63, torus 2.19 / 2.28, dog 2.12 / 2.16, ellipsoid 1.51 / 1.59,
@@ -197,7 +197,7 @@ HELD_OUT = {
 
 
 def _in_new_interpreter(shape: str, solver: str, k: int) -> float:
-    """Wall time of ``solver`` on FAMILY[shape] in a new Python process (after a warm-up call on 2.5k vertices)."""
+    """Wall time of ``solver`` on FAMILY[shape] or HELD_OUT[shape] in a new Python process (after a warm-up call on 2.5k vertices)."""
     script = (
         "import sys, time; sys.path.insert(0, 'benchmarks'); import eigen as b; "
         f"fn = getattr(b, {solver!r}); fn(b.mesh_for('warm-up'), {k}); m = {{**b.FAMILY, **b.HELD_OUT}}[{shape!r}](); time.sleep(0.25); "

@@ -196,8 +196,9 @@ def _submit_sets(
 ) -> _Slices:
     """Place the shifts (in this thread), from the top down, and start each one's Lanczos set in ``pool`` at once.
 
-    Shift ``j`` aims at ``(j - 1/2) k / n_sets`` eigenvalues below it, so that set ``j`` holds about
-    ``k / n_sets`` of them, centred on its shift. The sets start from the top: a window higher in
+    The top shift aims at ``k - k / (2 n_sets)`` eigenvalues below it; each lower one at the middle
+    of the window left to it (:func:`~lbo_notebooks.slicing.centred_target`), every window centred
+    on its shift (:func:`~lbo_notebooks.slicing.plan_window`). The sets start from the top: a window higher in
     the spectrum takes longer (there are eigenvalues on both sides of it, and they lie closer
     together relative to their distance from the shift), and the longest jobs first keep the
     workers busy to the end. A factorisation is large (about the size of 125 eigenvectors), so the
@@ -249,7 +250,7 @@ def _submit_sets(
         if above is None:
             target = (j - 0.5) * per_set
         else:  # centred in its window, with room below for the j - 1 sets still to place
-            target = centred_target(above.window, above.n_below, first.shift, per_set, j == 1, slope)
+            target = centred_target(above.window, above.n_below, first.shift, per_set, j == 1)
             target = min(max(target, 0.5 * (j - 1) * per_set + 1), above.n_below - 1)
         reference = first if above is None else SliceFactor(shift=above.shift, n_below=above.n_below, lu=None)
         factor = place_shift(pencil, target, max(1.0, per_set / 3), first, None if above is None else reference, slope)

@@ -19,17 +19,22 @@ from numpy.typing import NDArray
 
 from .sparse_factor import SliceFactor
 
-__all__ = ["MIN_SET", "OVERLAP", "Pencil", "WindowPlan", "centred_target", "place_shift", "plan_sets", "plan_window"]
+__all__ = [
+    "LOWEST_CENTRE", "MIN_SET", "OVERLAP", "REACH", "Pencil", "WindowPlan", "centred_target", "place_shift", "plan_sets",
+    "plan_window",
+]
 
 # Fewest eigenpairs worth a Lanczos set of their own (a set costs a factorisation).
 MIN_SET = 20
-# Each window reaches this fraction of the interval between neighbouring shifts past its middle,
-# so neighbouring windows overlap by twice it (room for the split to sit in a gap). 0.1 cost 6-13%
-# more time at 50k vertices than 0.05 and redid no fewer windows on spheres, tori, rectangles and
-# bumpy spheres of 10-50k vertices.
+# Neighbouring windows overlap by twice this fraction of the interval between their shifts (room
+# for the split to sit in a gap). 0.1 cost 6-13% more time at 50k vertices than 0.05 and redid no
+# fewer windows on spheres, tori, rectangles and bumpy spheres of 10-50k vertices (measured when
+# each window reached this fraction past the middle of the interval, before the windows were
+# centred on their shifts).
 OVERLAP = 0.05
 # Lanczos converges last at the window's edge farthest from the shift, and a lopsided window costs
-# a set more than its extra pairs: a window reaches down at most this many times as far as up.
+# a set more than its extra pairs: a window reaches down at most this many times as far as up
+# (all but the lowest, which reaches the floor).
 # Shift-invert at 10k vertices, k = 100 (the top set alone, its window fixed, the shift moved): 206
 # ms at the window's middle against 231 ms with the shift 10% of the window above it and 333 ms
 # 25% above (a disk). With the lower windows aimed at their middle too (centred_target),
@@ -112,8 +117,9 @@ def plan_window(
     The top set reaches past ``lam_k``, so that the final count can sit in a gap above ``lam_k``;
     every other set reaches past the bottom of the window above (``above_plan``) by ``2 OVERLAP``
     of the interval between their shifts, so that the split between them can sit in a gap. Down,
-    a window reaches at most ``REACH`` times as far as it reaches up (centred on its shift), and at
-    most about halfway to the shift below. Shifts are placed from the top down, so the shift above (``above``: its shift
+    a window reaches at most ``REACH`` times as far as it reaches up (centred on its shift), and no
+    farther than about halfway to ``target_below`` (where the shift below would sit if every set
+    held an equal share). Shifts are placed from the top down, so the shift above (``above``: its shift
     and count) is known and the shift below is not: its target count ``target_below`` and the
     local density ``slope`` stand in for it (the lowest set, with no target below, reaches down
     to ``floor``).
@@ -123,26 +129,34 @@ def plan_window(
         high = shift + n_above / slope
     else:
         width = above[0] - shift
-        high = max(above_plan.low + 2 * OVERLAP * width, shift + OVERLAP * width)
+        # Not past the shift above: the split lies below it, and a cluster just above it could
+        # hold many times the pairs this set expects.
+        high = min(max(above_plan.low + 2 * OVERLAP * width, shift + OVERLAP * width), above[0])
         n_above = np.ceil((above[1] - count) * (high - shift) / width)
     if target_below is None:
         low, n_below = floor, count
     else:
         low = max(shift - max(count - target_below, 1.0) * (0.5 + OVERLAP) / slope, shift - REACH * (high - shift))
-        n_below = (shift - low) * slope
+        # The local density can be far off next to a cluster: the count interpolated from the floor
+        # is the second estimate, and the larger one sizes the basis.
+        n_below = max(slope, count / (shift - floor)) * (shift - low)
     return WindowPlan(shift=shift, low=low, high=high, expected=int(np.ceil(n_below) + np.ceil(n_above)) + 2)
 
 
-def centred_target(above: WindowPlan, above_count: int, floor: float, per_set: float, lowest: bool, slope: float) -> float:
+def centred_target(above: WindowPlan, above_count: int, floor: float, per_set: float, lowest: bool) -> float:
     """The count to aim the next shift down at, so that its window is about centred on it.
 
     That window reaches up to just past the bottom of ``above`` (see :func:`plan_window`). The
     lowest one reaches down to ``floor`` and its shift sits ``LOWEST_CENTRE`` of the way up; any
-    other holds about ``per_set`` eigenvalues, ``slope`` per unit of ``lam`` (the local density).
+    other holds about ``per_set`` eigenvalues. Counts are interpolated between ``floor`` (none
+    below it) and the shift above (Weyl's law: on a surface the count grows about linearly in
+    ``lam``), not extrapolated from the density between two shifts, which a cluster of equal
+    eigenvalues can make many times too high or too low.
     """
+    density = above_count / (above.shift - floor)
     top = above.low + 2 * OVERLAP * (above.shift - above.low) / (0.5 + OVERLAP)  # about as plan_window will
-    shift = floor + LOWEST_CENTRE * (top - floor) if lowest else top - (0.5 + OVERLAP) * per_set / slope
-    return above_count - (above.shift - shift) * slope
+    shift = floor + LOWEST_CENTRE * (top - floor) if lowest else top - (0.5 + OVERLAP) * per_set / density
+    return density * (shift - floor)
 
 
 def place_shift(

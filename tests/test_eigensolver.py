@@ -207,7 +207,7 @@ def test_windows_are_centred_on_their_shifts(monkeypatch, mesh, k, slice_size):
     stitch = eigensolver._stitch
     monkeypatch.setattr(eigensolver, "_stitch", lambda pencil, k, slices: seen.append(slices.slices) or stitch(pencil, k, slices))
     W, A = operators(mesh)
-    values, vectors, _ = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size)
+    values, vectors, _ = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size, workers=2)
     floor, *sets = seen[0]
     assert len(sets) == plan_sets(k, slice_size, 2)
     lowest, *others = [s.window for s in sets]
@@ -218,6 +218,20 @@ def test_windows_are_centred_on_their_shifts(monkeypatch, mesh, k, slice_size):
     for below, above in zip([lowest, *others], others):
         assert above.low < below.high and below.shift < above.low
     np.testing.assert_allclose(values[1:], dense_values(W, A)[1:k], rtol=1e-8)
+    check_pairs(W, A, values, vectors)
+
+
+@pytest.mark.parametrize("slice_size", [10, 40])
+def test_windows_next_to_big_clusters_hold_what_their_sets_expect(slice_size):
+    # Two copies of an icosphere: eigenvalues 2 (2l + 1)-fold, up to 34 copies at k = 300. A window
+    # sized from the density between two shifts, or reaching past the shift above into a cluster,
+    # held three times the pairs its set was sized for and its Lanczos run did not converge.
+    sphere = shapes.icosphere(3)
+    mesh = Mesh(np.vstack([sphere.vertices, sphere.vertices + [3.0, 0.0, 0.0]]), np.vstack([sphere.faces, sphere.faces + sphere.n_vertices]))
+    W, A = operators(mesh)
+    values, vectors, _ = slice_eigsh(W, A, 300, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size, workers=2)
+    exact = dense_values(W, A)[:300]
+    np.testing.assert_allclose(values[2:], exact[2:], rtol=1e-8)
     check_pairs(W, A, values, vectors)
 
 
