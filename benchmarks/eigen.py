@@ -49,7 +49,7 @@ icosphere, a rectangle, a jittered torus, all 9-10.3k vertices, and a 15.5k dog;
 icosphere 1.98, rectangle 2.10, jittered torus 2.43, 15.5k dog 2.26. ``--quick`` at 50k vertices,
 k = 300: 7.60 s against 8.29 s, 4.27x the peer, peak 381 MiB against 377 MiB.
 
-After the fix for windows next to big clusters (97e8f5d), 21:01 UTC, forked, a slower hour (the peer
+After the fix for windows next to big clusters (7e82835), 21:01 UTC, forked, a slower hour (the peer
 took 0.75-1.08 s): family 1.88, 1.90, 2.55, 2.46, 1.97, 1.87 (table order); ``--held-out`` horse
 2.35, galloping horse 2.26, sitting dog 2.01, icosphere 1.99, rectangle 2.21, jittered torus 2.42,
 15.5k dog 2.27.
