@@ -40,7 +40,7 @@ OVERLAP = 0.05
 # 25% above (a disk). With the lower windows aimed at their middle too (centred_target),
 # eigenbasis took 0.83-0.94 of the time on the six 10k shapes of benchmarks/eigen.py --family
 # (2026-11-26). 1.2, 1.3 and 1.4 were within 5% of 1.0 in time; 1.2 let the pairs either side of
-# a split come out up to 2e-10 from A-orthogonal on a small bumpy sphere (4e-12 at 1.0 and before).
+# a split come out up to 2e-10 from A-orthogonal on a small bumpy sphere (4e-12 at 1.0, 9e-12 before).
 REACH = 1.0
 # Where the lowest set's shift sits between the floor and the top of its window (its low
 # eigenvalues lie far apart, so their side converges early); 0.5 and 0.65 were within 5%.
