@@ -110,8 +110,16 @@ def _check_marked_exercises(path, nb, exercises_index):
     answers = {i: c.metadata.nbgrader.grade_id for i, c in enumerate(nb.cells)
                if c.metadata.get("nbgrader", {}).get("solution")}
     checks = {c.metadata.nbgrader.grade_id for c in nb.cells if c.metadata.get("nbgrader", {}).get("grade")}
-    for i, grade_id in answers.items():
+    for i, grade_id in list(answers.items()):
         text = _source(nb.cells[i])
+        if grade_id.endswith("-explain"):  # a written answer, graded by a person (docs/exercises.md)
+            meta = nb.cells[i].metadata.nbgrader
+            assert nb.cells[i].cell_type == "markdown" and meta.get("grade") and meta.get("points", 0) > 0, (
+                f"{path.name}: {grade_id} should be a manually graded Markdown answer cell with points")
+            assert "**Rubric" in text and grade_id[:-len("explain")] + "check" in checks, (
+                f"{path.name}: {grade_id} needs the model answer and a **Rubric** line, after its exercise's check")
+            del answers[i]
+            continue
         assert "BEGIN SOLUTION" in text and "END SOLUTION" in text, (
             f"{path.name}: answer cell {grade_id} has no ### BEGIN SOLUTION / ### END SOLUTION region")
         assert grade_id.endswith("-answer") and grade_id[:-len("answer")] + "check" in checks, (

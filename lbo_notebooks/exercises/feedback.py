@@ -311,6 +311,9 @@ def solution(exercise: str, *, show: bool = True) -> str | None:
                 grade_id = cell.get("metadata", {}).get("nbgrader", {}).get("grade_id", "")
                 if grade_id in (f"{exercise}-answer", f"{exercise}-explain"):
                     source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+                    if cell["cell_type"] == "markdown" and not _REGION.search(source):
+                        pieces.append(source.strip())  # a written answer: the whole cell is the model answer
+                        continue
                     for match in _REGION.finditer(source):
                         region = match.group(1)
                         if cell["cell_type"] != "code":
