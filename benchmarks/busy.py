@@ -26,7 +26,7 @@ Calls and sizes (``--n`` scales the meshes):
 * ``eigenbasis``: ``eigenbasis(mesh, 100)`` on the 25k dog;
 * ``distances``: ``geodesic_distances`` from every vertex of a 4k dog (a 4k x 4k matrix).
 
-Recorded in ``benchmarks/results/busy.json`` (2 cores, other helpers' jobs running too, load
+Recorded in ``lbo_notebooks/recorded/busy.json`` (2 cores, other helpers' jobs running too, load
 about 2 at the end; old = ad1a75d, before issue 30 item 4; medians of 2 interleaved rounds)::
 
     python benchmarks/busy.py --repeats 2 --baseline ad1a75d --record
@@ -147,7 +147,7 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--scale", type=float, default=1.0, help="multiply every mesh size")
     parser.add_argument("--baseline", help="a git revision to compare with (run from git archive)")
-    parser.add_argument("--record", action="store_true", help="also write the table to benchmarks/results/busy.json")
+    parser.add_argument("--record", action="store_true", help="also write the table to lbo_notebooks/recorded/busy.json")
     parser.add_argument("--child", nargs=2, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
@@ -193,7 +193,7 @@ def main() -> None:
                          "busy_s": float(busy), "slowdown": float(busy / quiet), "quiet_cpu_s": float(cpu),
                          "busy_cpu_s": float(busy_cpu), "runs": {("busy" if b else "quiet"): times[(call, name, b)] for b in (False, True)}})
     if args.record:
-        out = ROOT / "benchmarks" / "results" / "busy.json"
+        out = ROOT / "lbo_notebooks" / "recorded" / "busy.json"
         out.write_text(json.dumps({"command": " ".join(["python benchmarks/busy.py"] + sys.argv[1:]),
                                    "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
                                    "baseline": args.baseline, "load_at_end": os.getloadavg()[0],

@@ -18,7 +18,7 @@ times of the whole pipeline including eigenbases, on a shared machine: read the 
 Run:
 
     python benchmarks/matching.py            # the 4k tables
-    python benchmarks/matching.py --record   # the semi-local scaling table only, also written to results/matching.json
+    python benchmarks/matching.py --record   # the semi-local scaling table only, also written to lbo_notebooks/recorded/matching.json
 
 ``--record`` stores the semi-local scaling table with its date, machine load and BLAS threads;
 notebook 12 quotes those numbers as recorded and asserts its prose against the file.
@@ -187,7 +187,7 @@ def scaling_table() -> list[dict]:
 
 
 def record() -> None:
-    """Run the scaling table and write it, with when and where it ran, to results/matching.json."""
+    """Run the scaling table and write it, with when and where it ran, to lbo_notebooks/recorded/matching.json."""
     load = os.getloadavg()[0]
     rows = scaling_table()
     out = {
@@ -198,7 +198,7 @@ def record() -> None:
         "error": "mean geodesic error on the source / sqrt(area), all vertices, targets shuffled",
         "scaling": rows,
     }
-    path = Path(__file__).resolve().parent / "results" / "matching.json"
+    path = Path(__file__).resolve().parents[1] / "lbo_notebooks" / "recorded" / "matching.json"
     path.write_text(json.dumps(out, indent=1) + "\n")
     print(f"written {path}")
 
@@ -272,7 +272,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--sizes", type=int, nargs="*", help="vertex counts of the real-size table (e.g. 25000 50000); without it, the 4k tables")
     parser.add_argument("--repeats", type=int, default=2, help="interleaved runs of each method per size (median reported)")
-    parser.add_argument("--record", action="store_true", help="only the semi-local scaling table, also written to results/matching.json")
+    parser.add_argument("--record", action="store_true", help="only the semi-local scaling table, also written to lbo_notebooks/recorded/matching.json")
     parser.add_argument("--tolerance-check", action="store_true", help="EIGEN_TOL against the default tolerance on pairs not used to choose it")
     args = parser.parse_args()
     if args.tolerance_check:

@@ -6,10 +6,10 @@ Run from the repository root::
 
     .venv/bin/python benchmarks/mds.py                    # full run (several minutes)
     .venv/bin/python benchmarks/mds.py --quick            # small sizes only, for a smoke test
-    .venv/bin/python benchmarks/mds.py --json benchmarks/results/mds.json   # also record results
-    .venv/bin/python benchmarks/mds.py --validation --json benchmarks/results/mds.json   # held-out shapes
-    .venv/bin/python benchmarks/mds.py --speed 5fb7d99 --pairs 4 --json benchmarks/results/mds.json
-    .venv/bin/python benchmarks/mds.py --resolution --json benchmarks/results/mds.json   # paper section 5
+    .venv/bin/python benchmarks/mds.py --json lbo_notebooks/recorded/mds.json   # also record results
+    .venv/bin/python benchmarks/mds.py --validation --json lbo_notebooks/recorded/mds.json   # held-out shapes
+    .venv/bin/python benchmarks/mds.py --speed 5fb7d99 --pairs 4 --json lbo_notebooks/recorded/mds.json
+    .venv/bin/python benchmarks/mds.py --resolution --json lbo_notebooks/recorded/mds.json   # paper section 5
     .venv/bin/python benchmarks/mds.py --energies         # Dirichlet vs biharmonic over mu (tuning shapes)
     .venv/bin/python benchmarks/mds.py --smds-tuning      # SMDS over k, q, fields/rows/pairs (tuning shapes)
     .venv/bin/python benchmarks/mds.py --fcs-tuning       # fast classical scaling over q and mu (tuning shapes)

@@ -28,10 +28,9 @@ __all__ = [
     "RESULTS",
 ]
 
-#: Where ``benchmarks/*.py`` record their runs: ``benchmarks/results`` of the repository this
-#: package sits in (found from the package's own location, not from the working directory). An
-#: installed package has no such directory: :func:`recorded_benchmark` then says so.
-RESULTS = Path(__file__).resolve().parents[1] / "benchmarks" / "results"
+#: Where ``benchmarks/*.py`` record their runs: the package's own ``recorded/`` folder (package
+#: data), so an installed package, or one notebook handed out alone, reads them too.
+RESULTS = Path(__file__).resolve().parent / "recorded"
 
 
 def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
@@ -183,16 +182,16 @@ def least_wall_time(runs: int, function: Any) -> float:
 
 
 def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:
-    """The results a benchmark run recorded: ``benchmarks/results/<name>.json``, as a dict.
+    """The results a benchmark run recorded: ``lbo_notebooks/recorded/<name>.json``, as a dict.
 
-    The file is found from the package's location (:data:`RESULTS`), so a notebook reads it from
-    any working directory. ``path`` reads another file instead. A ``FileNotFoundError`` that
-    says how to get the file when it is absent (an installed package carries no benchmark results).
+    The file is package data (:data:`RESULTS`), so a notebook reads it from any working directory,
+    in a checkout or an installed package alike. ``path`` reads another file instead. A missing
+    file raises a ``FileNotFoundError`` that says how to record it.
 
     Examples
     --------
-    >>> recorded = recorded_benchmark("mds")  # doctest: +SKIP
-    >>> sorted(recorded)[:3]  # doctest: +SKIP
+    >>> recorded = recorded_benchmark("mds")
+    >>> sorted(recorded)[:3]
     ['accuracy', 'blas_threads', 'cores']
     """
     if path is None:
@@ -203,7 +202,7 @@ def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, A
         file = Path(path)
     if not file.is_file():
         raise FileNotFoundError(
-            f"no recorded benchmark at {file}: the results live in the repository (benchmarks/results), which an "
-            f"installed package does not include. Clone the repository, or run benchmarks/{name}.py there to record them."
+            f"no recorded benchmark at {file}: run benchmarks/{name}.py with its --record/--json option in the "
+            "repository to record it."
         )
     return json.loads(file.read_text())

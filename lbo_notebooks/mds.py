@@ -78,7 +78,7 @@ __all__ = [
 #: of the columns is underdetermined and depends on mu, with q = 1.5 k mu in 0.01-0.2 changes it by
 #: under 5%. Validated on twelve other shapes (creatures at other sizes, poses and proportions, a
 #: horse with holes, genus 1 and 2, two open sheets): at most 0.69% (``benchmarks/mds.py
-#: --validation``, recorded in ``benchmarks/results/mds.json``). k = 200 also takes 51k vertices
+#: --validation``, recorded in ``lbo_notebooks/recorded/mds.json``). k = 200 also takes 51k vertices
 #: end to end with 0.72 of the previous defaults' CPU time (``--speed``, recorded median; about 7.5 s
 #: on a quiet machine, estimated from that ratio and the previous 10.5 s).
 SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 300, "mu": 0.05, "sampled": "fields"}
