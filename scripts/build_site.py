@@ -162,6 +162,9 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
     folded, check cells lose their hidden tests, cells collapsed in JupyterLab are folded."""
     cells = []
     for cell in nb.cells:
+        if cell.cell_type == "markdown" and "**Rubric" in cell.source:
+            # a written answer's model answer and rubric: folded, like the code solutions
+            cell.source = f"<details><summary>Model answer and rubric</summary>\n\n{cell.source}\n\n</details>"
         if cell.cell_type == "code":
             for out in cell.get("outputs", []):
                 if out.get("output_type") in ("display_data", "execute_result") and WIDGET_MIME in out.get("data", {}):
@@ -169,7 +172,7 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
             grader = cell.metadata.get("nbgrader", {})
             if grader.get("grade") and not grader.get("solution"):
                 cell.source = without_hidden_tests(cell.source)
-            if grader.get("solution"):
+            if grader.get("solution") and "BEGIN SOLUTION" in cell.source:
                 cells.append(folded_solution(cell))
             elif cell.metadata.get("jupyter", {}).get("source_hidden"):
                 _tag(cell, "hide-input")          # myst-nb folds the input ("Show code cell source")
@@ -180,6 +183,32 @@ def prepare_for_html(nb: nbformat.NotebookNode) -> None:
 
 _HIDDEN_TESTS = re.compile(r"^[ \t]*#+\s*BEGIN HIDDEN TESTS.*?^[ \t]*#+\s*END HIDDEN TESTS[^\n]*\n?", re.M | re.S)
 _SOLUTION_MARKER = re.compile(r"^[ \t]*#+\s*(BEGIN|END) SOLUTION[^\n]*\n?", re.M)
+
+
+_SOLUTION_REGION = re.compile(r"^([ \t]*)#+\s*BEGIN SOLUTION[^\n]*\n.*?^[ \t]*#+\s*END SOLUTION[^\n]*", re.M | re.S)
+
+
+def without_solutions(nb: nbformat.NotebookNode) -> None:
+    r"""Take the instructor's answers out of an executed notebook, for a site students may read during a
+    graded course (``--without-solutions``): answer cells keep their placeholder and lose their outputs,
+    check cells lose their verdicts and hidden tests, written answers (manually graded Markdown cells)
+    say only where the answer goes. The lesson's own cells and figures stay.
+
+    >>> nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
+    ...     "x = ...\n### BEGIN SOLUTION\nx = 2\n### END SOLUTION", metadata={"nbgrader": {"solution": True}})])
+    >>> without_solutions(nb); nb.cells[0].source
+    'x = ...\n# YOUR CODE HERE'
+    """
+    for cell in nb.cells:
+        grader = cell.metadata.get("nbgrader", {})
+        if grader.get("solution") and cell.cell_type == "markdown":
+            cell.source = "*Your written answer goes here (graded by your lecturer).*"
+        elif grader.get("solution"):
+            cell.source = _SOLUTION_REGION.sub(lambda m: m.group(1) + "# YOUR CODE HERE", cell.source)
+            cell.outputs = []
+        elif grader.get("grade") and cell.cell_type == "code":
+            cell.source = without_hidden_tests(cell.source)
+            cell.outputs = []
 
 
 def without_hidden_tests(source: str) -> str:
@@ -310,6 +339,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, default=REPO / "build" / "site", help="output folder (default build/site)")
     parser.add_argument("--timeout", type=int, default=600, help="per-cell timeout in seconds")
     parser.add_argument("--no-reference", action="store_true", help="leave the API reference out (quicker)")
+    parser.add_argument("--without-solutions", action="store_true",
+                        help="a site for students of a graded course: no instructor answers (docs/exercises.md)")
     args = parser.parse_args(argv)
 
     # Exactly the series (its entry point first, then the notebooks its map lists), unless named.
@@ -340,9 +371,13 @@ def main(argv: list[str] | None = None) -> int:
         start = time.perf_counter()
         error = execute(nb, path.parent, args.timeout)
         seconds = time.perf_counter() - start
+        clean = nbformat.read(path, as_version=4)
+        if args.without_solutions:
+            without_solutions(nb)
+            without_solutions(clean)
         prepare_for_html(nb)
         nbformat.write(nb, src / "notebooks" / path.name)
-        shutil.copy2(path, src / "_clean" / path.name)
+        nbformat.write(clean, src / "_clean" / path.name)
         pages.append(Page(path, title, description, seconds, error))
         print(f"{path.name:<34} {seconds:6.1f} s  {'FAILED: ' + error if error else 'ok'}", flush=True)
     sphinx_sources(src, pages, [] if args.no_reference else public_names())

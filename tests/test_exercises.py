@@ -262,7 +262,8 @@ def test_messages_never_give_the_answer():
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers if x not in (1, 2)), feedback.message
 
 
-def test_feedback_object():
+def test_feedback_object(monkeypatch):
+    monkeypatch.setenv("LBO_NOTEBOOKS_SOLUTIONS", "1")                      # an edition with solutions on request
     fb = ex.Feedback("03-mass", WRONG, "Twice too large: use `np.cross`.")
     assert not fb.correct and fb.attempted and str(fb) == "03-mass · wrong: Twice too large: use `np.cross`."
     html = fb._repr_html_()
@@ -300,7 +301,9 @@ def test_jupyter_shows_one_coloured_line_once(monkeypatch):
     assert len(shown) == 2
 
 
-def test_solution_is_revealed_on_request(capsys, monkeypatch):
+def test_solution_is_revealed_on_request(capsys, monkeypatch, tmp_path):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / ex.feedback.SELF_STUDY_MARKER).write_text("{}")     # the self-study edition's folder
     text = ex.solution("03-stiffness", show=False)
     assert "def my_stiffness" in text and "np.cross" in text and "BEGIN SOLUTION" not in text
     assert capsys.readouterr().out == ""
@@ -309,6 +312,23 @@ def test_solution_is_revealed_on_request(capsys, monkeypatch):
     assert "No solution found" in ex.solution("99-nothing", show=False)
     monkeypatch.setattr(ex.feedback, "_instructor_notebooks", lambda: None)
     assert "not part of this edition" in ex.solution("03-stiffness", show=False)
+
+
+def test_solutions_stay_with_the_lecturer_in_a_course_release(monkeypatch, tmp_path):
+    """A graded course's release (no self-study marker, not the instructor's folder) reveals nothing,
+    and a wrong answer's feedback does not point to a solution; the instructor's folder and the
+    self-study edition do."""
+    release = tmp_path / "course" / "03_laplace_beltrami"
+    release.mkdir(parents=True)
+    monkeypatch.chdir(release)
+    monkeypatch.delenv("LBO_NOTEBOOKS_SOLUTIONS", raising=False)
+    text = ex.solution("03-stiffness", show=False)
+    assert "def my_stiffness" not in text and "not shown in a graded course" in text
+    wrong = ex.check_area_factor(1.6, scale=1.6, show=False)
+    assert "exercises.solution" not in wrong._repr_html_()
+    monkeypatch.chdir(ex.feedback._instructor_notebooks())
+    assert "def my_stiffness" in ex.solution("03-stiffness", show=False)
+    assert "exercises.solution" in wrong._repr_html_()
 
 
 def test_every_check_in_the_notebooks_exists():

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import html
 import json
+import os
 import re
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -27,7 +28,8 @@ import numpy as np
 __all__ = [
     "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "Stop", "run_check",
     "require_attempt", "as_number", "call_attempt", "close_to", "same_values", "choose",
-    "unanswered", "is_placeholder", "result", "pick", "number_judge", "recap",
+    "unanswered", "is_placeholder", "result", "pick", "number_judge", "recap", "solutions_available",
+    "SELF_STUDY_MARKER",
 ]
 
 CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
@@ -83,7 +85,7 @@ class Feedback:
     def _repr_html_(self) -> str:
         colour, mark = _STYLE[self.status]
         text = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(self.message, quote=False))
-        reveal = ("" if self.correct else
+        reveal = ("" if self.correct or not solutions_available() else
                   f' <span style="opacity: 0.6">(to see a solution: <code>exercises.solution("{html.escape(self.exercise)}")</code>)</span>')
         return (f'<div class="lbo-feedback" data-exercise="{html.escape(self.exercise)}" data-status="{self.status}" '
                 f'style="border-left: 4px solid {colour}; padding: 2px 8px; margin: 2px 0">'
@@ -274,10 +276,38 @@ def _instructor_notebooks() -> Path | None:
     return here if here.is_dir() else None
 
 
+SELF_STUDY_MARKER = ".edition.json"
+"""The file ``./make.sh student`` writes into the self-study edition's folder (the edition's manifest):
+where it sits, :func:`solution` reveals solutions on request."""
+
+
+def solutions_available() -> bool:
+    """Whether :func:`solution` reveals anything here: in the instructor edition (the kernel runs in
+    the checkout's ``notebooks/``) and in the self-study edition (its folder holds
+    :data:`SELF_STUDY_MARKER`), never in a graded course's release, nor without the checkout.
+    ``LBO_NOTEBOOKS_SOLUTIONS=1`` or ``0`` decides instead (a lecturer's own notebooks).
+
+    Examples
+    --------
+    >>> import os; os.environ["LBO_NOTEBOOKS_SOLUTIONS"] = "0"
+    >>> solutions_available()
+    False
+    >>> del os.environ["LBO_NOTEBOOKS_SOLUTIONS"]
+    """
+    folder = _instructor_notebooks()
+    if folder is None:
+        return False
+    decided = os.environ.get("LBO_NOTEBOOKS_SOLUTIONS")
+    if decided in ("0", "1"):
+        return decided == "1"
+    here = Path.cwd().resolve()
+    return here == folder.resolve() or (here / SELF_STUDY_MARKER).is_file()
+
+
 def solution(exercise: str, *, show: bool = True) -> str | None:
     """The instructor's solution of one exercise, on purpose: try first, then look.
 
-    Reads the solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) of the cells with
+    Only where :func:`solutions_available` (the instructor and self-study editions). Reads the solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) of the cells with
     the grade id ``<exercise>-answer`` (and ``<exercise>-explain``) in the instructor edition,
     ``notebooks/`` of the checkout the package is installed from. The student edition has no
     solutions in it; where no checkout is at hand (a handed-out edition), this says so.
@@ -297,12 +327,20 @@ def solution(exercise: str, *, show: bool = True) -> str | None:
 
     Examples
     --------
+    >>> import os; os.environ["LBO_NOTEBOOKS_SOLUTIONS"] = "1"
     >>> "BEGIN SOLUTION" not in solution("03-scaling", show=False)
     True
+    >>> os.environ["LBO_NOTEBOOKS_SOLUTIONS"] = "0"
+    >>> solution("03-scaling", show=False).startswith("Solutions are not shown in a graded course")
+    True
+    >>> del os.environ["LBO_NOTEBOOKS_SOLUTIONS"]
     """
     folder = _instructor_notebooks()
     if folder is None:
         text = "The solutions are not part of this edition (no instructor notebooks found next to the package)."
+    elif not solutions_available():
+        text = ("Solutions are not shown in a graded course: your lecturer hands them out after the deadline. "
+                "Studying on your own? Open the self-study edition, `./make.sh student lab` (docs/exercises.md).")
     else:
         number = exercise.split("-", 1)[0]
         pieces = []
