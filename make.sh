@@ -10,6 +10,8 @@
 #   ./make.sh student write the student edition (solutions removed by nbgrader) into build/student;
 #                     `student --check` also runs it unanswered and autogrades the instructor's answers,
 #                     `student lab` opens JupyterLab on it for self-study (docs/exercises.md)
+#   ./make.sh course DIR  write a ready nbgrader course to DIR, one assignment per notebook;
+#                     `course --check` runs the nbgrader workflow on a simulated class (CI)
 #   ./make.sh bench   print the benchmark tables (benchmarks/*.py)
 #   ./make.sh install only install
 #   ./make.sh pull    update a clone in which notebooks have been run (see README, "Course staff")
@@ -133,6 +135,15 @@ case "${1:-}" in
         --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${LAB_OPTIONS[@]}" "${root[@]}" "${@:3}"
     fi
     exec "$VENV/bin/python" scripts/student_edition.py "${@:2}" ;;
+  course)
+    system_packages; python_env "[test]"; one_blas_thread
+    if [ "${2:-}" = --check ]; then
+      log "the graded course on the standard nbgrader workflow, with a simulated class (tests/test_course.py)"
+      LBO_COURSE_TESTS=1 exec "$VENV/bin/python" -m pytest -p no:dash tests/test_course.py -v "${@:3}"
+    fi
+    [ -n "${2:-}" ] || { echo "usage: ./make.sh course DIR [NOTEBOOK ...] [--force]   |   ./make.sh course --check" >&2; exit 2; }
+    "$VENV/bin/python" scripts/course.py "${@:2}"
+    log "next: source $VENV/bin/activate && cd $2 && nbgrader generate_assignment 00_start_here (docs/exercises.md)" ;;
   binder)
     exec scripts/binder_parity.sh "${@:2}" ;;
   bench)
@@ -145,5 +156,5 @@ case "${1:-}" in
     git add -u -- notebooks
     exec git pull "${@:2}" ;;
   *)
-    echo "usage: ./make.sh {lab|test|browser|binder|site|student|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
+    echo "usage: ./make.sh {lab|test|browser|binder|site|student|course|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
 esac
