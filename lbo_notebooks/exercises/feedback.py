@@ -174,11 +174,19 @@ def require_attempt(x: Any) -> None:
 def as_number(x: Any, what: str = "a number") -> float:
     try:
         value = float(np.asarray(x, dtype=np.float64).reshape(()))
-    except (TypeError, ValueError):
-        raise Stop(WRONG, f"Expected {what}, got {type(x).__name__}.") from None
+    except (TypeError, ValueError, OverflowError, ArithmeticError):
+        raise Stop(WRONG, f"Expected {what} (a finite float), got {_shown_type(x)}.") from None
+    except Exception as err:  # noqa: BLE001 - an object whose __float__ / __array__ raises
+        raise Stop(WRONG, f"Expected {what}; turning your {_shown_type(x)} into a number raised {type(err).__name__}.") from None
     if not np.isfinite(value):
         raise Stop(WRONG, f"Expected {what}, got {value}.")
     return value
+
+
+def _shown_type(x: Any) -> str:
+    if isinstance(x, int) and not isinstance(x, bool) and abs(x) > 1e300:
+        return "an integer too large for a float"
+    return type(x).__name__
 
 
 def call_attempt(function: Any, *args: Any) -> Any:
@@ -191,7 +199,7 @@ def call_attempt(function: Any, *args: Any) -> Any:
         value = function(*args)
     except NotImplementedError:
         raise Stop(NOT_ATTEMPTED, "The function body is still the stub: write it, then run the cell again.") from None
-    except Exception as err:  # the student's bug, reported, not raised
+    except (Exception, SystemExit) as err:  # the student's bug (even a sys.exit), reported, not raised
         raise Stop(WRONG, f"Your function raised {type(err).__name__}: {err}") from None
     if is_placeholder(value):
         raise Stop(NOT_ATTEMPTED, "Your function returns nothing: still the stub, or a missing `return`?")

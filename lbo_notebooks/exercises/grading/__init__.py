@@ -110,9 +110,10 @@ def grade(exercise: str, /, **answers: Any) -> float:
         except subprocess.TimeoutExpired:
             raise AssertionError(f"{exercise} · 0 points: the graded run of your answer took longer than "
                                  f"{timeout:g} s.") from None
-        if not result_path.exists():
-            tail = run.stderr.decode(errors="replace").strip().splitlines()[-3:]
-            raise AssertionError(f"{exercise}: the grader stopped without a verdict; tell your lecturer. " + " ".join(tail))
+        if not result_path.exists():  # os._exit in an answer, memory exhausted, a crash in a library
+            tail = " ".join(run.stderr.decode(errors="replace").strip().splitlines()[-3:])
+            raise AssertionError(f"{exercise} · 0 points: the graded run stopped before a verdict (exit status "
+                                 f"{run.returncode}). Does your answer end the process or use too much memory? {tail}".rstrip())
         result = json.loads(result_path.read_text(encoding="utf-8"))
     if "error" in result:
         raise AssertionError(f"{exercise}: the grader failed; tell your lecturer.\n{result['error']}")
