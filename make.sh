@@ -86,6 +86,20 @@ one_blas_thread() {
   export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} MKL_NUM_THREADS=${MKL_NUM_THREADS:-1}
 }
 
+# A reader's JupyterLab without the grader's menus: the test extras install nbgrader (it builds the
+# editions), whose "Validate" button would pass every notebook (the hidden tests are not in the
+# student edition) and whose Formgrader expects a course. A config directory ahead of the
+# environment's turns them off; prints its path.
+no_grader_menus() {
+  local config=build/lab-config
+  mkdir -p "$config/labconfig"
+  printf '{"disabledExtensions": {"@jupyter/nbgrader": true}}\n' > "$config/labconfig/page_config.json"
+  printf '{"ServerApp": {"jpserver_extensions": {%s}}}\n' \
+    '"nbgrader.server_extensions.formgrader": false, "nbgrader.server_extensions.validate_assignment": false, "nbgrader.server_extensions.assignment_list": false, "nbgrader.server_extensions.course_list": false' \
+    > "$config/jupyter_server_config.json"
+  echo "$config"
+}
+
 case "${1:-}" in
   install)
     system_packages; python_env "[test]" ;;
@@ -96,7 +110,9 @@ case "${1:-}" in
     log "starting JupyterLab on notebooks/00_start_here.ipynb (Ctrl-C to stop)"
     # Open the series' first notebook rather than the Launcher (also the link JupyterLab prints);
     # on Binder the badge's urlpath does the same.
-    exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
+    config=$(no_grader_menus)
+    JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" \
+      exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
       "${LAB_OPTIONS[@]}" "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"
@@ -121,15 +137,7 @@ case "${1:-}" in
     if [ "${2:-}" = lab ]; then
       "$VENV/bin/python" scripts/student_edition.py
       root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)
-      # A student's JupyterLab without the grader's menus: the test extras install nbgrader (it
-      # builds the edition), whose "Validate" button would pass every notebook (the hidden tests
-      # are not in the edition). A config directory ahead of the environment's turns it off.
-      config=build/student-lab-config
-      mkdir -p "$config/labconfig"
-      printf '{"disabledExtensions": {"@jupyter/nbgrader": true}}\n' > "$config/labconfig/page_config.json"
-      printf '{"ServerApp": {"jpserver_extensions": {%s}}}\n' \
-        '"nbgrader.server_extensions.formgrader": false, "nbgrader.server_extensions.validate_assignment": false, "nbgrader.server_extensions.assignment_list": false, "nbgrader.server_extensions.course_list": false' \
-        > "$config/jupyter_server_config.json"
+      config=$(no_grader_menus)
       log "starting JupyterLab on the student edition, build/student/ (Ctrl-C to stop)"
       JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" exec "$VENV/bin/jupyter" lab \
         --notebook-dir=build/student --LabApp.default_url=/lab/tree/00_start_here.ipynb "${LAB_OPTIONS[@]}" "${root[@]}" "${@:3}"
