@@ -238,6 +238,11 @@ class Mesh:
     def __setattr__(self, name: str, value: Any) -> None:
         raise AttributeError("Mesh is immutable; build a new one (see Mesh.with_vertices).")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Pickled as its two arrays (a graded answer holding a mesh, a worker process): the cache of
+        # operators stays behind, and the copy is checked again as it is rebuilt.
+        return (Mesh, (np.array(self._vertices), np.array(self._faces)))
+
     # --- basic data -------------------------------------------------------------------------
     @property
     def vertices(self) -> NDArray[np.float64]:
