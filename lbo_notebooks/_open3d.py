@@ -1,5 +1,10 @@
 """Import open3d on demand and explain, in words a user can act on, why it failed.
 
+Only the display needs open3d (decimating large meshes for plotting, in
+:mod:`lbo_notebooks.plotting`); reading and writing mesh files, binary PLY and STL included, is
+done with NumPy and plyfile (:mod:`lbo_notebooks.formats`), so a machine without open3d's system
+libraries (a grading machine, a slim image) still loads and saves meshes.
+
 open3d is a compiled package linked against a few system libraries that a bare Debian/Ubuntu
 machine (or a slim Docker image) does not have. Its import then fails deep inside the
 extension loader with ``libusb-1.0.so.0: cannot open shared object file``, which says nothing
@@ -95,8 +100,8 @@ def import_open3d() -> ModuleType:
         if exc.name not in (None, "open3d"):
             raise _explain(exc) from exc
         raise ImportError(
-            "open3d is not installed; it decimates large meshes for display and writes binary "
-            "mesh files. "
+            "open3d is not installed; it decimates large meshes for display (reading and writing "
+            "mesh files do not need it). "
             "Install it with `pip install open3d` (it is a dependency of lbo-notebooks)."
         ) from exc
     except (ImportError, OSError) as exc:

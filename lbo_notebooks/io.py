@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Union
+from typing import Union
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ._deprecation import moved, warn
-from .formats import BINARY_FORMATS, FORMATS, POINT_FORMATS, mesh_text, read_point_text, read_raw
+from .formats import BINARY_FORMATS, FORMATS, POINT_FORMATS, mesh_text, read_point_text, read_raw, write_mesh_binary
 from .mesh import Mesh, MeshError, unique_rows
 from .pointcloud import PointCloud
 from .repair import clean_arrays
@@ -94,13 +94,6 @@ def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.in
     """
     raw = read_raw(_check_path(path))
     return raw.vertices, raw.triangles
-
-
-def _open3d() -> Any:
-    from ._open3d import import_open3d
-
-    return import_open3d()
-
 
 
 # =============================================================================================
@@ -236,18 +229,12 @@ def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path
         raise ValueError(f"{ext} files are text only; pass binary=False (or None), or save as .ply or .stl.")
     v, f = mesh.vertices, mesh.faces
     if binary:
-        o3d = _open3d()
-        tm = o3d.geometry.TriangleMesh(
-            o3d.utility.Vector3dVector(np.array(v, dtype=np.float64)),
-            o3d.utility.Vector3iVector(np.array(f, dtype=np.int32)),
-        )
-        if ext == ".stl":
-            tm.compute_triangle_normals()
-        with o3d.utility.VerbosityContextManager(o3d.utility.VerbosityLevel.Error):
-            ok = o3d.io.write_triangle_mesh(str(p), tm, write_ascii=False, write_vertex_normals=False,
-                                            write_vertex_colors=False, write_triangle_uvs=False)
-        if not ok:
-            raise OSError(f"open3d could not write {str(p)!r}; check that the folder exists and is writable.")
+        # Written with NumPy (formats.writers), not open3d: saving needs no system libraries.
+        try:
+            write_mesh_binary(v, f, p, ext)
+        except OSError as exc:
+            raise OSError(f"could not write {str(p)!r} ({exc.strerror or exc}); check that the folder exists "
+                          "and is writable.") from exc
         return p
     with open(p, "w", encoding="ascii", newline="\n") as fh:
         fh.write(mesh_text(v, f, ext))

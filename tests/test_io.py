@@ -497,15 +497,107 @@ def test_unknown_library_and_missing_open3d_messages(monkeypatch, tmp_path):
     monkeypatch.setattr(_open3d, "_load", _failing(ModuleNotFoundError("No module named 'open3d'", name="open3d")))
     with pytest.raises(ImportError, match="pip install open3d"):
         _open3d.import_open3d()
-    # save_mesh passes the explanation on for the formats open3d writes.
+    # Saving does not need open3d: binary PLY and STL are written with NumPy even where it cannot load.
     monkeypatch.setattr(_open3d, "_load", _failing(OSError("libusb-1.0.so.0: cannot open shared object file")))
-    with pytest.raises(ImportError, match="apt-get install libusb-1.0-0"):
-        save_mesh(shapes.icosphere(0), tmp_path / "s.ply")
+    for ext in (".ply", ".stl"):
+        assert load_mesh(save_mesh(shapes.icosphere(0), tmp_path / f"s{ext}")).n_faces == 20
 
 
 def test_importing_the_io_module_does_not_import_open3d():
     code = "import sys, lbo_notebooks.io, lbo_notebooks._open3d; assert 'open3d' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+# --- binary PLY and STL, written without open3d ------------------------------------------------
+def test_binary_ply_and_stl_are_saved_and_loaded_with_open3d_unimportable(tmp_path):
+    # A fresh interpreter where `import open3d` fails (as on a grading machine without its system
+    # libraries): save_mesh still writes both binary formats, and they load back.
+    code = (
+        "import sys; sys.modules['open3d'] = None\n"
+        "import numpy as np, plyfile\n"
+        "from lbo_notebooks import load_mesh, save_mesh, shapes\n"
+        f"folder = {str(tmp_path)!r}\n"
+        "mesh = shapes.bumpy_sphere(2)\n"
+        "back = load_mesh(save_mesh(mesh, folder + '/m.ply'))\n"
+        "assert back == mesh and np.array_equal(back.vertices, mesh.vertices)\n"
+        "ply = plyfile.PlyData.read(folder + '/m.ply')\n"
+        "assert np.array_equal(np.stack([ply['vertex'][c] for c in 'xyz'], 1), mesh.vertices)\n"
+        "stl = load_mesh(save_mesh(mesh, folder + '/m.stl'))\n"
+        "assert stl.n_vertices == mesh.n_vertices and stl.n_faces == mesh.n_faces and stl.is_closed\n"
+        "assert sys.modules['open3d'] is None\n"
+        "print('ok')\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and "ok" in done.stdout, done.stderr[-2000:]
+
+
+def test_binary_ply_layout_and_plyfile_reads_it_back_identically(tmp_path):
+    import plyfile
+
+    mesh = two_pieces_with_boundary()
+    path = save_mesh(mesh, tmp_path / "m.ply")
+    data = path.read_bytes()
+    header = (
+        "ply\nformat binary_little_endian 1.0\ncomment written by lbo_notebooks\n"
+        f"element vertex {mesh.n_vertices}\nproperty double x\nproperty double y\nproperty double z\n"
+        f"element face {mesh.n_faces}\nproperty list uchar int vertex_indices\nend_header\n"
+    ).encode()
+    assert data.startswith(header)
+    assert len(data) == len(header) + 24 * mesh.n_vertices + 13 * mesh.n_faces
+    ply = plyfile.PlyData.read(str(path))
+    assert not ply.text and ply.byte_order == "<" and [e.name for e in ply.elements] == ["vertex", "face"]
+    np.testing.assert_array_equal(np.stack([ply["vertex"][c] for c in "xyz"], axis=1), mesh.vertices)
+    np.testing.assert_array_equal(np.stack(ply["face"]["vertex_indices"]), mesh.faces)
+    back = load_mesh(path)
+    np.testing.assert_array_equal(back.vertices, mesh.vertices)
+    np.testing.assert_array_equal(back.faces, mesh.faces)
+    # The same bytes again: the writer is deterministic.
+    assert save_mesh(mesh, tmp_path / "again.ply").read_bytes() == data
+
+
+def test_binary_stl_layout_normals_and_float32_corners(tmp_path):
+    mesh = shapes.bumpy_sphere(2)
+    data = save_mesh(mesh, tmp_path / "m.stl").read_bytes()
+    assert len(data) == 84 + 50 * mesh.n_faces
+    assert not data[:80].lstrip().startswith(b"solid")  # else readers take it for ASCII STL
+    assert struct.unpack("<I", data[80:84])[0] == mesh.n_faces
+    record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    rows = np.frombuffer(data, dtype=record, offset=84)
+    np.testing.assert_array_equal(rows["corners"], mesh.vertices[mesh.faces].astype(np.float32))
+    assert np.all(rows["attribute"] == 0)
+    p = mesh.vertices[mesh.faces]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    np.testing.assert_allclose(rows["normal"], normal, atol=1e-6)
+    back = load_mesh(tmp_path / "m.stl")
+    ordered = first_appearance_order(mesh)
+    np.testing.assert_array_equal(back.faces, ordered.faces)
+    np.testing.assert_array_equal(back.vertices, ordered.vertices.astype(np.float32).astype(np.float64))
+
+
+def test_binary_files_match_what_open3d_writes(tmp_path):
+    # Where open3d is importable: its binary PLY body and STL records are the same bytes as ours
+    # (its headers differ only in the comment and 'uint' for the non-negative indices).
+    try:
+        o3d = _open3d.import_open3d()
+    except ImportError:
+        pytest.skip("open3d is not importable here")
+    mesh = shapes.bumpy_sphere(2)
+    tm = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(np.array(mesh.vertices)),
+                                   o3d.utility.Vector3iVector(mesh.faces.astype(np.int32)))
+    o3d.io.write_triangle_mesh(str(tmp_path / "o.ply"), tm, write_ascii=False)
+    tm.compute_triangle_normals()
+    o3d.io.write_triangle_mesh(str(tmp_path / "o.stl"), tm, write_ascii=False)
+    ours_ply = save_mesh(mesh, tmp_path / "m.ply").read_bytes()
+    theirs_ply = (tmp_path / "o.ply").read_bytes()
+    assert ours_ply.split(b"end_header\n", 1)[1] == theirs_ply.split(b"end_header\n", 1)[1]
+    assert save_mesh(mesh, tmp_path / "m.stl").read_bytes()[80:] == (tmp_path / "o.stl").read_bytes()[80:]
+
+
+@pytest.mark.parametrize("ext", [".ply", ".stl"])
+def test_binary_save_into_a_missing_folder_says_what_to_check(tmp_path, ext):
+    with pytest.raises(OSError, match="check that the folder exists and is writable"):
+        save_mesh(shapes.icosphere(0), tmp_path / "no such folder" / f"m{ext}")
 
 
 def test_off_variants_counts_on_the_header_line_colours_and_comments(tmp_path):

@@ -1,12 +1,13 @@
-"""The file formats: raw readers and text writers for .off, .obj, .ply, .stl and text point lists.
+"""The file formats: raw readers and text and binary writers for .off, .obj, .ply, .stl and text point lists.
 
 This layer turns bytes into arrays and arrays into text, with no topology checks; the public
 entry points are in :mod:`lbo_notebooks.io` (``load_mesh``, ``save_mesh``, ``load_points``).
 
 How each format is handled, and why
 -----------------------------------
-Every file is parsed here, with NumPy doing the bulk conversion, and open3d writes the binary
-formats (binary PLY at float64, binary STL). Before any data is read, the counts a header
+Every file is parsed here, with NumPy doing the bulk conversion, and NumPy writes the binary
+formats too (binary PLY at float64, binary STL; :mod:`~lbo_notebooks.formats.writers`), so no
+file operation needs open3d or its system libraries. Before any data is read, the counts a header
 announces (OFF, PLY, binary STL) are checked against the file size, so a corrupt header fails at
 once instead of allocating gigabytes. open3d's readers were tried first and rejected because a
 broken file must raise :class:`MeshError`, not kill the Python process or Jupyter kernel
@@ -70,10 +71,11 @@ from .off import read_off
 from .ply import read_ply
 from .points import read_point_text
 from .stl import read_stl
-from .writers import mesh_text
+from .writers import mesh_bytes, mesh_text, write_mesh_binary
 
 __all__ = [
-    "FORMATS", "POINT_FORMATS", "BINARY_FORMATS", "RawMesh", "read_raw", "read_point_text", "mesh_text"
+    "FORMATS", "POINT_FORMATS", "BINARY_FORMATS", "RawMesh", "read_raw", "read_point_text", "mesh_text",
+    "mesh_bytes", "write_mesh_binary",
 ]
 
 
