@@ -7,16 +7,20 @@ An exercise is three cells, in this order, where the idea is taught:
    ``NN-name-answer``. It starts with a placeholder line (``x = ...``) that the student edition
    keeps, then the instructor's solution between ``### BEGIN SOLUTION`` and ``### END SOLUTION``,
    which the student edition replaces by a stub;
-3. ``check``: a locked nbgrader *grade* cell (grade id ``NN-name-check``, 1 point) that calls the
-   check from ``lbo_notebooks.exercises``; its hidden tests (``### BEGIN HIDDEN TESTS`` ...) assert
-   that the answer is correct and any claim that needs the solution. The student edition drops
-   them, the instructor edition (nbval) and the autograder run them.
+3. ``check``: a locked nbgrader *grade* cell (grade id ``NN-name-check``, the points of the
+   exercise's kind, ``lbo_notebooks.exercises.grading.POINTS``) that calls the check from
+   ``lbo_notebooks.exercises``; its hidden test passes the answers, by the prompt's names, to the
+   exercise's grader (``grade("NN-name", x=x)``, registered in ``exercises/grading/nbNN.py``). The
+   student edition drops it, the instructor edition (nbval) and the autograder run it;
+4. optionally ``written``: a manually graded Markdown cell (``NN-name-explain``) with the model
+   answer and the rubric.
 
 Use from a notebook-editing script::
 
     import sys; sys.path.insert(0, "scripts")
     from exercise_cells import exercise
-    nb.cells[i:i] = exercise("05-projection", "build it yourself", "Write ...", answer_src, "exercises.check_...(...)")
+    nb.cells[i:i] = exercise("05-projection", "build it yourself", "Write ...", placeholder, solution,
+                             "exercises.check_projection(my_project, spectrum)", ("my_project",))
 """
 
 from __future__ import annotations
@@ -54,18 +58,30 @@ def answer(exercise: str, placeholder: str, solution: str, *, after: str = "") -
     return cell
 
 
-def check(exercise: str, call: str, hidden: str = "", *, points: int = 1) -> nbformat.NotebookNode:
-    """The locked check cell: ``feedback = <call>``, then hidden tests (correct answer + ``hidden``)."""
-    tests = "assert feedback.correct, feedback.message"
-    if hidden:
-        tests += "\n" + hidden.rstrip()
+def check(exercise: str, call: str, names: tuple[str, ...], *, points: int) -> nbformat.NotebookNode:
+    """The locked check cell: ``feedback = <call>``, then the hidden test ``grade(exercise, name=name, ...)``."""
+    arguments = "".join(f", {name}={name}" for name in names)
+    tests = f"from lbo_notebooks.exercises.grading import grade\n\ngrade({exercise!r}{arguments})".replace("'", '"')
     cell = nbformat.v4.new_code_cell(f"feedback = {call}\n### BEGIN HIDDEN TESTS\n{tests}\n### END HIDDEN TESTS")
     cell.metadata["nbgrader"] = _nbgrader(f"{exercise}-check", solution=False, grade=True, points=points)
     return cell
 
 
+def written(exercise: str, model_answer: str, rubric: str, *, points: int = 2) -> nbformat.NotebookNode:
+    """A written answer graded by a person: the model answer and the rubric (the student edition
+    shows *YOUR ANSWER HERE* instead)."""
+    cell = nbformat.v4.new_markdown_cell(f"**Model answer.** {model_answer.strip()}\n\n**Rubric ({points} points).** {rubric.strip()}")
+    cell.metadata["nbgrader"] = _nbgrader(f"{exercise}-explain", solution=True, grade=True, points=points)
+    return cell
+
+
 def exercise(exercise_id: str, kind: str, text: str, placeholder: str, solution: str, call: str,
-             hidden: str = "", *, after: str = "", points: int = 1) -> list[nbformat.NotebookNode]:
-    """The three cells of one exercise: prompt, answer, check."""
+             names: tuple[str, ...], *, after: str = "", points: int | None = None) -> list[nbformat.NotebookNode]:
+    """The three cells of one exercise: prompt, answer, check (``points``: the kind's, by default)."""
+    if points is None:
+        from lbo_notebooks.exercises.grading import POINTS
+
+        first = kind.split(",")[0].split()[0]
+        points = POINTS[{"build": "build", "explain": "choice"}.get(first, first)]
     return [prompt(exercise_id, kind, text), answer(exercise_id, placeholder, solution, after=after),
-            check(exercise_id, call, hidden, points=points)]
+            check(exercise_id, call, names, points=points)]

@@ -77,6 +77,8 @@ def test_area_factor():
     _status(ex.check_area_factor(1.6**3, scale=1.6, show=False), WRONG, "volume")
     _status(ex.check_area_factor(1 / 2.56, scale=1.6, show=False), WRONG, "direction")
     _status(ex.check_area_factor(3.0, scale=1.6, show=False), WRONG, "square")
+    _status(ex.check_area_factor(2.6, scale=1.6, show=False), WRONG, "more digits")   # 2.56 rounded by hand
+    _status(ex.check_area_factor(3, scale=1.6, show=False), WRONG, "more digits")
     for placeholder in PLACEHOLDERS:
         _status(ex.check_area_factor(placeholder, scale=1.6, show=False), NOT_ATTEMPTED)
 
@@ -94,14 +96,22 @@ def test_stretch_growth_is_a_choice():
 def test_smallest_angles():
     from lbo_notebooks.creatures import creature
 
-    exact = float(np.degrees(operators.corner_angles(creature("dog", n_vertices=2000))).min())
-    _status(ex.check_smallest_angles({2000: exact}, show=False), CORRECT)
-    _status(ex.check_smallest_angles({2000: np.radians(exact)}, show=False), WRONG, "radians")
-    _status(ex.check_smallest_angles({2000: 95.0}, show=False), WRONG, "60°")
-    _status(ex.check_smallest_angles({2000: exact + 3}, show=False), WRONG, "corner_angles")
+    exact = {n: float(np.degrees(operators.corner_angles(creature("dog", n_vertices=n))).min())
+             for n in (2000, 3000, 5000)}
+    with_ = lambda n, value: {**exact, n: value}  # noqa: E731 - one entry changed
+    _status(ex.check_smallest_angles(exact, show=False), CORRECT)
+    _status(ex.check_smallest_angles({float(n): round(a, 1) for n, a in exact.items()}, show=False), CORRECT)
+    _status(ex.check_smallest_angles(with_(2000, np.radians(exact[2000])), show=False), WRONG, "radians")
+    _status(ex.check_smallest_angles(with_(3000, 95.0), show=False), WRONG, "60°")
+    _status(ex.check_smallest_angles(with_(2000, exact[2000] + 3), show=False), WRONG, "corner_angles")
+    _status(ex.check_smallest_angles(with_(2000, float(round(exact[2000]))), show=False), WRONG, "corner_angles")
+    _status(ex.check_smallest_angles(with_(2000, int(round(exact[2000]))), show=False), WRONG, "more digits")
+    _status(ex.check_smallest_angles({2000: exact[2000]}, show=False), WRONG, "every size")
+    _status(ex.check_smallest_angles({2000: exact[2000], 3000: exact[3000]}, show=False), WRONG, "every size")
+    _status(ex.check_smallest_angles({**exact, "N": 40.0}, show=False), WRONG, "keys", "'N'")
     _status(ex.check_smallest_angles({2000: ..., 3000: ...}, show=False), NOT_ATTEMPTED)
-    _status(ex.check_smallest_angles({2000: exact, 3000: ...}, show=False), WRONG, "every part")
-    _status(ex.check_smallest_angles([exact], show=False), WRONG, "dict")
+    _status(ex.check_smallest_angles({2000: exact[2000], 3000: ...}, show=False), WRONG, "every part")
+    _status(ex.check_smallest_angles([exact[2000]], show=False), WRONG, "dict")
 
 
 def test_leg_area():
@@ -111,12 +121,21 @@ def test_leg_area():
     dog, parts = creature("dog", n_vertices=n), creature_parts("dog", n_vertices=n)
     in_legs = (parts["front_legs"] | parts["hind_legs"])[dog.faces].all(axis=1)
     leg, rest = dog.face_areas[in_legs].sum(), dog.face_areas[~in_legs].sum()
-    reference = {s: leg * s**2 + rest for s in (1.0, 1.3)}              # the notebook's solution
+    reference = {s: leg * s**2 + rest for s in (0.7, 1.0, 1.3)}         # the notebook's solution
+    with_ = lambda value: {**reference, 1.3: value}  # noqa: E731 - one entry changed
     _status(ex.check_leg_area(reference, n_vertices=n, show=False), CORRECT)
-    _status(ex.check_leg_area({1.3: leg * 1.3 + rest}, n_vertices=n, show=False), WRONG, "s²")
-    _status(ex.check_leg_area({1.3: (leg + rest) * 1.3**2}, n_vertices=n, show=False), WRONG, "only the legs")
-    _status(ex.check_leg_area({1.3: leg * 1.3**2}, n_vertices=n, show=False), WRONG, "rest of the body")
-    _status(ex.check_leg_area({1.0: ..., 1.3: ...}, n_vertices=n, show=False), NOT_ATTEMPTED)
+    _status(ex.check_leg_area({1: reference[1.0], 0.7: reference[0.7], 1.3: reference[1.3]}, n_vertices=n,
+                              show=False), CORRECT)
+    _status(ex.check_leg_area(with_(leg * 1.3 + rest), n_vertices=n, show=False), WRONG, "s²")
+    _status(ex.check_leg_area(with_((leg + rest) * 1.3**2), n_vertices=n, show=False), WRONG, "only the legs")
+    _status(ex.check_leg_area(with_(leg * 1.3**2), n_vertices=n, show=False), WRONG, "rest of the body")
+    _status(ex.check_leg_area(with_(creature("dog", parts={"legs": 1.3}, n_vertices=n).area), n_vertices=n,
+                              show=False), WRONG, "built shape")
+    _status(ex.check_leg_area(with_(round(reference[1.3], 1)), n_vertices=n, show=False), WRONG, "more digits")
+    _status(ex.check_leg_area({1.0: reference[1.0], 1.3: reference[1.3]}, n_vertices=n, show=False), WRONG,
+            "every scale")
+    _status(ex.check_leg_area({**reference, "big": 3.0}, n_vertices=n, show=False), WRONG, "keys", "'big'")
+    _status(ex.check_leg_area({0.7: ..., 1.0: ..., 1.3: ...}, n_vertices=n, show=False), NOT_ATTEMPTED)
 
 
 # --- 02: build it yourself --------------------------------------------------------------------------
@@ -171,7 +190,7 @@ def test_stiffness_reference_and_unanswered():
 
 
 def _pure_voronoi(mesh):
-    return sp.diags(ex.basics._pure_voronoi(mesh))
+    return sp.diags(ex.laplace_beltrami._pure_voronoi(mesh))
 
 
 @pytest.mark.parametrize("attempt, hint", [
@@ -221,6 +240,8 @@ def test_coefficients(sphere_spectrum):
     f = mesh.vertices[:, 0]
     phi, mass = s.vectors, s.mass
     _status(ex.check_coefficients(phi.T @ (mass @ f), s, f, show=False), CORRECT)
+    _status(ex.check_coefficients(list(phi.T @ (mass @ f)), s, f, show=False), CORRECT)
+    _status(ex.check_coefficients((phi.T @ (mass @ f))[:, None], s, f, show=False), CORRECT)   # a column
     _status(ex.check_coefficients(phi.T @ f, s, f, show=False), WRONG, "Euclidean")
     _status(ex.check_coefficients(phi @ (phi.T @ (mass @ f)), s, f, show=False), WRONG, "transpose")
     _status(ex.check_coefficients(-(phi.T @ (mass @ f)), s, f, show=False), WRONG, "sign")
@@ -239,6 +260,7 @@ def test_choices_and_counts():
     _status(ex.check_eigenvalue_scaling(4, scale=2, show=False), WRONG, "upside down")
     _status(ex.check_eigenvalue_scaling(0.5, scale=2, show=False), WRONG, "1/length²")
     _status(ex.check_eigenvalue_scaling(1, scale=2, show=False), WRONG, "isometry")
+    _status(ex.check_eigenvalue_scaling(0.3, scale=2, show=False), WRONG, "more digits")
     _status(ex.check_eigenvalue_scaling(..., scale=2, show=False), NOT_ATTEMPTED)
     _status(ex.check_zero_eigenvalues(1, 2, show=False), CORRECT)
     _status(ex.check_zero_eigenvalues(2, 2, show=False), WRONG, "handle")
@@ -336,7 +358,7 @@ def test_every_check_in_the_notebooks_exists():
     for path in sorted(NOTEBOOKS.glob("*.ipynb")):
         for cell in json.loads(path.read_text())["cells"]:
             meta = cell.get("metadata", {}).get("nbgrader", {})
-            if meta.get("grade"):
+            if meta.get("grade") and cell["cell_type"] == "code":  # not a written answer (…-explain)
                 call = re.search(r"exercises\.(check_\w+)\(", "".join(cell["source"]))
                 assert call and call.group(1) in ex.__all__, (path.name, meta["grade_id"])
 
@@ -359,14 +381,17 @@ def test_exercise_cells_are_valid_nbgrader_cells():
     import nbformat
 
     cells = _script("exercise_cells").exercise(
-        "04-demo", "compute", "What is 1 + 1?", "two = ...", "two = 2", "exercises.check_area_factor(two, scale=2 ** 0.5)")
+        "01-area", "predict, then run", "By what factor does the area grow?", "area_factor = ...",
+        "area_factor = 1.6**2", "exercises.check_area_factor(area_factor, scale=1.6)", ("area_factor",))
     prompt, answer, check = cells
-    assert prompt.source.startswith("**Exercise 04-demo** · *compute*.")
-    assert answer.source == "two = ...\n### BEGIN SOLUTION\ntwo = 2\n### END SOLUTION"
+    assert prompt.source.startswith("**Exercise 01-area** · *predict, then run*.")
+    assert answer.source == "area_factor = ...\n### BEGIN SOLUTION\narea_factor = 1.6**2\n### END SOLUTION"
     assert answer.metadata.nbgrader["solution"] and not answer.metadata.nbgrader["grade"]
     assert check.metadata.nbgrader["grade"] and check.metadata.nbgrader["locked"] and check.metadata.nbgrader["points"] == 1
-    assert "### BEGIN HIDDEN TESTS\nassert feedback.correct" in check.source
-    nb = nbformat.v4.new_notebook(cells=cells)
+    assert check.source.endswith('grade("01-area", area_factor=area_factor)\n### END HIDDEN TESTS')
+    written = _script("exercise_cells").written("01-area", "Areas scale with the square.", "1 point: the square; 1 point: why.")
+    assert written.metadata.nbgrader["grade_id"] == "01-area-explain" and "**Rubric (2 points)" in written.source
+    nb = nbformat.v4.new_notebook(cells=cells + [written])
     nbformat.validate(nb)
     validator = pytest.importorskip("nbgrader.nbgraderformat").MetadataValidator()
     validator.validate_nb(nb)                                       # nbgrader accepts the marking
@@ -466,6 +491,8 @@ def test_energy_bound(blob_spectrum):
     _status(ex.check_energy_bound(energy / lam[n] / norm2, s, f, n, show=False), WRONG, "relative")
     _status(ex.check_energy_bound(np.sqrt(energy / lam[n]), s, f, n, show=False), WRONG, "squared")
     _status(ex.check_energy_bound(123.0, s, f, n, show=False), WRONG, "Dirichlet energy")
+    _status(ex.check_energy_bound(float(f"{energy / lam[n]:.3g}"), s, f, n, show=False), WRONG, "digits")  # hand-rounded
+    _status(ex.check_energy_bound(float(f"{energy / lam[n]:.8g}"), s, f, n, show=False), CORRECT)
     for placeholder in PLACEHOLDERS:
         _status(ex.check_energy_bound(placeholder, s, f, n, show=False), NOT_ATTEMPTED)
 
@@ -488,6 +515,7 @@ def test_worst_ratio():
     _status(ex.check_worst_ratio(1 / c, P, W, A, show=False), WRONG, "upside down")
     _status(ex.check_worst_ratio(10 * c, P, W, A, show=False), WRONG, "supremum")
     _status(ex.check_worst_ratio(c / 10, P, W, A, show=False), WRONG, "below")
+    _status(ex.check_worst_ratio(float(f"{c:.4g}"), P, W, A, show=False), WRONG, "digits")  # hand-rounded
     _status(ex.check_worst_ratio(..., P, W, A, show=False), NOT_ATTEMPTED)
 
 
@@ -502,6 +530,7 @@ def test_ratios_that_must_be_one():
             _status(check(placeholder, show=False), NOT_ATTEMPTED)
     _status(ex.check_consistent_optimality(1.2, show=False), WRONG, "own")
     _status(ex.check_consistent_minmax(0.9, show=False), WRONG, "consistent spectrum")
+    _status(ex.check_consistent_minmax(1.009, show=False), WRONG, "same pair", "consistent spectrum")  # two spectra mixed
 
 
 def test_choices_04_to_06():
@@ -509,8 +538,8 @@ def test_choices_04_to_06():
         (ex.check_shifted_basis, "infinite", {"one": "zero energy", "above": "worst function", "below": "every n-dimensional"}),
         (ex.check_extra_function, "between", {"beats": "n + 1", "worse": "contains"}),
         (ex.check_stationary_frame, "quadruple", {"same": "grow", "double": "first order", "eightfold": "second-order"}),
-        (ex.check_lowest_family, "white", {"smooth": "rough", "near-optimal": "optimal ones"}),
-        (ex.check_interlacing, "lam_0", {"lam_1": "constant"}),
+        (ex.check_lowest_family, "white", {"smooth": "rough", "near-optimal": "optimal ones", "Near optimal": "optimal ones"}),
+        (ex.check_interlacing, "lam_0", {"lam_1": "constant", "λ₁": "constant"}),
         (ex.check_sphere_alpha, "equal", {"scaled": "|K|^α", "unrelated": "|K|^α"}),
         (ex.check_consistent_invariance, "yes", {"no": "ρ_t"}),
     ]
@@ -607,6 +636,19 @@ def test_gauss_bonnet_and_scaling():
     # Right values for only some of the three α are not the answer.
     _status(ex.check_metric_scaling({1.0: 1.0}, scale=3, show=False), WRONG, "0, 0.4 missing")
     _status(ex.check_metric_scaling({0.0: 1 / 9, 1.0: 1.0}, scale=3, show=False), WRONG, "0.4 missing")
+    # Any key type: a non-numeric key is a wrong answer, not an error; numbers as strings or a list in order are right.
+    _status(ex.check_metric_scaling({**right, "alpha": 1.0}, scale=3, show=False), WRONG, "keys", "'alpha'")
+    _status(ex.check_metric_scaling({None: 1.0, (0, 1): 2.0}, scale=3, show=False), WRONG, "keys")
+    _status(ex.check_metric_scaling({"0": 1 / 9, "0.4": 3.0**-1.2, "1": 1}, scale=3, show=False), CORRECT)
+    _status(ex.check_metric_scaling([1 / 9, 3.0**-1.2, 1], scale=3, show=False), CORRECT)
+    # Rounded by hand (issue 38): right to three significant digits; coarser: "more digits", not the method.
+    _status(ex.check_metric_scaling({0: 0.111, 0.4: 0.268, 1: 1}, scale=3, show=False), CORRECT)
+    _status(ex.check_metric_scaling({**right, 0.4: 0.27}, scale=3, show=False), WRONG, "more digits")
+    _status(ex.check_gauss_bonnet(0, 6.28, show=False), CORRECT)
+    _status(ex.check_gauss_bonnet(0, 6.3, show=False), WRONG, "torus is right", "more digits")
+    _status(ex.check_curvature_scaling(0.111, scale=3, show=False), CORRECT)
+    _status(ex.check_curvature_scaling(0.11, scale=3, show=False), WRONG, "more digits")
+    _status(ex.check_curvature_scaling(0.33, scale=3, show=False), WRONG, "principal curvatures")
 
 
 def test_floor_fraction():
@@ -621,6 +663,11 @@ def test_floor_fraction():
     _status(ex.check_floor_fraction(1 - ref, mesh, show=False), WRONG, "above")
     _status(ex.check_floor_fraction(ref + 0.01, mesh, show=False), WRONG, "metric_curvature")
     _status(ex.check_floor_fraction(0, mesh, show=False), WRONG, "tolerance")
+    # Right when it names the vertex count (within half a vertex); a coarser hand rounding: "more digits".
+    n = mesh.n_vertices
+    _status(ex.check_floor_fraction(round(ref * n) / n + 0.4 / n, mesh, show=False), CORRECT)
+    _status(ex.check_floor_fraction(round(ref, 1), mesh, show=False), WRONG, "more digits")   # 0.6 for 104/162
+    _status(ex.check_floor_fraction(round(ref * n), mesh, show=False), WRONG, "number of vertices")
     _status(ex.check_floor_fraction(..., mesh, show=False), NOT_ATTEMPTED)
 
 
@@ -637,6 +684,12 @@ def test_floor_fraction():
 ])
 def test_recaps_05_08(check, right, slips):
     _check_recap(check, right, slips, unsure_at=1)
+
+
+def test_recaps_05_06_accept_other_spellings():
+    _status(ex.check_recap_optimality("10", " Vacuous", False, show=False), CORRECT)
+    _status(ex.check_recap_ties(False, "a lower bound", "quadratic", show=False), CORRECT)
+    _status(ex.check_recap_ties("No", "Exact", "2", show=False), WRONG, "question 2", "cancel")
 
 
 def _check_recap(check, right, slips, unsure_at):
@@ -748,6 +801,8 @@ def test_operator_choice(operator_candidates):
     _status(ex.check_operator_choice({**right, "pinched": "cotan"}, operator_candidates, show=False), WRONG, "pinched")
     _status(ex.check_operator_choice({**right, "pinched": "tufted"}, operator_candidates, show=False), WRONG, '"cotan" or "robust"')
     _status(ex.check_operator_choice({"holes": "cotan"}, operator_candidates, show=False), WRONG, "one entry per mesh")
+    _status(ex.check_operator_choice({**right, 3: "cotan"}, operator_candidates, show=False), WRONG, "nothing else")
+    _status(ex.check_operator_choice({k.title(): v for k, v in right.items()}, operator_candidates, show=False), CORRECT)
     _status(ex.check_operator_choice(dict.fromkeys(right, ...), operator_candidates, show=False), NOT_ATTEMPTED)
     _status(ex.check_operator_choice({**dict.fromkeys(right, ...), "holes": "cotan"}, operator_candidates, show=False), WRONG, "every part")
 
@@ -765,6 +820,10 @@ def test_cloud_eigenvalue():
     _status(ex.check_cloud_eigenvalue(11.4 / 20 - 1, values, 9, show=False), WRONG, "wrong ℓ")
     _status(ex.check_cloud_eigenvalue(0.3, values, 9, show=False), WRONG, "find ℓ")
     _status(ex.check_cloud_eigenvalue(10.4 / 12 - 1, values, 9, show=False), WRONG, "find ℓ")   # abs(ref) -> not "size"
+    rounded = np.array([*values[:9], 11.4287])                                  # ref = -0.047608...
+    _status(ex.check_cloud_eigenvalue(-0.0476, rounded, 9, show=False), CORRECT)         # 3 digits, by hand
+    _status(ex.check_cloud_eigenvalue(-0.048, rounded, 9, show=False), WRONG, "more digits")
+    _status(ex.check_cloud_eigenvalue(-4.8, rounded, 9, show=False), WRONG, "percentage")
     for placeholder in PLACEHOLDERS:
         _status(ex.check_cloud_eigenvalue(placeholder, values, 9, show=False), NOT_ATTEMPTED)
     assert [ex.your_data._sphere_eigenvalue(k) for k in range(17)] == [0, 2, 2, 2, 6, 6, 6, 6, 6, 12, 12, 12, 12, 12, 12, 12, 20]
@@ -788,6 +847,8 @@ def test_largest_component(messy_scan):
     shifted = np.max(np.abs(values[4:] / exact[1:13] - 1))               # the 4-zero offset kept
     _status(ex.check_largest_component(1, shifted, path, show=False), WRONG, "index for index")
     _status(ex.check_largest_component(1, 2 * worst, path, show=False), WRONG, "k = 1, ..., 15")
+    _status(ex.check_largest_component(1, float(f"{worst:.2g}"), path, show=False), CORRECT)    # 0.019
+    _status(ex.check_largest_component(1, float(f"{worst:.1g}"), path, show=False), WRONG, "more digits")  # 0.02
     _status(ex.check_largest_component(1, float("nan"), path, show=False), WRONG, "got nan")
     _status(ex.check_largest_component(..., ..., path, show=False), NOT_ATTEMPTED)
     _status(ex.check_largest_component(1, ..., path, show=False), WRONG, "every part")
@@ -797,10 +858,17 @@ def test_neighbors_effect_and_cloud_pieces():
     _status(ex.check_neighbors_effect("further", show=False), CORRECT)
     _status(ex.check_neighbors_effect("closer", show=False), WRONG, "compare")
     _status(ex.check_neighbors_effect(..., show=False), NOT_ATTEMPTED)
-    _status(ex.check_cloud_pieces({2.0: 2}, show=False), CORRECT)
-    _status(ex.check_cloud_pieces({1.5: 2}, show=False), WRONG, "reach further")
-    _status(ex.check_cloud_pieces({2.0: 1}, show=False), WRONG, "wider")
-    _status(ex.check_cloud_pieces({0.5: 1}, show=False), WRONG, "above 1")
+    right = {1.5: 1, 1.75: 2, 2.0: 2}
+    _status(ex.check_cloud_pieces(right, show=False), CORRECT)
+    _status(ex.check_cloud_pieces({"1.5": 1, np.float64(1.75): 2.0, 2: np.int64(2)}, show=False), CORRECT)
+    _status(ex.check_cloud_pieces({2.0: 2}, radii=(2.0,), show=False), CORRECT)
+    _status(ex.check_cloud_pieces({**right, 1.5: 2}, show=False), WRONG, "reach further")
+    _status(ex.check_cloud_pieces({**right, 2.0: 1}, show=False), WRONG, "wider")
+    _status(ex.check_cloud_pieces({**right, 0.5: 1}, show=False), WRONG, "above 1")
+    _status(ex.check_cloud_pieces({2.0: 2}, show=False), WRONG, "missing")         # issue 38: was correct
+    _status(ex.check_cloud_pieces({**right, 1.7: 1}, show=False), WRONG, "not asked")
+    _status(ex.check_cloud_pieces({**right, "2": 2}, show=False), WRONG, "twice")
+    _status(ex.check_cloud_pieces({"far": 2, 1.5: 1}, show=False), WRONG, "keys are the outer radii")  # raised before
     _status(ex.check_cloud_pieces([2], show=False), WRONG, "dict")
     _status(ex.check_cloud_pieces({1.5: ..., 2.0: ...}, show=False), NOT_ATTEMPTED)
     for placeholder in PLACEHOLDERS:
@@ -859,6 +927,11 @@ def test_sphere_eigenvalues():
     for placeholder in PLACEHOLDERS:
         _status(ex.check_sphere_eigenvalues(placeholder, show=False), NOT_ATTEMPTED)
     _status(ex.check_sphere_eigenvalues([..., ...], show=False), NOT_ATTEMPTED)
+    _status(ex.check_sphere_eigenvalues(np.array([[0, 2, 2, 2, 6, 6, 6, 6, 6]]), show=False), CORRECT)  # a row
+    measured = np.array([1e-14, 2.006, 2.006, 2.006, 6.03, 6.03, 6.03, 6.03, 6.03])  # the mesh's, within 1%
+    _status(ex.check_sphere_eigenvalues(measured, show=False), WRONG, "measured", "exact")
+    _status(ex.check_sphere_eigenvalues([1e-12, 2, 2, 2, 6, 6, 6, 6, 6], show=False), CORRECT)  # no exact == 0
+    _status(ex.check_sphere_eigenvalues({"a": 1}, show=False), WRONG)
 
 
 def test_mesh_size():
@@ -874,6 +947,12 @@ def test_mesh_size():
     _status(ex.check_mesh_size(v, ball, show=False), WRONG, "two numbers")
     _status(ex.check_mesh_size((..., ...), ball, show=False), NOT_ATTEMPTED)
     _status(ex.check_mesh_size((v, ...), ball, show=False), WRONG, "every part")
+    _status(ex.check_mesh_size(np.array([v, f]), ball, show=False), CORRECT)                  # an array is a pair too
+    _status(ex.check_mesh_size((np.int64(v), float(f)), ball, show=False), CORRECT)
+    _status(ex.check_mesh_size(ball.vertices.shape, ball, show=False), WRONG, "coordinates")
+    _status(ex.check_mesh_size((v + 0.5, f), ball, show=False), WRONG, "whole numbers")
+    _status(ex.check_mesh_size({"vertices": v, "triangles": f}, ball, show=False), WRONG, "two numbers")
+    _status(ex.check_mesh_size(np.array([v, f, 3]), ball, show=False), WRONG, "two numbers")
 
 
 def test_eigenfunction_of_the_torus():
@@ -926,6 +1005,13 @@ def test_load_error(tmp_path):
     with pytest.raises(lbo.MeshError) as info:
         lbo.Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 5]])
     _status(ex.check_load_error(info.value, show=False), CORRECT, "MeshError")
+    # The folder's name cannot decide it: a duplicate face in a folder named like the right message.
+    odd = tmp_path / "uses vertex index 9, outside 0..2"
+    odd.mkdir()
+    (odd / "twice.off").write_text(wrong["twice.off"])
+    with pytest.raises(lbo.MeshError) as info:
+        lbo.load_mesh(odd / "twice.off")
+    _status(ex.check_load_error(info.value, show=False), WRONG, "another defect")
 
 
 def test_rpca_limits():
@@ -937,6 +1023,8 @@ def test_rpca_limits():
     _status(ex.check_rpca_limits("pca", "eigenbasis", "small", show=False), WRONG, "one of")
     _status(ex.check_rpca_limits(..., ..., ..., show=False), NOT_ATTEMPTED)
     _status(ex.check_rpca_limits("pca + smooth", ..., ..., show=False), WRONG, "every part")
+    _status(ex.check_rpca_limits(" PCA+smooth", "Eigen basis", "Intermediate ", show=False), CORRECT)  # case, spaces
+    _status(ex.check_rpca_limits(["pca + smooth"], 1, "small", show=False), WRONG, "one of")
 
 
 @pytest.fixture(scope="module")
@@ -962,8 +1050,12 @@ def test_dirichlet_energies(rpca_problem):
     _status(ex.check_dirichlet_energies(np.einsum("ij,ij->j", P, P), P, W, A, show=False), WRONG, "neither")
     _status(ex.check_dirichlet_energies(np.sqrt(np.abs(ref)), P, W, A, show=False), WRONG, "square root")
     _status(ex.check_dirichlet_energies(ref / 2, P, W, A, show=False), WRONG, "factor of two")
-    _status(ex.check_dirichlet_energies((W @ P).sum(axis=0), P, W, A, show=False), WRONG, "vector")
+    _status(ex.check_dirichlet_energies(np.abs(W @ P).sum(axis=0), P, W, A, show=False), WRONG, "vector")
+    _status(ex.check_dirichlet_energies((W @ P).sum(axis=0), P, W, A, show=False), WRONG, "nearly) zero")  # rows of W sum to 0
     _status(ex.check_dirichlet_energies(ref[:-1], P, W, A, show=False), WRONG, "one energy per column")
+    _status(ex.check_dirichlet_energies(ref[:, None], P, W, A, show=False), CORRECT)     # a column of energies
+    _status(ex.check_dirichlet_energies(list(ref), P, W, A, show=False), CORRECT)
+    _status(ex.check_dirichlet_energies({"a": 1}, P, W, A, show=False), WRONG)
     _status(ex.check_dirichlet_energies(ref + 1.0, P, W, A, show=False), WRONG, "einsum")
     _status(ex.check_dirichlet_energies(..., P, W, A, show=False), NOT_ATTEMPTED)
 
@@ -979,7 +1071,10 @@ def test_validation_choice():
     _status(check(0.9, True), WRONG, "largest")
     _status(check(1e-3, True), WRONG, "other")
     _status(check(3e-4, True), WRONG, "swept")
-    _status(check(1e-4, "yes"), WRONG, "True or False")
+    _status(check(1e-4, "yes"), CORRECT)                       # the words count as the booleans
+    _status(check(1e-4, np.True_), CORRECT)
+    _status(check(1e-4, "maybe"), WRONG, "True or False")
+    _status(check(1e-4, 1), WRONG, "True or False")
     errors[1e-3] = np.array([0.03, 0.11, 0.04])                 # now best on average (peeking)
     _status(check(1e-3, True), WRONG, "peeking")
     _status(check(..., ..., ), NOT_ATTEMPTED)
@@ -1144,6 +1239,12 @@ def test_truncation_bound(two_spectra):
     _status(check(representation_error(s, f, k) / norm2), WRONG, "actually lost")
     _status(check(0.5), WRONG, "fᵀ W f / λ_k")
     _status(check(...), NOT_ATTEMPTED)
+    exact = energy / lam[k] / norm2
+    _status(check(float(f"{exact:.5e}")), CORRECT)                       # five significant digits are enough
+    for digits in (2, 3):                                                 # right to its digits, too coarse
+        _status(check(float(f"{exact:.{digits - 1}e}")), WRONG, "more digits")
+    _status(check([exact]), CORRECT)
+    _status(check("a lot"), WRONG, "a number")
 
 
 def test_choices_of_09():
@@ -1160,6 +1261,9 @@ def test_choices_of_09():
     _status(ex.check_mirror_maps("same position", "same position", show=False), WRONG, "intrinsic")
     _status(ex.check_mirror_maps("left", "i -> i", show=False), WRONG, "answer each")
     _status(ex.check_mirror_maps(..., ..., show=False), NOT_ATTEMPTED)
+    _status(ex.check_mirror_maps("Same Position", "i->i", show=False), CORRECT)
+    _status(ex.check_mirror_maps("same position", 1, show=False), WRONG, "answer each")
+    _status(ex.check_alpha_choice(1e-12, show=False), WRONG, "regular metric")
     _status(ex.check_zoomout("larger", show=False), CORRECT)
     _status(ex.check_zoomout("same", show=False), WRONG, "50 more")
     _status(ex.check_zoomout("smaller", show=False), WRONG, "sharpens")
@@ -1359,6 +1463,25 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
         assert not any(np.isclose(x, answer, rtol=1e-2) for x in numbers), feedback.message
 
 
+def test_values_of_07_copied_from_a_printout():
+    """A value right to the digits it shows but coarser than the tolerance is asked for digits, not
+    for another method; one rounded to enough digits is right (10-two-d is judged within 1%)."""
+    from lbo_notebooks.mds import gram_error
+
+    rng = np.random.default_rng(5)
+    X = rng.normal(size=(60, 3)) * [3.0, 2.0, 1.0]
+    Z = X + 0.3 * rng.normal(size=X.shape)
+    ref = gram_error(Z[:, :2], X[:, :2])
+    assert abs(float(f"{ref:.1g}") - ref) > 0.01 * ref
+    _status(ex.check_gram_2d(float(f"{ref:.1g}"), Z, X, show=False), WRONG, "more digits")
+    _status(ex.check_gram_2d(float(f"{ref:.3g}"), Z, X, show=False), CORRECT)
+    _status(ex.check_classical_memory(2.0, 10_000, show=False), WRONG, "more digits")        # 1.6 GB
+    assert "more digits" not in ex.check_classical_memory(3.0, 10_000, show=False).message
+    _status(ex.check_equal_size(500, 1200, show=False), WRONG, "more digits")                # 547.7 vertices
+    _status(ex.check_equal_size(550, 1200, show=False), CORRECT)
+    assert "more digits" not in ex.check_equal_size(600, 1200, show=False).message
+
+
 # --- the warm-up (02_graph_laplacian) and the recap of 03_laplace_beltrami -------------------------
 
 def test_edge_energy():
@@ -1389,6 +1512,11 @@ def test_cycle_multiplicity():
     _status(ex.check_cycle_multiplicity(4, show=False), WRONG, "too many")
     _status(ex.check_cycle_multiplicity(1, n=12, value=4.0, show=False), CORRECT)   # k = n/2 stands alone
     _status(ex.check_cycle_multiplicity(1, n=12, value=0.0, show=False), CORRECT)   # the constant
+    _status(ex.check_cycle_multiplicity(2.0, show=False), CORRECT)
+    _status(ex.check_cycle_multiplicity(np.float32(2), show=False), CORRECT)
+    _status(ex.check_cycle_multiplicity(2 + 1e-12, show=False), CORRECT)                 # no exact equality on floats
+    _status(ex.check_cycle_multiplicity(2.5, show=False), WRONG, "whole number")
+    _status(ex.check_cycle_multiplicity("two", show=False), WRONG, "whole number")
     for placeholder in PLACEHOLDERS:
         _status(ex.check_cycle_multiplicity(placeholder, show=False), NOT_ATTEMPTED)
 
@@ -1403,6 +1531,12 @@ def test_cycle_multiplicity():
 ])
 def test_recaps_of_the_warm_up_and_03(check, right, slips):
     _check_recap(check, right, slips, unsure_at=2)
+
+
+def test_recap_graph_reads_choices_case_and_space_insensitively():
+    _status(ex.check_recap_graph(2.0, np.int64(4), " LAM_N ", show=False), CORRECT)
+    _status(ex.check_recap_graph(2, 4, "lam_n - 1", show=False), WRONG, "left out", "2 of 3 right")
+    _status(ex.check_recap_graph(2, 4, {"lam_n": 1}, show=False), WRONG, "one of")
 
 
 def test_recap_lbo_accepts_the_round_off_of_cot_90():

@@ -194,13 +194,19 @@ FORMULA = re.compile(r"\$\$.+?\$\$|\$[^$\n]+\$", re.DOTALL)
 
 
 def prose_words(nb) -> int:
-    """Words of the markdown cells, each ``$…$`` or ``$$…$$`` formula counted as one word."""
-    return sum(len(FORMULA.sub("formula", _source(c)).split()) for c in nb.cells if c.cell_type == "markdown")
+    """Words of the markdown cells a student reads, each ``$…$`` or ``$$…$$`` formula counted as one
+    word (a written answer's model answer and rubric are the lecturer's: the student edition has
+    *YOUR ANSWER HERE* in their place)."""
+    return sum(len(FORMULA.sub("formula", _source(c)).split()) for c in nb.cells
+               if c.cell_type == "markdown" and not c.metadata.get("nbgrader", {}).get("solution"))
 
 
 def test_prose_words_counts_a_formula_as_one_word():
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_markdown_cell("The bound $a \\le b / c$ holds: $$x + y$$"),
                                          nbformat.v4.new_code_cell("not prose at all")])
+    assert prose_words(nb) == 5
+    written = nbformat.v4.new_markdown_cell("**Model answer.** Lecturer only.", metadata={"nbgrader": {"solution": True}})
+    nb.cells.append(written)
     assert prose_words(nb) == 5
 
 

@@ -155,8 +155,8 @@ def small_site(site, tmp_path_factory):
     src = tmp_path_factory.mktemp("src")
     out = src.parent / "site"
     nb = _read("04_your_own_data")
-    answers = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("solution")]
-    checks = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("grade")]
+    answers = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("solution") and c.cell_type == "code"]
+    checks = [c for c in nb.cells if c.metadata.get("nbgrader", {}).get("grade") and c.cell_type == "code"]
     assert answers and checks and all("BEGIN HIDDEN TESTS" in c.source for c in checks)
     answers[0].outputs = [nbformat.v4.new_output("stream", name="stdout", text="{'printed': 'by the solution'}\n")]
     site.prepare_for_html(nb)
@@ -200,6 +200,10 @@ def test_pages_show_no_hidden_tests_and_fold_the_solutions(small_site):
     folded, outside = "".join(blocks), re.sub(r'<details class="lbo-solutions">.*?</details>', "", page, flags=re.S)
     assert folded.count("<summary>Solution (click to show)</summary>") == n_answers
     assert "by the solution" in folded and "by the solution" not in outside
+    # The written answers' model answers and rubrics are folded too (04 has two).
+    written = re.findall(r"<details><summary>Model answer and rubric</summary>.*?</details>", page, re.S)
+    assert len(written) == 2 and all("Rubric" in w for w in written)
+    assert "Rubric (2 points)" not in re.sub(r"<details>.*?</details>", "", outside, flags=re.S)
     assert "&quot;polygons_split&quot;: 1" in folded or '"polygons_split": 1' in folded
     assert "unreferenced_vertices&quot;: 10" not in outside and '"unreferenced_vertices": 10' not in outside
     # Cells collapsed in JupyterLab (the verification cells) are folded by myst-nb.

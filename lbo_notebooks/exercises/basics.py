@@ -1,4 +1,5 @@
-"""Self-checks of notebooks 01 (the shape collection) and 03 (the Laplace–Beltrami operator).
+"""Self-checks of notebook 01 (the shape collection), and the reading of answers as typed that the
+checks of 03 (:mod:`~lbo_notebooks.exercises.laplace_beltrami`) share.
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
 see :mod:`lbo_notebooks.exercises` for how an exercise works.
@@ -7,24 +8,132 @@ see :mod:`lbo_notebooks.exercises` for how an exercise works.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
 from .feedback import (
-    Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
-    same_values, choose, pick, number_judge, recap,
+    Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to,
+    choose, pick, number_judge, recap,
 )
 
 __all__ = [
-    "check_edge_count", "check_area_factor", "check_stretch_growth", "check_smallest_angles",
-    "check_leg_area", "check_stiffness", "check_mass", "check_convergence_factor",
-    "check_coefficients", "check_consistent_mass", "check_eigenvalue_scaling",
-    "check_zero_eigenvalues", "check_recap_shapes", "check_recap_lbo",
+    "check_recap_shapes",
+    "check_edge_count",
+    "check_area_factor",
+    "check_stretch_growth",
+    "check_smallest_angles",
+    "check_leg_area",
 ]
 
+# --- answers as typed: hand-rounded numbers and dict keys ------------------------------------------
+
+def _shown_decimals(answer: Any) -> int | None:
+    """How many decimals ``answer`` shows as typed (``2.6`` -> 1, ``3`` -> 0, ``1e-05`` -> 5), or None
+    for a value with more than six significant digits (computed, not typed)."""
+    from decimal import Decimal
+
+    if isinstance(answer, (bool, np.bool_)):
+        return None
+    if isinstance(answer, (int, np.integer)):
+        return 0
+    try:
+        value = float(answer)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    if not np.isfinite(value):
+        return None
+    digits = Decimal(repr(value)).as_tuple()
+    if len(digits.digits) > 6 or not isinstance(digits.exponent, int):
+        return None
+    return -digits.exponent
+
+
+def rounding_of(answer: Any, exact: float) -> bool:
+    """True when ``answer`` is ``exact`` rounded by hand to the digits it shows (``2.6`` or ``3`` for
+    2.56; never 0). Such an answer is right as far as it goes: its message asks for more digits,
+    not for another method.
+
+    Examples
+    --------
+    >>> rounding_of(2.6, 2.56), rounding_of(3, 2.56), rounding_of(3.0, 2.56), rounding_of(0, 0.25)
+    (True, True, False, False)
+    """
+    decimals = _shown_decimals(answer)
+    if decimals is None:
+        return False
+    value = float(answer)
+    if value == 0 or np.sign(value) != np.sign(exact):
+        return False
+    return abs(value - exact) <= 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
+
+
+def more_digits(where: str = "") -> str:
+    return (f"{where}right as far as the digits you gave go, but rounded too coarsely to grade: give more "
+            "digits (or the value Python computes).")
+
+
+def _number_key(key: Any) -> float | None:
+    """A dict key as a number (``2000``, ``np.int64(2000)``, ``2000.0``, ``"2000"``), or None."""
+    if isinstance(key, (bool, np.bool_)):
+        return None
+    try:
+        array = np.asarray(key, dtype=np.float64)
+        value = float(array) if array.ndim == 0 else np.nan
+    except Exception:  # noqa: BLE001 - any key type: a check never raises
+        return None
+    return value if np.isfinite(value) else None
+
+
+def _numbered(answer: Any, what: str, example: str) -> dict[float, Any]:
+    """``{number: value}`` of a dict answer whose keys must be numbers (Stop with a clear message else)."""
+    if not isinstance(answer, Mapping) or not answer:
+        raise Stop(WRONG, f"Give a dict {{{what}: value}}, e.g. {example}.")
+    numbered: dict[float, Any] = {}
+    for key, value in answer.items():
+        number = _number_key(key)
+        if number is None:
+            raise Stop(WRONG, f"The keys of the dict are the {what}s, as numbers ({example}); got the key {key!r}.")
+        if number in numbered:
+            raise Stop(WRONG, f"The {what} {key!r} appears twice among the keys.")
+        numbered[number] = value
+    return numbered
+
+
+def _entry(numbered: dict[float, Any], wanted: float) -> tuple[bool, Any]:
+    """(found, value) of the entry whose key is ``wanted`` (keys compared as numbers, to round-off)."""
+    for key, value in numbered.items():
+        if abs(key - wanted) <= 1e-9 * max(abs(wanted), 1.0):
+            return True, value
+    return False, None
+
+
+def loose(judge: Any) -> Any:
+    """A choice judge that also takes ``"Joint  Bands"`` or ``"joint_bands"`` (case, spaces, underscores)."""
+    def tidy(answer: Any) -> str | None:
+        if isinstance(answer, str):
+            answer = " ".join(answer.replace("_", " ").split())
+        return judge(answer)
+    return tidy
+
+
 # --- 01 · the shape collection -------------------------------------------------------------------
+
+RECAP_SHAPES = [
+    loose(pick({"faces": None,
+                 "vertices": "a pose moves the vertices; what is the very same array in every pose?",
+                 "both": "a pose moves the vertices; only one of the two arrays is shared."})),
+    number_judge(2.0, [(0.0, "that is a torus (genus 1); the creatures are genus 0."),
+                       (1.0, "that is a disc; the creatures are closed surfaces of genus 0.")],
+                 "V − E + F of a closed genus-0 surface."),
+    loose(pick({"joint bands": None,
+                 "everywhere": "a vertex whose whole one-ring is outside the bands moves rigidly with its bone: its "
+                               "edges keep their length.",
+                 "tips": "the stretch goes where a joint's weight blends from 0 to 1; is that at the tips of the "
+                         "limbs?"})),
+]
+"""The judges of the recap's three questions (a hint, or None when right); the graded test reuses them."""
+
 
 def check_recap_shapes(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 01: (1) what all poses of a creature share, (2) the Euler characteristic of
@@ -35,18 +144,7 @@ def check_recap_shapes(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedb
     >>> check_recap_shapes("faces", 2, "joint bands", show=False).correct
     True
     """
-    return recap("01-recap", [q1, q2, q3], [
-        pick({"faces": None,
-               "vertices": "a pose moves the vertices; what is the very same array in every pose?",
-               "both": "a pose moves the vertices; only one of the two arrays is shared."}),
-        number_judge(2.0, [(0.0, "that is a torus (genus 1); the creatures are genus 0."),
-                           (1.0, "that is a disc; the creatures are closed surfaces of genus 0.")],
-                     "V − E + F of a closed genus-0 surface."),
-        pick({"joint bands": None,
-               "everywhere": "a vertex whose whole one-ring is outside the bands moves rigidly with its bone: its edges "
-                             "keep their length.",
-               "tips": "the stretch goes where a joint's weight blends from 0 to 1; is that at the tips of the limbs?"}),
-    ], show)
+    return recap("01-recap", [q1, q2, q3], RECAP_SHAPES, show)
 
 
 def check_edge_count(n_edges: Any, mesh: Any, *, show: bool = True) -> Feedback:
@@ -77,12 +175,22 @@ def check_edge_count(n_edges: Any, mesh: Any, *, show: bool = True) -> Feedback:
 
 
 def check_area_factor(prediction: Any, scale: float, *, show: bool = True) -> Feedback:
-    """Exercise 01-area: by what factor does the area of a part grow when the part is scaled by ``scale``?"""
+    """Exercise 01-area: by what factor does the area of a part grow when the part is scaled by ``scale``?
+
+    Examples
+    --------
+    >>> check_area_factor(1.6**2, scale=1.6, show=False).correct
+    True
+    >>> "more digits" in check_area_factor(2.6, scale=1.6, show=False).message
+    True
+    """
     def body() -> str:
         require_attempt(prediction)
         got = as_number(prediction)
         if close_to(got, scale**2):
             return "Right: lengths grow by s, areas by s²."
+        if rounding_of(prediction, scale**2):
+            raise Stop(WRONG, more_digits("That is "))
         if close_to(got, scale):
             raise Stop(WRONG, "That is the factor of the lengths; an area has two length dimensions.")
         if close_to(got, scale**3):
@@ -103,349 +211,137 @@ def check_stretch_growth(answer: Any, *, show: bool = True) -> Feedback:
     }, show)
 
 
+ANGLE_SIZES = (2_000, 3_000)
+"""The sizes exercise 01-angles names; the third one is the notebook's ``N``."""
+
+
+def asked_sizes(angles: Any) -> dict[int, Any]:
+    """``{number of vertices: answer}`` of exercise 01-angles (Stop with a clear message on a bad key)."""
+    sizes: dict[int, Any] = {}
+    for key, value in _numbered(angles, "number of vertices", "{2_000: ..., 3_000: ..., N: ...}").items():
+        if key != round(key) or not 1_000 <= key <= 50_000:
+            raise Stop(WRONG, f"The keys are the numbers of vertices you built the dog with, whole numbers from "
+                              f"1,000 to 50,000; got {key:g}.")
+        sizes[round(key)] = value
+    return sizes
+
+
+def smallest_angle(species: str, n_vertices: int) -> float:
+    from ..creatures import creature
+    from ..operators import corner_angles
+
+    return float(np.degrees(corner_angles(creature(species, n_vertices=n_vertices))).min())
+
+
+def angle_hint(n: int, answer: Any, exact: float) -> str | None:
+    """None when ``answer`` is the smallest angle ``exact`` (degrees) to 0.05°, else a hint."""
+    try:
+        got = as_number(answer, f"a number (degrees) for n = {n}")
+    except Stop as stop:
+        return stop.message
+    if abs(got - exact) <= 0.05 + 1e-9 * exact:  # right to a tenth of a degree
+        return None
+    radians = np.radians(exact)
+    if close_to(got, radians, 1e-3) or rounding_of(answer, radians):
+        return f"n = {n}: this looks like radians: convert with `np.degrees`."
+    if rounding_of(answer, exact):
+        return more_digits(f"n = {n}: ")
+    if got > 60:
+        return (f"n = {n}: every triangle has an angle of at most 60°, so the smallest angle cannot exceed 60°: take the "
+                "minimum over all corners.")
+    return f"n = {n}: not the smallest corner angle of that mesh; `corner_angles(mesh)` gives every corner's angle."
+
+
 def check_smallest_angles(angles: Any, species: str = "dog", *, show: bool = True) -> Feedback:
-    """Exercise 01-angles: the smallest triangle angle (degrees) of ``creature(species, n_vertices=n)``, per size n."""
+    """Exercise 01-angles: the smallest triangle angle (degrees) of ``creature(species, n_vertices=n)``,
+    ``{n: angle}`` for n = 2,000, 3,000 and the notebook's ``N`` (every size required).
+
+    Examples
+    --------
+    >>> check_smallest_angles({2_000: 40.0}, show=False).message
+    'Give the smallest angle for every size asked: 2,000, 3,000 and N vertices, one entry each.'
+    >>> check_smallest_angles({"two thousand": 40.0}, show=False).status
+    'wrong'
+    """
     def body() -> str:
         require_attempt(angles)
-        if not isinstance(angles, Mapping) or not angles:
-            raise Stop(WRONG, "Give a dict {number of vertices asked for: smallest angle in degrees}.")
-        from ..creatures import creature
-        from ..operators import corner_angles
-
-        for n, got in angles.items():
-            got = as_number(got, f"a number for n = {n}")
-            exact = float(np.degrees(corner_angles(creature(species, n_vertices=int(n)))).min())
-            if close_to(got, exact, 1e-3):
-                continue
-            if close_to(got, np.radians(exact), 1e-3):
-                raise Stop(WRONG, "These look like radians: convert with `np.degrees`.")
-            if got > 60:
-                raise Stop(WRONG, f"n = {n}: every triangle has an angle of at most 60°, so the smallest angle cannot exceed 60°: take the minimum over all corners.")
-            raise Stop(WRONG, f"n = {n}: not the smallest corner angle of that mesh; `corner_angles(mesh)` gives every corner's angle.")
+        sizes = asked_sizes(angles)
+        if any(n not in sizes for n in ANGLE_SIZES) or len(sizes) < len(ANGLE_SIZES) + 1:
+            raise Stop(WRONG, "Give the smallest angle for every size asked: 2,000, 3,000 and N vertices, one entry each.")
+        for n, answer in sorted(sizes.items()):
+            hint = angle_hint(n, answer, smallest_angle(species, n))
+            if hint is not None:
+                raise Stop(WRONG, hint)
         return "Right: those are the smallest corner angles of the meshes you built."
     return run_check("01-angles", show, body)
 
 
-def check_leg_area(predicted: Any, n_vertices: int, species: str = "dog", *, show: bool = True) -> Feedback:
-    """Exercise 01-legs: predicted total area for legs scaled by s, ``{s: area}``, against the built shapes (1%)."""
-    def body() -> str:
-        require_attempt(predicted)
-        if not isinstance(predicted, Mapping) or not predicted:
-            raise Stop(WRONG, "Give a dict {scale s: predicted total area}.")
-        from ..creatures import creature, creature_parts
-
-        template = creature(species, n_vertices=n_vertices)
-        parts = creature_parts(species, n_vertices=n_vertices)
-        legs = (parts["front_legs"] | parts["hind_legs"])[template.faces].all(axis=1)
-        leg, rest = template.face_areas[legs].sum(), template.face_areas[~legs].sum()
-        for s, got in predicted.items():
-            s, got = float(s), as_number(got, f"a number for s = {s}")
-            actual = creature(species, parts={"legs": s}, n_vertices=n_vertices).area
-            if close_to(got, actual, 0.015):
-                continue
-            if s != 1 and close_to(got, s * leg + rest, 0.005):
-                raise Stop(WRONG, f"s = {s}: the legs' area grows by s², not s.")
-            if s != 1 and close_to(got, s**2 * (leg + rest), 0.005):
-                raise Stop(WRONG, f"s = {s}: only the legs are scaled; the rest of the body keeps its area.")
-            if s != 1 and close_to(got, s**2 * leg, 0.05):
-                raise Stop(WRONG, f"s = {s}: add the area of the rest of the body.")
-            raise Stop(WRONG, f"s = {s}: off by more than 1.5% from the scaled shape's area; prediction = (leg area) × s² + (rest).")
-        return "Right: within 1.5% for every scale (the blend band at the hips and shoulders is not scaled by exactly s²)."
-    return run_check("01-legs", show, body)
+LEG_SCALES = (0.7, 1.0, 1.3)
+"""The leg scales exercise 01-legs asks about."""
 
 
-# --- 03 · the Laplace–Beltrami operator ----------------------------------------------------------
+def _leg_split(species: str, n_vertices: int, *, any_corner: bool = False) -> tuple[float, float]:
+    """(leg area, rest area) of the standing template: the triangles whose three corners (or, the
+    typical slip, any corner) lie in the legs."""
+    from ..creatures import creature, creature_parts
 
-@lru_cache(maxsize=1)
-def _test_meshes() -> tuple[Any, ...]:
-    """Small meshes the build-it-yourself checks run on: a right triangle, an irregular closed
-    surface and an open sheet with obtuse triangles."""
-    from .. import shapes
-    from ..mesh import Mesh
-
-    rng = np.random.default_rng(28)
-    triangle = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
-    ball = shapes.icosphere(1)
-    blob = ball.with_vertices(ball.vertices * rng.uniform(0.8, 1.25, size=(ball.n_vertices, 1)))
-    sheet = shapes.rectangle(2.0, 1.0, 4, 3)
-    v = sheet.vertices.copy()
-    v[:, :2] += rng.uniform(-0.12, 0.12, size=(len(v), 2))
-    v[:, 2] = 0.2 * np.sin(v[:, 0])
-    return triangle, blob, sheet.with_vertices(v)
+    template = creature(species, n_vertices=n_vertices)
+    parts = creature_parts(species, n_vertices=n_vertices)
+    in_legs = (parts["front_legs"] | parts["hind_legs"])[template.faces]
+    legs = in_legs.any(axis=1) if any_corner else in_legs.all(axis=1)
+    return float(template.face_areas[legs].sum()), float(template.face_areas[~legs].sum())
 
 
-def _matrix(value: Any, n: int, name: str) -> np.ndarray:
-    import scipy.sparse as sp
-
-    if sp.issparse(value):
-        value = value.toarray()
+def _leg_hint(s: float, answer: Any, species: str, n_vertices: int) -> str | None:
+    """None when ``answer`` is the predicted total area (leg area) s² + (rest) to 1e-4, else a hint."""
+    where = f"s = {s:g}: "
     try:
-        m = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise Stop(WRONG, f"{name} should be a matrix (NumPy array or scipy.sparse); got {type(value).__name__}.") from None
-    if m.shape != (n, n):
-        raise Stop(WRONG, f"{name} should be n × n, one row and one column per vertex (n = {n}); got shape {m.shape}.")
-    return m
-
-
-def _diagnose_stiffness(m: np.ndarray, ref: np.ndarray) -> str | None:
-    """None if m is the stiffness matrix ref, else a hint at what is off."""
-    if same_values(m, ref):
-        return None
-    if same_values(m, 2 * ref):
-        return "Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice?"
-    if same_values(m, ref / 2):
-        return "Half too small: an interior edge has two opposite angles, one in each of its triangles; add both cotangents."
-    if same_values(m, -ref):
-        return "Wrong sign: W is positive semidefinite, with negative off-diagonal entries -½ (cot a + cot b) and a positive diagonal."
-    d, d_ref = np.diag(m), np.diag(ref)
-    off, off_ref = m - np.diag(d), ref - np.diag(d_ref)
-    if not np.allclose(m, m.T, rtol=0, atol=1e-10 * np.abs(ref).max()):
-        if same_values(off + off.T, off_ref):
-            return "Only one of W_ij and W_ji is filled in: W is symmetric, so add each edge's weight at (i, j) and at (j, i)."
-        return "W should be symmetric (the weight of edge ij is the weight of edge ji); yours is not."
-    scale = max(np.abs(off_ref).max(), 1e-300)
-    for factor, hint in ((1, None), (2, "twice too large (the ½)"), (0.5, "half too small (one of the two opposite angles missing)"),
-                         (-1, "of the wrong sign (they are -½ (cot a + cot b) ≤ 0 for acute angles)")):
-        if np.abs(off - factor * off_ref).max() <= 1e-8 * scale:
-            if hint is not None:
-                return f"The off-diagonal entries are {hint}."
-            if np.abs(d).max() <= 1e-12 * scale:
-                return "The diagonal is missing: each row of W sums to zero, so W_ii = -Σ_j W_ij."
-            if np.abs(d + d_ref).max() <= 1e-8 * scale:
-                return "The diagonal has the wrong sign: W_ii = -Σ_{j≠i} W_ij, which is positive."
-            return "The off-diagonal entries are right but the diagonal is not: each row of W sums to zero."
-    if np.abs(m.sum(axis=1)).max() > 1e-8 * np.abs(ref).max():
-        return "The rows of W should sum to zero (constants have no energy); yours do not."
-    return ("Not the cotangent weights: edge ij uses the angles *opposite* it (at the third corner of each of its "
-            "triangles), cot = cos/sin. Try your function on the worked triangle first.")
-
-
-def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-stiffness: the student's ``stiffness(mesh)`` against ``operators.stiffness_matrix``.
-
-    Run on three small meshes (a right triangle, an irregular closed surface, an open sheet with
-    obtuse triangles); the hint names the first thing that differs.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import operators
-    >>> check_stiffness(operators.stiffness_matrix, show=False).correct
-    True
-    >>> print(check_stiffness(lambda mesh: 2 * operators.stiffness_matrix(mesh), show=False).message)
-    Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice? (first seen on the right triangle.)
-    """
-    from ..operators import stiffness_matrix
-
-    def body() -> str:
-        for mesh in _test_meshes():
-            m = _matrix(call_attempt(stiffness, mesh), mesh.n_vertices, "W")
-            hint = _diagnose_stiffness(m, stiffness_matrix(mesh).toarray())
-            if hint is not None:
-                where = "the right triangle" if mesh.n_faces == 1 else f"a mesh of {mesh.n_vertices} vertices"
-                raise Stop(WRONG, f"{hint} (first seen on {where}.)")
-        return "Right: it matches `operators.stiffness_matrix` on a triangle, a closed surface and an open sheet."
-    return run_check("03-stiffness", show, body)
-
-
-def _pure_voronoi(mesh: Any) -> np.ndarray:
-    """Circumcentric Voronoi areas without the mixed rule for obtuse triangles (a typical attempt)."""
-    from ..operators import face_cotangents
-
-    v, f = mesh.vertices, mesh.faces
-    cot = face_cotangents(mesh)
-    sq = np.stack([np.sum((v[f[:, (k + 1) % 3]] - v[f[:, (k + 2) % 3]]) ** 2, axis=1) for k in range(3)], axis=1)
-    corner = np.stack([(sq[:, (k + 2) % 3] * cot[:, (k + 2) % 3] + sq[:, (k + 1) % 3] * cot[:, (k + 1) % 3]) / 8
-                       for k in range(3)], axis=1)
-    return np.bincount(f.ravel(), weights=corner.ravel(), minlength=mesh.n_vertices)
-
-
-def check_mass(mass: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-mass: the student's lumped ``mass(mesh)`` against the Voronoi or barycentric mass.
-
-    Either lumped mass is accepted (the message says which one was built).
-
-    Examples
-    --------
-    >>> from lbo_notebooks import operators
-    >>> check_mass(lambda mesh: operators.mass_matrix(mesh, "barycentric"), show=False).correct
-    True
-    >>> import numpy as np
-    >>> "Euclidean" in check_mass(lambda mesh: np.eye(mesh.n_vertices), show=False).message
-    True
-    """
-    from ..operators import mass_matrix
-
-    def body() -> str:
-        matches = {"voronoi": True, "barycentric": True}
-        for mesh in _test_meshes():
-            n = mesh.n_vertices
-            m = _matrix(call_attempt(mass, mesh), n, "A")
-            for kind in matches:
-                matches[kind] &= same_values(m, mass_matrix(mesh, kind).toarray())
-            if any(matches.values()):
-                continue
-            where = "the right triangle" if mesh.n_faces == 1 else f"a mesh of {n} vertices"
-            if np.allclose(m, np.eye(n)):
-                raise Stop(WRONG, "That is the identity, the Euclidean inner product: it weighs every vertex alike, whatever the size of its triangles. A weighs each vertex by its share of the area.")
-            if same_values(m, mass_matrix(mesh, "consistent").toarray()):
-                raise Stop(WRONG, "That is the consistent (full) mass matrix, a valid one, but the exercise asks for a lumped (diagonal) one: give each vertex its share of area on the diagonal.")
-            d = np.diag(m)
-            if np.abs(m - np.diag(d)).max() > 1e-12 * np.abs(d).max():
-                raise Stop(WRONG, f"A lumped mass matrix is diagonal; yours has off-diagonal entries (on {where}).")
-            if (d < 0).any():
-                raise Stop(WRONG, "Negative areas: a triangle's area is ½ ‖(p1 - p0) × (p2 - p0)‖, a norm, never negative.")
-            for kind in ("barycentric", "voronoi"):
-                ref = mass_matrix(mesh, kind).diagonal()
-                for factor, hint in ((2, "Twice too large: a triangle's area is *half* the norm of the cross product."),
-                                     (3, "Three times too large: each triangle's area is shared among its three corners."),
-                                     (6, "Six times too large: a triangle's area is half the norm of the cross product, and it is shared among three corners."),
-                                     (0.5, "Half too small: a triangle's area is ½ ‖(p1 - p0) × (p2 - p0)‖ (only one ½)."),
-                                     (1 / 3, "Three times too small: every corner of a triangle gets a share, not only one.")):
-                    if same_values(d, factor * ref):
-                        raise Stop(WRONG, hint)
-            if same_values(d, _pure_voronoi(mesh)):
-                raise Stop(WRONG, f"That is the pure Voronoi area, wrong at obtuse triangles (on {where}): use the mixed rule (half the triangle's area to an obtuse corner, a quarter to the others).")
-            ratio = d.sum() / mesh.area
-            raise Stop(WRONG, f"The diagonal should share out the surface area; on {where} it sums to {ratio:.3g} × the area." if not close_to(ratio, 1, 1e-8)
-                        else f"The total is right but the shares are not (on {where}): a third of each triangle to each corner (barycentric), or the mixed Voronoi rule.")
-        which = "mixed Voronoi" if matches["voronoi"] else "barycentric"
-        return f"Right: that is the {which} mass matrix (both lumped masses are accepted; the library's default is mixed Voronoi)."
-    return run_check("03-mass", show, body)
-
-
-def check_convergence_factor(factor: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-convergence: by what factor does an O(h²) error drop when h is halved?"""
-    def body() -> str:
-        require_attempt(factor)
-        got = as_number(factor)
-        if close_to(got, 4.0, 0.1):
-            return "Right: error ∝ h², so halving h divides it by 2² = 4."
-        if close_to(got, 2.0, 0.1):
-            raise Stop(WRONG, "That is first order, error ∝ h; this discretisation is second order, error ∝ h².")
-        if close_to(got, 0.25, 0.1) or close_to(got, 0.5, 0.1):
-            raise Stop(WRONG, "Give the factor by which the error *drops* (a number above 1): error_before / error_after.")
-        if close_to(got, 8.0, 0.1) or close_to(got, 16.0, 0.1):
-            raise Stop(WRONG, "That would be a higher order than h²: error ∝ h^p drops by 2^p when h halves, with p = 2 here.")
-        raise Stop(WRONG, "If error ≈ C h^p and h becomes h/2, by what factor does the error change? Here p = 2.")
-    return run_check("03-convergence", show, body)
-
-
-def check_coefficients(coefficients: Any, spectrum: Any, f: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-coefficients: the coefficients of ``f`` in the eigenbasis, written by hand.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes, eigenbasis
-    >>> s = eigenbasis(shapes.icosphere(2), 9)
-    >>> f = shapes.icosphere(2).vertices[:, 2]
-    >>> check_coefficients(s.vectors.T @ (s.mass @ f), s, f, show=False).correct
-    True
-    >>> "Euclidean" in check_coefficients(s.vectors.T @ f, s, f, show=False).message
-    True
-    """
-    def body() -> str:
-        require_attempt(coefficients)
-        phi, mass = spectrum.vectors, spectrum.mass
-        g = np.asarray(f, dtype=np.float64)
-        ref = spectrum.project(g)
-        try:
-            c = np.asarray(coefficients, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise Stop(WRONG, f"Expected an array of coefficients, got {type(coefficients).__name__}.") from None
-        if c.shape != ref.shape:
-            if c.shape == g.shape:
-                raise Stop(WRONG, f"One coefficient per eigenfunction: the result has length k = {ref.shape[0]}, not one value per vertex. A transpose (Φ instead of Φᵀ) or a reconstruction Φ c instead of c?")
-            raise Stop(WRONG, f"Expected shape {ref.shape} (one coefficient per eigenfunction), got {c.shape}.")
-        scale = max(np.abs(ref).max(), 1e-300)
-        near = lambda other: np.abs(c - other).max() <= 1e-6 * scale  # noqa: E731
-        if near(ref):
-            return "Right: c = Φᵀ A f, the A inner product of f with each eigenfunction."
-        if near(phi.T @ g):
-            raise Stop(WRONG, "That is Φᵀ f, the Euclidean inner product: the eigenvectors are A-orthonormal, so the coefficients need the mass matrix.")
-        if near(-ref):
-            raise Stop(WRONG, "Wrong sign.")
-        if near(2 * ref) or near(ref / 2):
-            raise Stop(WRONG, "Off by a factor of two.")
-        if near(phi.T @ (g / mass.diagonal())):
-            raise Stop(WRONG, "You divided by the mass; the A inner product multiplies by it.")
-        raise Stop(WRONG, "Not Φᵀ A f: take the A inner product ⟨φ_i, f⟩_A = φ_iᵀ A f for each eigenfunction φ_i.")
-    return run_check("03-coefficients", show, body)
-
-
-def check_consistent_mass(answer: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-consistent: do the consistent-mass eigenvalues of the sphere lie above or below ℓ(ℓ+1)?"""
-    return choose("03-consistent", answer, {
-        "above": None,
-        "below": "Look at the computed values again: the lumped ones are below, the consistent ones are not.",
-        "equal": "Neither discretisation is exact on a sphere made of flat triangles.",
-    }, show)
-
-
-def check_eigenvalue_scaling(factor: Any, scale: float = 2.0, *, show: bool = True) -> Feedback:
-    """Exercise 03-scaling: the factor by which every eigenvalue changes when the shape is scaled by ``scale``."""
-    def body() -> str:
-        require_attempt(factor)
-        got = as_number(factor)
-        if close_to(got, scale**-2, 1e-3):
-            return "Right: λ has units of 1/length², so scaling lengths by s divides every eigenvalue by s²."
-        if close_to(got, scale**2, 1e-3):
-            raise Stop(WRONG, "Upside down: a bigger shape vibrates more slowly, so its eigenvalues get smaller.")
-        if close_to(got, 1 / scale, 1e-3) or close_to(got, scale, 1e-3):
-            raise Stop(WRONG, "λ has units of 1/length² (think of π²/a² on an interval of length a), not 1/length.")
-        if close_to(got, 1.0, 1e-3):
-            raise Stop(WRONG, "Scaling is not an isometry: lengths change, and so does the spectrum.")
-        raise Stop(WRONG, "What are the units of λ in W φ = λ A φ? (W is unitless on a surface; A is an area.)")
-    return run_check("03-scaling", show, body)
-
-
-def check_zero_eigenvalues(torus: Any, two_spheres: Any, *, show: bool = True) -> Feedback:
-    """Exercise 03-kernel: the number of zero eigenvalues of a torus and of two disjoint spheres."""
-    def body() -> str:
-        require_attempt([torus, two_spheres])
-        t, s = as_number(torus, "a whole number"), as_number(two_spheres, "a whole number")
-        if (t, s) == (1, 2):
-            return "Right: one zero eigenvalue per connected component (a constant on each); the genus does not matter."
-        if t != 1:
-            raise Stop(WRONG, "The torus: the handle does not matter, only how many pieces the surface has; a zero eigenvalue means zero energy, a function constant on each piece.")
-        raise Stop(WRONG, "Two disjoint spheres: a function constant on each sphere separately has zero energy too.")
-    return run_check("03-kernel", show, body)
-
-
-def _zero_weight(answer: Any) -> str | None:
-    """Judge of recap question 1: the weight is zero (round-off of ``1 / np.tan(np.pi / 2)`` accepted)."""
-    try:
-        value = as_number(answer)
+        got = as_number(answer, f"a number (an area) for s = {s:g}")
     except Stop as stop:
         return stop.message
-    if abs(value) <= 1e-9:
+    leg, rest = _leg_split(species, n_vertices)
+    exact = leg * s**2 + rest
+    if abs(got - exact) <= 1e-4 * exact:
         return None
-    if close_to(value, 0.5) or close_to(value, 1.0):
-        return "cot 90° = cos 90° / sin 90°: what is cos 90°?"
-    if not np.isfinite(value) or abs(value) > 1e6:
-        return "the cotangent, cos/sin, is finite at 90°; it is the tangent that blows up."
-    return "the triangle gives the edge ½ cot θ, θ the angle opposite it; what is cot 90°?"
+    if rounding_of(answer, exact):
+        return more_digits(where)
+    if s != 1 and close_to(got, s * leg + rest, 1e-3):
+        return where + "the legs' area grows by s², not s."
+    if s != 1 and close_to(got, s**2 * (leg + rest), 1e-3):
+        return where + "only the legs are scaled; the rest of the body keeps its area."
+    if close_to(got, s**2 * leg, 1e-3):
+        return where + "add the area of the rest of the body."
+    if s != 1:
+        leg_any, rest_any = _leg_split(species, n_vertices, any_corner=True)
+        if close_to(got, s**2 * leg_any + rest_any, 1e-3):
+            return where + "the legs are the triangles whose *three* corners are in the legs, not any one of them."
+        from ..creatures import creature
+
+        if close_to(got, creature(species, parts={"legs": s}, n_vertices=n_vertices).area, 1e-4):
+            return (where + "that is the area of the built shape; the exercise asks for the prediction from the "
+                    "standing dog's leg area and the rest, to compare with it.")
+    return where + "not (leg area) × s² + (rest) of the standing dog; the legs are the triangles whose three corners are in them."
 
 
-def check_recap_lbo(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of notebook 03 (the LBO): (1) the weight a triangle gives the edge opposite a right angle,
-    (2) the factor by which W changes when the mesh is scaled by 2, (3) the coefficients' formula.
+def check_leg_area(predicted: Any, n_vertices: int, species: str = "dog", *, show: bool = True) -> Feedback:
+    """Exercise 01-legs: the predicted total area ``{s: area}`` for legs scaled by s = 0.7, 1.0 and 1.3
+    (every scale required), (leg area) s² + (rest) from the standing template.
 
     Examples
     --------
-    >>> check_recap_lbo(0, 1, "b", show=False).correct
-    True
-    >>> "angles" in check_recap_lbo(0, 4, "b", show=False).message
-    True
+    >>> check_leg_area({1.0: 2.0}, n_vertices=2000, show=False).message
+    'Give a prediction for every scale asked: s = 0.7, 1.0 and 1.3.'
     """
-    return recap("03-lbo-recap", [q1, q2, q3], [
-        _zero_weight,
-        number_judge(1.0, [(4.0, "W is made of cotangents of angles, and scaling keeps every angle; it is the mass A (areas) that grows by s²."),
-                           (2.0, "W is made of cotangents of angles, and scaling keeps every angle."),
-                           (0.25, "that is the factor of the eigenvalues (exercise 03-scaling); W alone is made of cotangents of angles."),
-                           (0.5, "W is made of cotangents of angles, and scaling keeps every angle.")],
-                     "W_ij = −½ (cot a + cot b) depends on the angles only: what does scaling do to an angle?"),
-        pick({"a": "`Phi.T @ f` is the Euclidean inner product, the classic bug: the eigenvectors are A-orthonormal.",
-              "b": None,
-              "c": "the A inner product multiplies by A, it does not divide by it."}),
-    ], show)
+    def body() -> str:
+        require_attempt(predicted)
+        scales = _numbered(predicted, "scale s", "{0.7: ..., 1.0: ..., 1.3: ...}")
+        entries = [_entry(scales, s) for s in LEG_SCALES]
+        if not all(found for found, _ in entries):
+            raise Stop(WRONG, "Give a prediction for every scale asked: s = 0.7, 1.0 and 1.3.")
+        for s, (_, answer) in zip(LEG_SCALES, entries):
+            hint = _leg_hint(s, answer, species, n_vertices)
+            if hint is not None:
+                raise Stop(WRONG, hint)
+        return ("Right: (leg area) × s² + (rest) at every scale; the built shapes come within 1% of it (the blend "
+                "band at the hips and shoulders is not scaled by exactly s²).")
+    return run_check("01-legs", show, body)

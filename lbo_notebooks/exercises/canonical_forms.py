@@ -24,6 +24,31 @@ __all__ = [
 ]
 
 
+def _rounded_from(got: float, ref: float) -> bool:
+    """Whether ``got`` is ``ref`` rounded to the digits ``got`` shows (a value copied from a printout),
+    its last digit no coarser than the leading digit of ``ref``: then a miss is a matter of precision.
+
+    Examples
+    --------
+    >>> _rounded_from(0.004, 0.0040349), _rounded_from(0.0041, 0.0040349), _rounded_from(1000.0, 705.0)
+    (True, False, False)
+    """
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        if got == 0 or not np.isfinite(got) or not np.isfinite(ref) or ref == 0:
+            return False
+        exponent = Decimal(np.format_float_positional(got, unique=True, trim="-")).normalize().as_tuple().exponent
+    except (InvalidOperation, TypeError, ValueError):
+        return False
+    unit = 10.0 ** int(exponent)
+    return unit <= abs(ref) and abs(got - ref) <= 0.5 * unit * (1 + 1e-9)
+
+
+_MORE_DIGITS = ("Right to the digits you gave, but too coarse to judge: give more digits (the value your code "
+                "computes, not a rounded copy).")
+
+
 # --- 09-memory -----------------------------------------------------------------------------------
 
 def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feedback:
@@ -55,6 +80,8 @@ def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feed
         ):
             if close_to(got, slip, 0.02):
                 raise Stop(WRONG, hint)
+        if _rounded_from(got, ref):
+            raise Stop(WRONG, _MORE_DIGITS)
         raise Stop(WRONG, "Count the entries of two n × n matrices, times 8 bytes, and divide by 10⁹.")
     return run_check("09-memory", show, body)
 
@@ -67,7 +94,7 @@ def _top(S: np.ndarray, dim: int) -> tuple[np.ndarray, np.ndarray]:
     return G[::-1][:dim], U[:, ::-1][:, :dim]
 
 
-def _scaling_slips(phi: np.ndarray, alpha: np.ndarray, dim: int) -> tuple[np.ndarray, list[tuple[Any, str]]]:
+def scaling_slips(phi: np.ndarray, alpha: np.ndarray, dim: int) -> tuple[np.ndarray, list[tuple[Any, str]]]:
     """The embedding by the k x k route, and the typical slips as (embedding or predicate, hint)."""
     J_phi = phi - phi.mean(axis=0)
     Q, R = np.linalg.qr(J_phi)
@@ -137,7 +164,7 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
                 X = np.asarray(X, dtype=np.float64)
             except (TypeError, ValueError):
                 raise Stop(WRONG, f"Return an array, one row per vertex (n × dim); got {type(X).__name__}.") from None
-            ref, slips = _scaling_slips(phi_, alpha_, dim)
+            ref, slips = scaling_slips(phi_, alpha_, dim)
             if reference is None:
                 reference = ref
             if X.shape == (dim, n):
@@ -183,7 +210,9 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
     """Exercise 10-two-d: the Gram error of 2-D spectral MDS against 2-D classical MDS.
 
     Both methods keep the top eigenpairs of one matrix, so their 2-D embeddings are the first two
-    columns of the 3-D ones (up to signs); the reference is computed from those.
+    columns of the 3-D ones (up to signs); the reference is computed from those. Right within 1%
+    (the typical slips are 8% and more away on the notebook's dog); a value copied from a printout
+    that is right to its digits but coarser than that is asked for more digits.
     """
     from ..mds import gram_error, procrustes_error
 
@@ -192,7 +221,7 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
         got = as_number(value, "a Gram error (a number)")
         S, C = np.asarray(X_smds, dtype=np.float64), np.asarray(X_classical, dtype=np.float64)
         ref = gram_error(S[:, :2], C[:, :2])
-        if close_to(got, ref, 1e-3):
+        if close_to(got, ref, 1e-2):
             return "Right: the Gram error of the two 2-D embeddings, as small as in 3-D."
         for slip, hint in (
             (gram_error(S[:, :2], C), "You compared with the 3-D classical embedding: compare like with like, both in 2-D."),
@@ -201,8 +230,10 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
             (procrustes_error(S[:, :2], C[:, :2]), "That is the Procrustes error; the question asks for the Gram error."),
             (100 * ref, "That is a percentage; give the fraction."),
         ):
-            if close_to(got, slip, 1e-3):
+            if close_to(got, slip, 1e-2):
                 raise Stop(WRONG, hint)
+        if _rounded_from(got, ref):
+            raise Stop(WRONG, _MORE_DIGITS)
         raise Stop(WRONG, "Use `gram_error(Z, X)` with Z the 2-D spectral MDS (`spectral_mds(..., dim=2)`) and X the 2-D classical MDS.")
     return run_check("10-two-d", show, body)
 
@@ -225,23 +256,22 @@ def _size(k: int, q: int) -> Callable[[Any], str | None]:
             got = as_number(answer)
         except Stop as stop:
             return stop.message
-        if got == k + q:
+        if abs(got - (k + q)) < 1e-6:
             return None
-        if got == k:
+        if abs(got - k) < 1e-6:
             return "k × k is the size with projected rows or pairs; the sampled fields add their own columns."
-        if got == q:
+        if abs(got - q) < 1e-6:
             return "the eigenfunctions' columns count too."
-        if got in (k * k, (k + q) ** 2, k * q):
+        if any(abs(got - x) < 1e-6 for x in (k * k, (k + q) ** 2, k * q)):
             return "give the side of the square matrix, not its number of entries."
         return "count the columns of J [Φ, Fᵀ]."
     return judge
 
 
-def check_recap_canonical_forms(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
-    """Recap of the canonical-forms notebook: (1) the side of the small eigenproblem with fields
-    (k, q the defaults), (2) how the canonical forms of two isometric poses differ, (3) which of
-    canonical forms and raw poses separate the two species by their shape distributions."""
-    return recap("09-recap", [q1, q2, q3], [
+def recap_canonical_forms_judges(k: int = 200, q: int = 300) -> list[Callable[[Any], str | None]]:
+    """The judges of the three questions of 09-recap (each: None when right, else a hint); shared by
+    the visible check and the graded test (which gives a point per question)."""
+    return [
         _size(int(k), int(q)),
         pick({"orthogonal map": None,
                "rigid motion": "almost: classical MDS cannot tell a shape from its mirror image, so reflections "
@@ -252,7 +282,14 @@ def check_recap_canonical_forms(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: i
                "raw poses": "a raw pose mixes the pose into the shape: section 3's control shows a pose farther from "
                             "its own species than the two species are apart.",
                "both": "look at section 3's control: one of the two fails."}),
-    ], show)
+    ]
+
+
+def check_recap_canonical_forms(q1: Any, q2: Any, q3: Any, *, k: int = 200, q: int = 300, show: bool = True) -> Feedback:
+    """Recap of the canonical-forms notebook: (1) the side of the small eigenproblem with fields
+    (k, q the defaults), (2) how the canonical forms of two isometric poses differ, (3) which of
+    canonical forms and raw poses separate the two species by their shape distributions."""
+    return recap("09-recap", [q1, q2, q3], recap_canonical_forms_judges(k, q), show)
 
 
 # --- the second notebook: accuracy, cost and resolution --------------------------------------------
@@ -297,15 +334,16 @@ def check_equal_size(n_c: Any, n: int, k: int = 200, q: int = 300, *, show: bool
         ):
             if close_to(got, slip, 0.01):
                 raise Stop(WRONG, hint)
+        if _rounded_from(got, ref):
+            raise Stop(WRONG, _MORE_DIGITS)
         raise Stop(WRONG, "Set the floats of two n_c × n_c matrices equal to those of the n × (k + q) arrays, and solve for n_c.")
     return run_check("10-equal-size", show, body)
 
 
-def check_recap_mds_at_scale(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
-    """Recap of the accuracy-and-cost notebook: (1) whether more samples get projected rows with 25
-    eigenfunctions under 1%, (2) the exponent of classical MDS's memory in n, (3) which canonical form
-    is closer to the full-resolution answer at equal array size."""
-    return recap("10-cost-recap", [q1, q2, q3], [
+def recap_mds_at_scale_judges() -> list[Callable[[Any], str | None]]:
+    """The judges of the three questions of 10-cost-recap (each: None when right, else a hint); shared
+    by the visible check and the graded test (which gives a point per question)."""
+    return [
         pick({"yes": "with rows the embedding lives in the span of the eigenfunctions; see the dashed floor in the plot of "
                        "eigenfunctions and samples.",
                "no": None}),
@@ -316,4 +354,11 @@ def check_recap_mds_at_scale(q1: Any, q2: Any, q3: Any, *, show: bool = True) ->
         pick({"spectral": None,
                "classical": "at equal array size classical MDS must run on a much coarser mesh, and a canonical form "
                             "carries the errors of the mesh it was computed on."}),
-    ], show)
+    ]
+
+
+def check_recap_mds_at_scale(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
+    """Recap of the accuracy-and-cost notebook: (1) whether more samples get projected rows with 25
+    eigenfunctions under 1%, (2) the exponent of classical MDS's memory in n, (3) which canonical form
+    is closer to the full-resolution answer at equal array size."""
+    return recap("10-cost-recap", [q1, q2, q3], recap_mds_at_scale_judges(), show)

@@ -29,7 +29,7 @@ __all__ = [
     "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "Stop", "run_check",
     "require_attempt", "as_number", "call_attempt", "close_to", "same_values", "choose",
     "unanswered", "is_placeholder", "result", "pick", "number_judge", "recap", "solutions_available",
-    "SELF_STUDY_MARKER",
+    "SELF_STUDY_MARKER", "ratio_one", "as_array", "named_option",
 ]
 
 CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
@@ -189,6 +189,29 @@ def _shown_type(x: Any) -> str:
     return type(x).__name__
 
 
+def as_array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
+    """The student's answer as a float array (sparse matrices densified), or a 'wrong' stop."""
+    import scipy.sparse as sp
+
+    if sp.issparse(value):
+        value = value.toarray()
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise Stop(WRONG, f"Expected {what}, got {type(value).__name__}.") from None
+    if finite and not np.all(np.isfinite(arr)):
+        raise Stop(WRONG, "Your answer has NaN or infinite entries.")
+    return arr
+
+
+def named_option(value: Any, options: tuple[str, ...]) -> str | None:
+    """The option ``value`` names, compared without case and spaces ("PCA+smooth" is "pca + smooth"), or None."""
+    if not isinstance(value, str):
+        return None
+    key = "".join(value.split()).lower().replace("→", "->")
+    return next((o for o in options if "".join(o.split()) == key), None)
+
+
 def call_attempt(function: Any, *args: Any) -> Any:
     """Call the student's function; placeholders and stubs count as not attempted."""
     if is_placeholder(function):
@@ -224,6 +247,20 @@ def choose(exercise: str, answer: Any, options: Mapping[str, str | None], show: 
 
 def same_values(m: np.ndarray, ref: np.ndarray, rtol: float = 1e-8) -> bool:
     return bool(np.abs(m - ref).max() <= rtol * max(np.abs(ref).max(), 1e-300))
+
+
+def ratio_one(exercise: str, value: Any, below: str, above: str, show: bool, rtol: float = 1e-6) -> Feedback:
+    """A check of a normalised constant that must come out as exactly 1 (to ``rtol``), as an
+    eigenbasis's worst-case ratio for its own pair (W, A) does: hints for below and above."""
+    def body() -> str:
+        require_attempt(value)
+        got = as_number(value)
+        if abs(got - 1) <= rtol:
+            return "Right: exactly 1, to round-off: each eigenbasis is optimal for its own pair (W, A)."
+        if 0 < got < 0.1:
+            raise Stop(WRONG, "Normalise: multiply by λ_n (`values[n]`, n the number of basis functions or constraints), so that the optimum reads 1.")
+        raise Stop(WRONG, below if got < 1 else above)
+    return run_check(exercise, show, body)
 
 
 # --- several questions in one check --------------------------------------------------------------

@@ -13,6 +13,7 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -70,6 +71,9 @@ def check_cycle_multiplicity(count: Any, n: int = 12, value: float = 2.0, *, sho
     def body() -> str:
         require_attempt(count)
         got = as_number(count, "a whole number")
+        if abs(got - round(got)) > 1e-9 * max(1.0, abs(got)):
+            raise Stop(WRONG, "A count of eigenvectors is a whole number: how many k in 0 … n − 1 solve the equation?")
+        got = int(round(got))
         k = np.arange(n)
         exact = int(np.sum(np.isclose(2 - 2 * np.cos(2 * np.pi * k / n), value, rtol=0, atol=1e-12 * 4)))
         if got == exact:
@@ -132,15 +136,28 @@ def check_recap_graph(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedba
     >>> check_recap_graph(4, 4, "lam_n", show=False).message.startswith("2 of 3 right")
     True
     """
-    return recap("02-graph-recap", [q1, q2, q3], [
-        number_judge(2.0, [(4.0, "L is linear in the weights (the energy is Σ w_ij (f_i − f_j)²), not quadratic."),
-                           (1.0, "the weights are in L: doubling them doubles L, and with it every eigenvalue."),
-                           (0.5, "upside down: heavier weights make every energy larger.")],
-                     "L is linear in the weights; what happens to the eigenvalues of 2L?"),
-        number_judge(4.0, [(2.0, "that is 2 − 2cos(2πk/n) where the cosine is 0; where is it largest?"),
-                           (0.0, "that is the smallest one, at k = 0 (the constant).")],
-                     "2 − 2cos(2πk/n) is largest where the cosine is most negative; for even n that value is reached."),
-        pick({"lam_n-1": "φ_0 … φ_{n−1} are kept; the bound divides by the eigenvalue of the first one left out.",
-              "lam_n": None,
-              "lam_n+1": "φ_0 … φ_{n−1} are kept (0-based); the bound divides by the eigenvalue of the first one left out."}),
-    ], show)
+    return recap("02-graph-recap", [q1, q2, q3], GRAPH_RECAP, show)
+
+
+def _spaceless(judge: Callable[[Any], str | None]) -> Callable[[Any], str | None]:
+    """The same choice judge, blind to spaces inside the answer ("lam_n - 1" is "lam_n-1")."""
+    def spaceless(answer: Any) -> str | None:
+        return judge("".join(answer.split()) if isinstance(answer, str) else answer)
+    return spaceless
+
+
+GRAPH_RECAP: list[Callable[[Any], str | None]] = [
+    number_judge(2.0, [(4.0, "L is linear in the weights (the energy is Σ w_ij (f_i − f_j)²), not quadratic."),
+                       (1.0, "the weights are in L: doubling them doubles L, and with it every eigenvalue."),
+                       (0.5, "upside down: heavier weights make every energy larger.")],
+                 "L is linear in the weights; what happens to the eigenvalues of 2L?"),
+    number_judge(4.0, [(2.0, "that is 2 − 2cos(2πk/n) where the cosine is 0; where is it largest?"),
+                       (0.0, "that is the smallest one, at k = 0 (the constant).")],
+                 "2 − 2cos(2πk/n) is largest where the cosine is most negative; for even n that value is reached."),
+    _spaceless(pick({"lam_n-1": "φ_0 … φ_{n−1} are kept; the bound divides by the eigenvalue of the first one left out.",
+                     "lam_n": None,
+                     "lam_n+1": "φ_0 … φ_{n−1} are kept (0-based); the bound divides by the eigenvalue of the first one "
+                                "left out."})),
+]
+"""The judges of the recap's three questions (each: the hint of a wrong answer, None for a right
+one), shared by :func:`check_recap_graph` and its graded test."""

@@ -116,12 +116,16 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
     """
     def body() -> str:
         require_attempt(choice)
-        if not isinstance(choice, Mapping) or set(choice) != set(meshes):
-            raise Stop(WRONG, "Give a dict with one entry per mesh: " + ", ".join(f'"{k}"' for k in meshes) + ".")
+        entries = ", ".join(f'"{k}"' for k in meshes)
+        if not isinstance(choice, Mapping):
+            raise Stop(WRONG, f"Give a dict with one entry per mesh: {entries}.")
+        given = {(k.strip().lower() if isinstance(k, str) else k): v for k, v in choice.items()}
+        if len(given) != len(choice) or set(given) != set(meshes):
+            raise Stop(WRONG, f"Give a dict with one entry per mesh (and nothing else): {entries}.")
         from ..robust import cotan_defects
 
         for name, mesh in meshes.items():
-            answer = choice[name]
+            answer = given[name]
             if not isinstance(answer, str) or answer.strip().lower() not in ("cotan", "robust"):
                 raise Stop(WRONG, f'{name}: answer "cotan" or "robust".')
             answer = answer.strip().lower()
@@ -137,6 +141,36 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
 def _sphere_eigenvalue(k: int) -> float:
     ell = int(np.floor(np.sqrt(k)))  # indices l^2 .. l^2 + 2l belong to l (multiplicity 2l + 1)
     return float(ell * (ell + 1))
+
+
+def _rounding_of(got: float, target: float) -> bool:
+    """True when ``got``, as typed (its shortest decimal form), is ``target`` rounded to the digits
+    it shows: -0.059 for -0.05935, 0.02 for 0.0193 (never 0, and never a computed value with more
+    than six significant digits).
+
+    Examples
+    --------
+    >>> _rounding_of(0.02, 0.0193), _rounding_of(0.019, 0.0193), _rounding_of(0.03, 0.0193), _rounding_of(0.0, 0.0193)
+    (True, True, False, False)
+    """
+    from decimal import Decimal
+
+    if got == 0 or not np.isfinite(got) or np.sign(got) != np.sign(target):
+        return False
+    digits = Decimal(repr(float(got))).as_tuple()
+    if len(digits.digits) > 6 or not isinstance(digits.exponent, int):
+        return False
+    return abs(got - target) <= 0.5 * 10.0 ** digits.exponent * (1 + 1e-9)
+
+
+def _near(got: float, target: float, rtol: float) -> bool:
+    """Within ``rtol`` of ``target`` (relative), or ``target`` rounded by hand to the digits shown."""
+    return abs(got - target) <= rtol * abs(target) + 1e-15 or _rounding_of(got, target)
+
+
+def _more_digits(got: float) -> str:
+    return (f"{got:g} is the right value rounded too coarsely for the check: give more digits "
+            "(at least three significant ones), or the value Python computes.")
 
 
 def check_cloud_eigenvalue(relative_error: Any, values: Any, k: int = 9, *, show: bool = True) -> Feedback:
@@ -158,10 +192,12 @@ def check_cloud_eigenvalue(relative_error: Any, values: Any, k: int = 9, *, show
         got = as_number(relative_error)
         lam, exact = float(np.asarray(values, dtype=np.float64)[k]), _sphere_eigenvalue(k)
         ref = lam / exact - 1
-        near = lambda x: abs(got - x) <= 1e-3 * abs(ref) + 1e-12  # noqa: E731
-        if near(ref):
+        near = lambda x: _near(got, x, 1e-3)  # noqa: E731
+        if abs(got - ref) <= 1e-3 * abs(ref) + 1e-12:
             side = "below" if ref < 0 else "above"
             return f"Right: λ_{k} belongs to ℓ = {int(np.sqrt(k))}, and the cloud's value lies {side} ℓ(ℓ+1)."
+        if _rounding_of(got, ref):
+            raise Stop(WRONG, _more_digits(got))
         if near(-ref):
             raise Stop(WRONG, "Wrong sign: (computed - exact) / exact is negative when the computed value is below the exact one.")
         if near(abs(ref)):
@@ -211,7 +247,9 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
             raise Stop(WRONG, "A constant function still has zero energy: at least one eigenvalue is zero.")
         if close_to(worst, ref, 0.02):
             return "Right: one piece, one zero eigenvalue, then the sphere's spectrum, a little off (noise, holes, fins, and the discretisation itself)."
-        if close_to(worst, 100 * ref, 0.02):
+        if _rounding_of(worst, ref):
+            raise Stop(WRONG, _more_digits(worst))
+        if _near(worst, 100 * ref, 0.02):
             raise Stop(WRONG, "That is a percentage; give the fraction.")
         if worst > 10 * ref:
             raise Stop(WRONG, "Much too large: with one piece the spectrum starts at index 0, so compare values[1:16] with "
@@ -229,38 +267,73 @@ def check_neighbors_effect(answer: Any, *, show: bool = True) -> Feedback:
     }, show)
 
 
-def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, *, show: bool = True) -> Feedback:
+_GAP_RADII = (1.5, 1.75, 2.0)  # the outer radii exercise 04-gap asks about
+
+
+def _radius_key(key: Any) -> float | None:
+    """A dict key as a radius (1.5, np.float64(1.5), "1.5"), or None when it is not a number."""
+    if isinstance(key, bool):
+        return None
+    try:
+        value = float(np.asarray(key, dtype=np.float64).reshape(()))
+    except Exception:  # noqa: BLE001 - any key type: the check never raises
+        return None
+    return value if np.isfinite(value) else None
+
+
+def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, radii: tuple[float, ...] = _GAP_RADII, *,
+                       show: bool = True) -> Feedback:
     """Exercise 04-gap: ``{radius: number of pieces}`` the point cloud of two concentric spheres shows.
 
     The inner sphere is ``shapes.icosphere(3)`` (radius 1), the outer the same points scaled by
-    the radius; the pieces are the zero eigenvalues of the point-cloud Laplacian.
+    the radius; the pieces are the zero eigenvalues of the point-cloud Laplacian. The dict must
+    hold exactly the ``radii`` asked (1.5, 1.75 and 2 in the notebook), each once.
 
     Examples
     --------
-    >>> check_cloud_pieces({2.5: 2}, show=False).correct
+    >>> check_cloud_pieces({2.5: 2}, radii=(2.5,), show=False).correct
     True
+    >>> check_cloud_pieces({2.5: 2}, show=False).message
+    'Radius 2.5 was not asked: give exactly the radii 1.5, 1.75 and 2, one entry each.'
     """
+    asked = ", ".join(f"{r:g}" for r in radii[:-1]) + (" and " if len(radii) > 1 else "") + f"{radii[-1]:g}"
+
     def body() -> str:
         require_attempt(pieces)
         if not isinstance(pieces, Mapping) or not pieces:
-            raise Stop(WRONG, "Give a dict {radius of the outer sphere: number of pieces}.")
+            raise Stop(WRONG, f"Give a dict {{radius of the outer sphere: number of pieces}} for the radii {asked}.")
+        given: dict[float, Any] = {}
+        for key, got in pieces.items():
+            radius = _radius_key(key)
+            if radius is None:
+                raise Stop(WRONG, f"The keys are the outer radii, numbers such as {radii[0]:g}; got {key!r}.")
+            match = next((r for r in radii if abs(radius - r) <= 1e-9 * r), None)
+            if match is None:
+                above = "" if radius > 1 else " (the outer sphere's radius is above 1)"
+                raise Stop(WRONG, f"Radius {radius:g} was not asked{above}: give exactly the radii {asked}, one entry each.")
+            if match in given:
+                raise Stop(WRONG, f"Radius {match:g} appears twice: give one entry per radius.")
+            given[match] = got
+        missing = [f"{r:g}" for r in radii if r not in given]
+        if missing:
+            which = f"radius {missing[0]}" if len(missing) == 1 else "radii " + ", ".join(missing)
+            raise Stop(WRONG, f"Missing {which}: give the number of pieces for every radius asked, {asked}.")
         from .. import shapes
         from ..pointcloud import PointCloud
         from ..spectrum import eigenbasis
 
         inner = shapes.icosphere(3).vertices
-        for radius, got in sorted(pieces.items()):
-            got = as_number(got, f"a whole number for radius {radius}")
-            if not float(radius) > 1:
-                raise Stop(WRONG, f"Radius {radius}: the outer sphere's radius is above 1.")
-            values = eigenbasis(PointCloud(np.vstack([inner, float(radius) * inner])), 3, n_neighbors=n_neighbors).values
+        for radius in radii:
+            got = as_number(given[radius], f"a whole number for radius {radius:g}")
+            values = eigenbasis(PointCloud(np.vstack([inner, radius * inner])), 3, n_neighbors=n_neighbors,
+                                progress=False).values
             true = int(np.sum(np.abs(values) < 1e-8 * values[-1]))
             if got == true:
                 continue
             if got > true:
-                raise Stop(WRONG, f"Radius {radius}: a neighbourhood is the {n_neighbors} nearest points, however far they are. "
+                raise Stop(WRONG, f"Radius {radius:g}: a neighbourhood is the {n_neighbors} nearest points, however far they are. "
                             "The outer sphere's points are sparser, so their neighbourhoods reach further: can they reach the inner sphere?")
-            raise Stop(WRONG, f"Radius {radius}: the gap is wider than the outer points' neighbourhoods reach, so no patch joins the spheres.")
+            raise Stop(WRONG, f"Radius {radius:g}: the gap is wider than the outer points' neighbourhoods reach, so no patch joins the spheres.")
         return "Right: the spheres separate once the gap is wider than an outer point's neighbourhood reaches."
     return run_check("04-gap", show, body)
 
@@ -275,7 +348,13 @@ def check_recap_your_data(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Fe
     >>> check_recap_your_data(4, "robust", "fused", show=False).correct
     True
     """
-    return recap("04-recap", [q1, q2, q3], [
+    return recap("04-recap", [q1, q2, q3], recap_judges(), show)
+
+
+def recap_judges() -> list[Callable[[Any], str | None]]:
+    """The judges of the recap's three questions (each: an answer -> None when right, else a hint),
+    shared by :func:`check_recap_your_data` and the graded test (partial credit)."""
+    return [
         number_judge(4.0, [(1.0, "each connected component carries its own constant function with zero energy."),
                            (0.0, "a constant function has zero energy on every piece."),
                            (3.0, "the shape's own constant counts too: one zero per connected component.")],
@@ -285,4 +364,4 @@ def check_recap_your_data(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Fe
         pick({"fused": None,
                "separate": "a neighbourhood is the nearest points, whatever sheet they lie on: the local patches "
                            "join the sheets."}),
-    ], show)
+    ]

@@ -138,12 +138,17 @@ def block(targets: tuple[str, ...]) -> None:
             return __function(*args, **kwargs)
 
         guard.__lbo_guard__ = True  # type: ignore[attr-defined]
+        del guard.__wrapped__  # functools.wraps' way back to the original: not for the answer
         replacement: Any = staticmethod(guard) if is_static else guard
         setattr(owner, attr, replacement)
         if isinstance(owner, type):
             continue
+        # Rebind it wherever it is re-exported: in this package and in the target's own package
+        # (pyFM.signatures re-exports pyFM.spectral's functions, say), so that every route to it,
+        # and every function pickled by reference, finds the guard.
+        packages = {"lbo_notebooks", target.partition(":")[0].partition(".")[0]}
         for name, module in list(sys.modules.items()):
-            if module is None or not (name == "lbo_notebooks" or name.startswith("lbo_notebooks.")):
+            if module is None or name.partition(".")[0] not in packages:
                 continue
             for key, value in list(vars(module).items()):
                 if value is function:
@@ -192,3 +197,41 @@ def from_feedback(feedback: Any) -> Verdict:
     if feedback.correct:
         return Verdict(1.0, feedback.message)
     raise Stop(feedback.status, feedback.message)
+
+
+def recap_verdict(answers: list[Any] | tuple[Any, ...], judges: list[Any] | tuple[Any, ...]) -> Verdict:
+    """A recap's partial credit: the fraction of its questions answered right, with the hints of the
+    wrong ones only (never the right answers). ``judges`` return None for a right answer, else a
+    hint (``feedback.pick`` and ``feedback.number_judge`` make them). Raises ``Stop`` when nothing is
+    answered (not attempted) or nothing is right.
+
+    Examples
+    --------
+    >>> from lbo_notebooks.exercises.feedback import pick
+    >>> judges = [pick({"a": None, "b": "not b"})] * 3
+    >>> verdict = recap_verdict(["a", "A ", "b"], judges)
+    >>> round(verdict.fraction, 3), verdict.message
+    (0.667, '2 of 3 right. Question 3: not b')
+    """
+    from ..feedback import NOT_ATTEMPTED, WRONG, Stop, is_placeholder, unanswered
+
+    if unanswered(list(answers)) is not None or all(is_placeholder(a) for a in answers):
+        raise Stop(NOT_ATTEMPTED, "Replace the `...` placeholders with your answers and run the cell again.")
+    wrong = []
+    for k, (answer, judge) in enumerate(zip(answers, judges), 1):
+        if is_placeholder(answer) or unanswered(answer) is not None:
+            hint: str | None = "not answered yet (still `...`)."
+        else:
+            try:
+                hint = judge(answer)
+            except Exception:  # noqa: BLE001 - an answer object the judge cannot even read
+                hint = f"could not read your answer (a {type(answer).__name__})."
+        if hint is not None:
+            wrong.append(f"Question {k}: {hint}")
+    right = len(answers) - len(wrong)
+    if not wrong:
+        return Verdict(1.0, f"Right, all {len(answers)}.")
+    message = f"{right} of {len(answers)} right. " + " ".join(wrong)
+    if right == 0:
+        raise Stop(WRONG, message)
+    return Verdict(right / len(answers), message)

@@ -1,4 +1,9 @@
-"""Graded tests of notebook 03 (the Laplace–Beltrami operator): see :mod:`lbo_notebooks.exercises.grading`."""
+"""Graded tests of notebook 03 (the Laplace–Beltrami operator): see :mod:`lbo_notebooks.exercises.grading`.
+
+The two builds run on meshes neither the notebook nor the visible checks use, with the library's
+operators (and the other installed libraries that compute the same matrices) made unavailable;
+the values are judged against the notebook's objects rebuilt from their definitions.
+"""
 
 from __future__ import annotations
 
@@ -6,15 +11,56 @@ from typing import Any
 
 import numpy as np
 
-from ..feedback import WRONG, Stop
-from ._registry import Verdict, grader, student_call
+from .. import laplace_beltrami
+from ..feedback import NOT_ATTEMPTED, WRONG, Stop, require_attempt, unanswered
+from ._registry import Verdict, from_feedback, grader, student_call
 
-# What a build of the cotangent stiffness must not call: the library's operator and the private
-# function behind it (the eigensolver and every other route to W go through it), and the other
-# installed libraries that build the same matrix.
-_STIFFNESS = ("lbo_notebooks.operators:stiffness_matrix", "lbo_notebooks.operators:_stiffness",
-              "igl:cotmatrix", "robust_laplacian:mesh_laplacian", "gpytoolbox:cotangent_laplacian",
-              "potpourri3d:cotan_laplacian")
+
+def _everywhere(package: str, names: tuple[str, ...], modules: dict[str, str] | None = None) -> tuple[str, ...]:
+    """``package:name`` and, where the function is defined in a submodule (which is where a pickled
+    reference to it points), ``package.submodule:name`` too."""
+    modules = modules or {}
+    targets = []
+    for name in names:
+        targets.append(f"{package}:{name}")
+        where = modules.get(name, modules.get("*"))
+        if where is not None:
+            targets.append(f"{package}.{where.replace('@', name)}:{name}")
+    return tuple(targets)
+
+
+# What a build of the cotangent stiffness must not call: the library's operator, the private
+# function behind it (the eigensolver and every other route to W go through it), the cotangents
+# and angles it is made of, the gradient route (W = Gᵀ diag(a) G), and the other installed
+# libraries that build the same matrix (also by the submodule path a pickled reference uses).
+_STIFFNESS = (
+    "lbo_notebooks.operators:stiffness_matrix", "lbo_notebooks.operators:_stiffness",
+    "lbo_notebooks.operators:face_cotangents", "lbo_notebooks.operators:_face_cotangents",
+    "lbo_notebooks.operators:corner_angles", "lbo_notebooks.laplacians:laplace_beltrami",
+    "lbo_notebooks.robust:robust_operators", "lbo_notebooks.heat_method:face_gradient_operator",
+    "lbo_notebooks.heat_method:_gradient",
+    *_everywhere("igl", ("cotmatrix", "cotmatrix_entries", "cotmatrix_intrinsic", "intrinsic_delaunay_cotmatrix",
+                         "grad"), {"*": "pyigl_core"}),
+    *_everywhere("robust_laplacian", ("mesh_laplacian",), {"*": "core"}),
+    *_everywhere("gpytoolbox", ("cotangent_laplacian", "cotangent_weights", "cotangent_laplacian_intrinsic",
+                                "cotangent_weights_intrinsic", "grad"), {"*": "@"}),
+    *_everywhere("potpourri3d", ("cotan_laplacian",), {"*": "mesh"}),
+)
+
+# What a build of a lumped mass must not call: the library's mass (public, private, the mixed
+# Voronoi helper, the curvature module's routes to it, the eigensolver's route), and the other
+# libraries' mass matrices. Face areas (``mesh.face_areas``, a cross product) stay allowed, and so
+# do the cotangents (the mixed Voronoi rule needs them).
+_MASS = (
+    "lbo_notebooks.operators:mass_matrix", "lbo_notebooks.operators:_mass",
+    "lbo_notebooks.operators:_voronoi_corner_areas", "lbo_notebooks.curvature:_voronoi_areas",
+    "lbo_notebooks.curvature:metric_mass_matrix", "lbo_notebooks.laplacians:laplace_beltrami",
+    "lbo_notebooks.robust:robust_operators",
+    *_everywhere("igl", ("massmatrix", "massmatrix_intrinsic", "voronoi_mass"), {"*": "pyigl_core"}),
+    *_everywhere("robust_laplacian", ("mesh_laplacian",), {"*": "core"}),
+    *_everywhere("gpytoolbox", ("massmatrix", "massmatrix_intrinsic"), {"*": "@"}),
+    *_everywhere("potpourri3d", ("vertex_areas",), {"*": "mesh"}),
+)
 
 
 def _unseen_meshes() -> list[Any]:
@@ -35,17 +81,87 @@ def _unseen_meshes() -> list[Any]:
     return [bumpy, sheet.with_vertices(v), obtuse]
 
 
+def _fresh(mesh: Any) -> Any:
+    """A copy of ``mesh`` with an empty operator cache, for the student's function."""
+    from ...mesh import Mesh
+
+    return Mesh(mesh.vertices.copy(), mesh.faces.copy())
+
+
+def _where(mesh: Any) -> str:
+    return "a lone obtuse triangle" if mesh.n_faces == 1 else f"a mesh of {mesh.n_vertices} vertices"
+
+
+_UNSEEN = "three meshes the notebook does not show (a torus, an open sheet, an obtuse triangle)"
+
+
 @grader("03-stiffness", kind="build", replaces=_STIFFNESS)
 def _stiffness(my_stiffness: Any) -> Verdict:
-    from ...mesh import Mesh
     from ...operators import stiffness_matrix
-    from ..basics import _diagnose_stiffness, _matrix
 
     for mesh in _unseen_meshes():
         ref = stiffness_matrix(mesh).toarray()
-        fresh = Mesh(mesh.vertices.copy(), mesh.faces.copy())
-        got = _matrix(student_call(my_stiffness, fresh), mesh.n_vertices, "W")
-        hint = _diagnose_stiffness(got, ref)
+        got = laplace_beltrami.as_matrix(student_call(my_stiffness, _fresh(mesh)), mesh.n_vertices, "W")
+        hint = laplace_beltrami.diagnose_stiffness(got, ref)
         if hint is not None:
-            raise Stop(WRONG, f"{hint} (graded on a mesh of {mesh.n_vertices} vertices the notebook does not show.)")
-    return Verdict(1.0, "Right on three meshes the notebook does not show (a torus, an open sheet, an obtuse triangle).")
+            raise Stop(WRONG, f"{hint} (graded on {_where(mesh)} the notebook does not show.)")
+    return Verdict(1.0, f"Right on {_UNSEEN}.")
+
+
+@grader("03-mass", kind="build", replaces=_MASS)
+def _mass(my_mass: Any) -> Verdict:
+    meshes = [(mesh, f"{_where(mesh)} the notebook does not show") for mesh in _unseen_meshes()]
+    message = laplace_beltrami.judge_mass(my_mass, meshes, call=lambda f, mesh: student_call(f, _fresh(mesh)))
+    return Verdict(1.0, message.replace("Right:", f"Right on {_UNSEEN}:", 1))
+
+
+@grader("03-convergence", kind="predict")
+def _convergence(error_drop: Any) -> Verdict:
+    return from_feedback(laplace_beltrami.check_convergence_factor(error_drop, show=False))
+
+
+@grader("03-coefficients", kind="compute")
+def _coefficients(coefficients: Any) -> Verdict:
+    # The notebook's objects, rebuilt: blob = shapes.bumpy_sphere(4), blob_spectrum =
+    # lbo.eigenbasis(blob, 50) (its signs are fixed deterministically) and f = its x coordinate.
+    from ... import shapes
+    from ...spectrum import eigenbasis
+
+    require_attempt(coefficients)
+    blob = shapes.bumpy_sphere(4)
+    hint = laplace_beltrami.coefficient_hint(coefficients, eigenbasis(blob, 50), blob.vertices[:, 0], rtol=1e-5)
+    if hint is not None:
+        raise Stop(WRONG, hint)
+    return Verdict(1.0, "Right: c = Φᵀ A f, the A inner products with the eigenfunctions.")
+
+
+@grader("03-consistent", kind="compute")
+def _consistent(consistent_side: Any) -> Verdict:
+    return from_feedback(laplace_beltrami.check_consistent_mass(consistent_side, show=False))
+
+
+@grader("03-scaling", kind="predict")
+def _scaling(eigenvalue_factor: Any) -> Verdict:
+    return from_feedback(laplace_beltrami.check_eigenvalue_scaling(eigenvalue_factor, scale=2, show=False))
+
+
+@grader("03-kernel", kind="explore")
+def _kernel(torus_zeros: Any, two_sphere_zeros: Any) -> Verdict:
+    # The counts are the dimensions of the kernels (one per connected component); that the
+    # notebook's meshes and threshold give them is asserted in tests/test_grading_03.py.
+    return from_feedback(laplace_beltrami.check_zero_eigenvalues(torus_zeros, two_sphere_zeros, show=False))
+
+
+@grader("03-lbo-recap", kind="recap")
+def _recap_lbo(q1: Any, q2: Any, q3: Any) -> Verdict:
+    answers = [q1, q2, q3]
+    if unanswered(answers) is not None:
+        raise Stop(NOT_ATTEMPTED, "Replace the `...` placeholders with your answers and run the cell again.")
+    wrong = [f"Question {k}: {hint}" for k, (answer, judge) in enumerate(zip(answers, laplace_beltrami.RECAP_LBO), 1)
+             if (hint := "not answered." if unanswered(answer) is not None else judge(answer)) is not None]
+    if not wrong:
+        return Verdict(1.0, "Right, all 3.")
+    message = f"{3 - len(wrong)} of 3 right. " + " ".join(wrong)
+    if len(wrong) == 3:
+        raise Stop(WRONG, message)
+    return Verdict((3 - len(wrong)) / 3, message)

@@ -1,0 +1,165 @@
+"""Graded tests of notebook 11 (regularized PCA): see :mod:`lbo_notebooks.exercises.grading`.
+
+The value exercises (11-energy, 11-validation) are judged against the notebook's own context,
+rebuilt here from its definitions (the dog of 3,000 vertices, training on *standing* and
+*walking*, the sweep over ``betas``), never from the student's kernel: about 3 s for the poses,
+0.5 s for the PCA limit and 4 s for the sweep on one core. The build (11-objective) is judged on
+shapes, data, bases and weights the notebook never shows, with the library's routes to the
+objective unavailable.
+"""
+
+from __future__ import annotations
+
+import functools
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from ..feedback import WRONG, Stop, as_number, pick
+from ..regularized_pca import (
+    RECAP_RPCA,
+    objective_hint,
+    check_dirichlet_energies,
+    check_mu_scaling,
+    check_rpca_limits,
+    check_validation_choice,
+)
+from ._registry import Verdict, from_feedback, grader, recap_verdict, student_call
+
+# The notebook's definitions (cells of sections 2-4).
+N_VERTICES, M = 3000, 100
+TRAIN, VALIDATION = ("standing", "walking"), "galloping"
+BETAS = (1e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 1e-2, 0.1, 0.9)
+
+
+@functools.lru_cache(maxsize=1)
+def _dog() -> SimpleNamespace:
+    """Section 2: the six poses, W and A of the standing dog, the solver of the two training poses."""
+    from ... import creatures, operators
+    from ...rpca import RegularizedPCA
+
+    poses = creatures.creature_poses("dog", n_vertices=N_VERTICES)
+    reference = poses["standing"]
+    W, A = operators.stiffness_matrix(reference), operators.mass_matrix(reference)
+    unseen = [name for name in poses if name not in (*TRAIN, VALIDATION)]
+    X = np.hstack([poses[name].vertices for name in TRAIN])
+    return SimpleNamespace(poses=poses, W=W, A=A, unseen=unseen, solver=RegularizedPCA(X, W, A, center=True))
+
+
+@functools.lru_cache(maxsize=1)
+def _pca_limit() -> Any:
+    """Section 3: ``pca = solver.solve(m, 0.0)``, the mu -> 0 limit."""
+    return _dog().solver.solve(M, 0.0)
+
+
+@functools.lru_cache(maxsize=1)
+def _sweep() -> SimpleNamespace:
+    """Section 4: the errors of the sweep and of the eigenbasis on the unseen poses."""
+    from ...inner_product import reconstruction_error
+    from ...spectrum import eigenbasis
+
+    dog = _dog()
+    targets = [dog.poses[name].vertices for name in dog.unseen]
+    results = dict(zip(BETAS, dog.solver.sweep(M, betas=list(BETAS))))
+    errors = {beta: reconstruction_error(r.basis, dog.A, targets) for beta, r in results.items()}
+    err_lbo = reconstruction_error(eigenbasis((dog.W, dog.A), M).vectors, dog.A, targets)
+    return SimpleNamespace(errors=errors, err_lbo=err_lbo, unseen=dog.unseen)
+
+
+@grader("11-energy", kind="compute")
+def _energy(energies: Any) -> Verdict:
+    dog, pca = _dog(), _pca_limit()
+    from_feedback(check_dirichlet_energies(energies, pca.basis, dog.W, dog.A, show=False))
+    return Verdict(1.0, "Right: p_jᵀ W p_j for the 100 functions of `pca.basis` (rebuilt from the notebook's definitions).")
+
+
+@grader("11-limits", kind="predict")
+def _limits(limit_at_0: Any, limit_at_1: Any, best_beta: Any) -> Verdict:
+    return from_feedback(check_rpca_limits(limit_at_0, limit_at_1, best_beta, show=False))
+
+
+@grader("11-validation", kind="compute")
+def _validation(chosen_beta: Any, beats_by_four: Any) -> Verdict:
+    sweep = _sweep()
+    feedback = check_validation_choice(chosen_beta, beats_by_four, sweep.errors, sweep.err_lbo, sweep.unseen, show=False)
+    from_feedback(feedback)
+    return Verdict(1.0, "Right: the β chosen on tail_raised, and its verdict on the two other unseen poses "
+                        "(the sweep rebuilt from the notebook's definitions).")
+
+
+@grader("11-scale", kind="predict")
+def _scale(mu_factor: Any) -> Verdict:
+    return from_feedback(check_mu_scaling(mu_factor, scale=2.0, show=False))
+
+
+# What a build of the objective must not call: the visible check's own objective, the library's
+# A-orthogonal projections and reconstruction errors (the fit term in one call, also through a
+# Spectrum made of P), and the regularized-PCA solvers.
+_OBJECTIVE = (
+    "lbo_notebooks.exercises.regularized_pca:_rpca_objective",
+    "lbo_notebooks.inner_product:reconstruct",
+    "lbo_notebooks.inner_product:reconstruction_error",
+    "lbo_notebooks.spectrum:Spectrum.project",
+    "lbo_notebooks.spectrum:Spectrum.reconstruct",
+    "lbo_notebooks.spectrum:Spectrum.error",
+    "lbo_notebooks.optimality:representation_error",
+    "lbo_notebooks.rpca:regularized_pca",
+    "lbo_notebooks.rpca:RegularizedPCA.solve",
+    "lbo_notebooks.rpca:RegularizedPCA.sweep",
+    "lbo_notebooks.rpca_pencil:rayleigh_ritz",
+    "lbo_notebooks.rpca_pencil:data_eigenpairs",
+    "lbo_notebooks.rpca_pencil:complement_lanczos",
+)
+
+
+def _unseen_problems() -> list[tuple[str, np.ndarray, np.ndarray, Any, Any, float]]:
+    """(what, P, X, W, A, mu) on shapes the notebook and the visible check never use. Every P is
+    A-orthonormal (the objective's constraint), none is the optimum for the mu it comes with, so
+    neither the closed form's shortcut through the solver nor a swapped term passes by luck."""
+    from ... import operators, shapes
+    from ...rpca import RegularizedPCA
+    from ...spectrum import eigenbasis
+
+    rng = np.random.default_rng(1107)
+    problems = []
+    # A torus and a stretched, bent copy as two poses; the basis of one weight, judged at another.
+    ring = shapes.torus(n_major=32, n_minor=12)
+    v = ring.vertices
+    bent = v * [1.0, 1.15, 0.9] + 0.2 * np.sin(2 * v[:, [0]]) * [0.0, 0.0, 1.0]
+    W, A = operators.stiffness_matrix(ring), operators.mass_matrix(ring)
+    solver = RegularizedPCA(np.hstack([v, bent]), W, A, center=True)
+    result = solver.solve(10, beta=1e-2)
+    problems.append(("a torus, the basis of another weight", result.basis, solver.data, W, A, 3.7 * result.mu))
+    # An ellipsoid: a rotated eigenbasis (A-orthonormal, not eigenfunctions), data not centred.
+    oval = shapes.ellipsoid(1.0, 0.6, 0.45, subdivisions=2)
+    s = eigenbasis(oval, 14)
+    Q = np.linalg.qr(rng.standard_normal((14, 7)))[0]
+    u = oval.vertices
+    data = np.column_stack([u[:, 0] ** 2, u[:, 1] * u[:, 2], np.exp(u[:, 2]), u[:, 0] + 0.3 * rng.standard_normal(len(u))])
+    problems.append(("an ellipsoid, a rotated basis, data not centred", s.vectors @ Q, data, s.stiffness, s.mass, 0.05))
+    # An open, uneven sheet with mu = 0: the fit alone.
+    sheet = shapes.rectangle(1.2, 0.8, 9, 7)
+    w = sheet.vertices.copy()
+    w[:, 2] = 0.2 * np.cos(3 * w[:, 0]) * w[:, 1]
+    sheet = sheet.with_vertices(w)
+    t = eigenbasis(sheet, 6)
+    problems.append(("an open sheet with μ = 0", t.vectors, w, t.stiffness, t.mass, 0.0))
+    return problems
+
+
+@grader("11-objective", kind="build", replaces=_OBJECTIVE)
+def _objective(my_objective: Any) -> Verdict:
+    for what, P, X, W, A, mu in _unseen_problems():
+        value = student_call(my_objective, P.copy(), X.copy(), W.copy(), A.copy(), float(mu))
+        got = as_number(value, "a number (the value of the objective)")
+        hint = objective_hint(got, P, X, W, A, float(mu))
+        if hint is not None:
+            raise Stop(WRONG, f"{hint} (Graded on {what}, inputs the notebook does not show.)")
+    return Verdict(1.0, "Right on three problems the notebook does not show (a torus, an ellipsoid with a rotated "
+                        "basis, an open sheet with μ = 0).")
+
+
+@grader("11-recap", kind="recap")
+def _recap(q1: Any, q2: Any, q3: Any) -> Verdict:
+    return recap_verdict([q1, q2, q3], [pick(q) for q in RECAP_RPCA])

@@ -1,0 +1,149 @@
+"""The graded tests as a whole (lbo_notebooks.exercises.grading): every exercise has a grader whose
+hidden test uses only the prompt's names, the points follow the kinds, and the grade cannot be
+changed from the student's kernel. The graders of each notebook are tested in test_grading_NN.py."""
+
+from __future__ import annotations
+
+import ast
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lbo_notebooks import exercises
+from lbo_notebooks.exercises import grading
+from lbo_notebooks.exercises.grading import _registry
+
+NOTEBOOKS = sorted((Path(__file__).resolve().parent.parent / "notebooks").glob("*.ipynb"))
+PROMPT = re.compile(r"\*\*Exercise (\d\d-[\w-]+)\*\* · \*([^*]+)\*")
+HIDDEN = re.compile(r"### BEGIN HIDDEN TESTS\n(.*?)### END HIDDEN TESTS", re.S)
+KINDS = {"build it yourself": "build", "recap": "recap", "explain": "choice"}
+
+
+def _cells():
+    for path in NOTEBOOKS:
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+            yield path, cell, source
+
+
+def _expected_kind(prompt_kind: str) -> str:
+    first = prompt_kind.split(",")[0].strip()
+    return KINDS.get(prompt_kind, {"predict": "predict", "compute": "compute", "explore": "explore"}.get(first.split()[0], first))
+
+
+def test_every_exercise_has_a_grader_of_its_kind():
+    graders = grading.load_graders()
+    prompts = {m.group(1): m.group(2) for _, c, s in _cells() if c["cell_type"] == "markdown"
+               for m in [PROMPT.search(s)] if m and not c["metadata"].get("nbgrader")}
+    assert len(prompts) >= 75
+    assert set(prompts) == set(graders), (sorted(set(prompts) - set(graders)), sorted(set(graders) - set(prompts)))
+    wrong_kind = {e: (k, graders[e].kind) for e, k in prompts.items() if graders[e].kind != _expected_kind(k)}
+    assert not wrong_kind, wrong_kind
+
+
+def test_hidden_tests_call_the_grader_with_the_prompts_names_only():
+    graders = grading.load_graders()
+    seen = set()
+    for path, cell, source in _cells():
+        meta = cell["metadata"].get("nbgrader", {})
+        if not (meta.get("grade") and cell["cell_type"] == "code"):
+            continue
+        exercise = meta["grade_id"][: -len("-check")]
+        hidden = HIDDEN.search(source)
+        assert hidden, f"{path.name}: {exercise} has no hidden test"
+        tree = ast.parse(hidden.group(1))
+        *imports, last = tree.body
+        assert [ast.unparse(s) for s in imports] == ["from lbo_notebooks.exercises.grading import grade"], (
+            f"{path.name}: {exercise}'s hidden test should only import grade, then call it")
+        call = last.value if isinstance(last, ast.Expr) else None
+        assert isinstance(call, ast.Call) and ast.unparse(call.func) == "grade", f"{exercise}: end with grade(...)"
+        assert [ast.literal_eval(a) for a in call.args] == [exercise], f"{exercise}: grade({exercise!r}, ...)"
+        names = [k.arg for k in call.keywords]
+        assert names == list(graders[exercise].names), (exercise, names, graders[exercise].names)
+        assert all(ast.unparse(k.value) == k.arg for k in call.keywords), f"{exercise}: pass each answer by its own name"
+        assert meta["points"] == graders[exercise].points, (exercise, meta["points"], graders[exercise].points)
+        seen.add(exercise)
+    assert seen == set(graders)
+
+
+def test_written_answers_are_worth_their_points():
+    written = [(p.name, c["metadata"]["nbgrader"]) for p, c, _ in _cells()
+               if c["cell_type"] == "markdown" and c["metadata"].get("nbgrader", {}).get("grade")]
+    assert len(written) >= 7
+    assert all(m["points"] == grading.POINTS["written"] and m["grade_id"].endswith("-explain") for _, m in written)
+
+
+def test_patching_the_checks_in_the_kernel_changes_no_grade(monkeypatch):
+    """An answer cell runs in the kernel that runs the hidden test: what it patches there stays there."""
+    monkeypatch.setattr(exercises.Feedback, "correct", property(lambda self: True))
+    monkeypatch.setattr(np, "allclose", lambda *a, **k: True)
+    monkeypatch.setattr(exercises, "check_stretch_growth", lambda *a, **k: exercises.Feedback("01-stretch", "correct", ""))
+    with pytest.raises(AssertionError, match="0 / 1 points"):
+        grading.grade("01-stretch", stretch="same")
+    assert grading.grade("01-stretch", stretch="double") == 1.0
+
+
+def test_what_an_answer_prints_stays_out_of_the_cell(capfd):
+    """nbgrader gives 0 points to a graded cell with anything on stderr: the graded run keeps the
+    answer's output and warnings to itself."""
+    def noisy(mesh):
+        import sys
+        import warnings
+
+        print("debug", file=sys.stderr)
+        warnings.warn("a student's warning")
+        return np.ones((2, 2))
+
+    with pytest.raises(AssertionError, match="03-stiffness · 0 / 5"):
+        grading.grade("03-stiffness", my_stiffness=noisy)
+    out, err = capfd.readouterr()
+    assert err == "" and "debug" not in out
+
+
+def test_an_answer_that_never_returns_gets_no_points(monkeypatch):
+    monkeypatch.setenv("LBO_GRADE_TIMEOUT", "5")
+
+    def forever(mesh):
+        while True:
+            pass
+
+    with pytest.raises(AssertionError, match="longer than 5 s"):
+        grading.grade("03-stiffness", my_stiffness=forever)
+
+
+def test_an_answer_that_cannot_be_sent_gets_no_points():
+    import threading
+
+    with pytest.raises(AssertionError, match="could not be sent"):
+        grading.grade("01-stretch", stretch=threading.Lock())
+
+
+def test_a_blocked_function_raises_only_inside_the_answer():
+    from lbo_notebooks import operators, shapes
+
+    mesh = shapes.icosphere(1)
+    _registry.block(("lbo_notebooks.operators:stiffness_matrix",))
+    _registry.block(("lbo_notebooks.operators:stiffness_matrix",))   # twice: no second wrapper
+    assert operators.stiffness_matrix(mesh).shape == (42, 42)         # the grader itself may use it
+    with pytest.raises(_registry.LibraryUsed):
+        _registry.student_call(lambda m: operators.stiffness_matrix(m), mesh)
+
+    def hides_it(m):
+        try:
+            return operators.stiffness_matrix(m)
+        except Exception:  # noqa: BLE001 - a student catching everything
+            return np.zeros((42, 42))
+
+    with pytest.raises(_registry.LibraryUsed):                        # caught, still seen
+        _registry.student_call(hides_it, mesh)
+    assert operators.stiffness_matrix(mesh).shape == (42, 42)
+
+
+def test_a_verdict_is_a_fraction():
+    with pytest.raises(ValueError, match="fraction"):
+        grading.Verdict(1.5, "too much")
+    with pytest.raises(ValueError, match="kind"):
+        grading.grader("99-x", kind="essay")

@@ -1,0 +1,253 @@
+"""The graded tests of notebook 06 (the worst-case constant, and ties), with answers written as
+students write them: the instructor's solution, correct answers written differently, typical wrong
+ones, placeholders; and, as tests of the library, the claims the old hidden tests made about the
+notebook's data. See lbo_notebooks/exercises/grading/nb06.py."""
+
+from __future__ import annotations
+
+import json
+import re
+import types
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from .grading_support import answers, full_points, graded, verdict
+
+NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "06_optimality_ties.ipynb"
+MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
+
+
+def _answer_cell(exercise: str) -> str:
+    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
+    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
+    return "".join(cell["source"])
+
+
+def solution(exercise: str) -> str:
+    """The instructor's answer cell of ``exercise``, markers stripped (placeholders, then the solution)."""
+    return MARKER.sub("", _answer_cell(exercise))
+
+
+def student_edition(exercise: str) -> str:
+    """The answer cell as the student edition hands it out (scripts/student_edition.py's stub)."""
+    return re.sub(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*", r"\1# YOUR CODE HERE\n\1pass",
+                  _answer_cell(exercise))
+
+
+@pytest.fixture(scope="module")
+def notebook():
+    """What the solutions of 06-consistent and 06-worst use from the notebook's first cells: the dog,
+    W, A, ``worst_case_ratio``, ``dirichlet_energy``, the polynomial competitor (the notebook's
+    ``competitor_bases(dog, 100, ...)["polynomials"]`` is ``polynomial_basis(dog, 100)``) and a
+    ``plotting`` that draws nothing."""
+    from lbo_notebooks import bases, mass_matrix, stiffness_matrix
+    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.optimality import dirichlet_energy, worst_case_ratio
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        dog = creature("dog", n_vertices=2000)
+    return {"dog": dog, "W": stiffness_matrix(dog), "A": mass_matrix(dog),
+            "competitors": {"polynomials": bases.polynomial_basis(dog, 100)},
+            "worst_case_ratio": worst_case_ratio, "dirichlet_energy": dirichlet_energy,
+            "plotting": types.SimpleNamespace(plot_mesh=lambda *args, **kwargs: None)}
+
+
+def _full(exercise, **given):
+    points, status, message = verdict(exercise, **given)
+    assert points == full_points(exercise), (status, message)
+    return message
+
+
+def _zero(exercise, *words, status="wrong", **given):
+    points, got_status, message = verdict(exercise, **given)
+    assert points == 0 and got_status == status, (got_status, message)
+    for word in words:
+        assert word.lower() in message.lower(), (word, message)
+    return message
+
+
+def test_points_follow_the_kinds():
+    exercises = ("06-shifted", "06-stationary", "06-consistent", "06-worst", "06-ties-recap")
+    assert [full_points(e) for e in exercises] == [1, 1, 2, 2, 3]
+
+
+# --- the two predictions --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("exercise, name, right, others", [
+    ("06-shifted", "shifted_verdict", "infinite",
+     {"below": "every n-dimensional", "one": "zero energy", "above": "worst function"}),
+    ("06-stationary", "stationary_verdict", "quadruple",
+     {"same": "grow", "double": "first order", "eightfold": "second-order"}),
+])
+def test_predictions(exercise, name, right, others):
+    _full(exercise, **answers(solution(exercise), name))
+    for spelling in (right.upper(), f"  {right.capitalize()} ", np.str_(right)):
+        _full(exercise, **{name: spelling})
+    for wrong, hint in others.items():
+        _zero(exercise, hint, **{name: wrong})
+    _zero(exercise, "one of", **{name: "no idea"})
+    _zero(exercise, "one of", **{name: 4})
+    _zero(exercise, status="not attempted", **answers(student_edition(exercise), name))
+    assert verdict(exercise, **{name: "one"}) == verdict(exercise, **{name: "one"})
+
+
+def test_a_patched_check_in_the_kernel_changes_no_grade(monkeypatch):
+    """The graded run is a fresh process: an answer cell's `Feedback.correct = True` reaches nothing."""
+    from lbo_notebooks import exercises
+
+    monkeypatch.setattr(exercises.Feedback, "correct", property(lambda self: True))
+    assert graded("06-stationary", stationary_verdict="double") == 0.0
+    assert graded("06-stationary", stationary_verdict="Quadruple") == 1.0
+
+
+# --- 06-consistent (compute) ---------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def consistent(notebook):
+    import lbo_notebooks as lbo
+
+    return lbo.eigenbasis(notebook["dog"], 51, mass_kind="consistent")
+
+
+def test_consistent_solution_earns_full_points(notebook):
+    given = answers(solution("06-consistent"), "consistent_ratio", **notebook)
+    assert abs(given["consistent_ratio"] - 1) < 1e-8   # the old hidden test's claim on the instructor's answer
+    _full("06-consistent", **given)
+
+
+def test_consistent_written_differently_earns_full_points(notebook, consistent):
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    code = """
+        sc = lbo.eigenbasis(dog, 51, mass_kind="consistent")
+        basis, lam = sc.vectors[:, :50], sc.values
+        consistent_ratio = lam[50] * worst_case_ratio(basis, sc.stiffness, sc.mass, method="sparse")
+    """
+    _full("06-consistent", **answers(code, "consistent_ratio", **notebook))
+    sc = consistent
+    _full("06-consistent", consistent_ratio=[worst_case_ratio(sc.vectors[:, :50], sc.stiffness, sc.mass) * sc.values[50]])
+    _full("06-consistent", consistent_ratio=1)
+    _full("06-consistent", consistent_ratio="1.0")
+
+
+def test_consistent_wrong_answers_earn_nothing(notebook, consistent):
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    sc, W, A = consistent, notebook["W"], notebook["A"]
+    C = worst_case_ratio(sc.vectors[:, :50], sc.stiffness, sc.mass)
+    _zero("06-consistent", "own", consistent_ratio=worst_case_ratio(sc.vectors[:, :50], W, A) * sc.values[50])  # lumped W, A
+    _zero("06-consistent", "values[n]", consistent_ratio=C * sc.values[49])     # off by one
+    _zero("06-consistent", "normalise", consistent_ratio=C)                      # not multiplied by λ_50
+    _zero("06-consistent", "number", consistent_ratio="one")
+    _zero("06-consistent", "number", consistent_ratio={"ratio": 1.0})
+    _zero("06-consistent", status="not attempted",
+          **answers(student_edition("06-consistent"), "consistent_ratio", **notebook))
+
+
+def test_a_competitor_stays_above_one_for_the_consistent_pair(notebook, consistent):
+    """The old hidden test's claim about the notebook's data, kept as a test of the library: the
+    umbrella basis (consistent mass) is not optimal for the consistent pair, the eigenbasis is."""
+    from lbo_notebooks import bases
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    sc = consistent
+    assert abs(worst_case_ratio(sc.vectors[:, :50], sc.stiffness, sc.mass) * sc.values[50] - 1) < 1e-8
+    umbrella = bases.umbrella_basis(notebook["dog"], 50, mass_kind="consistent")
+    assert worst_case_ratio(umbrella, sc.stiffness, sc.mass) * sc.values[50] > 1
+
+
+# --- 06-worst (explore) --------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def worst(notebook):
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    P, W, A = notebook["competitors"]["polynomials"][:, :20], notebook["W"], notebook["A"]
+    c, f = worst_case_ratio(P, W, A, return_vector=True)
+    return c, f, P, W, A
+
+
+def test_worst_solution_earns_full_points(notebook):
+    _full("06-worst", **answers(solution("06-worst"), "worst_ratio", **notebook))
+
+
+def test_worst_written_differently_earns_full_points(notebook, worst):
+    code = """
+        basis = competitors["polynomials"][:, :20]
+        _, g = worst_case_ratio(basis, W, A, return_vector=True)
+        coef = np.linalg.solve(basis.T @ (A @ basis), basis.T @ (A @ g))   # normal equations
+        miss = g - basis @ coef
+        worst_ratio = float(miss @ (A @ miss) / (g @ (W @ g)))
+    """
+    _full("06-worst", **answers(code, "worst_ratio", **notebook))
+    code = """
+        Ad, Wd = A.toarray(), W.toarray()   # dense, and the function scaled by 3: the ratio does not change
+        V = competitors["polynomials"][:, :20]
+        h = 3 * worst_case_ratio(V, W, A, return_vector=True)[1]
+        e = h - V @ (V.T @ Ad @ h)
+        worst_ratio = (e @ Ad @ e) / (h @ Wd @ h)
+    """
+    _full("06-worst", **answers(code, "worst_ratio", **notebook))
+    c = worst[0]
+    _full("06-worst", worst_ratio=float(f"{c:.9g}"))       # copied to nine digits
+    _full("06-worst", worst_ratio=np.float32(c) * 1.0)      # single precision is still right to 1e-7
+
+
+def test_worst_wrong_answers_earn_nothing(worst):
+    c, f, P, W, A = worst
+    energy = f @ (W @ f)
+    r_euclid = f - P @ (P.T @ f)
+    _zero("06-worst", "A inner product", worst_ratio=(r_euclid @ A @ r_euclid) / energy)
+    _zero("06-worst", "misses", worst_ratio=(f @ A @ f) / energy)
+    _zero("06-worst", "upside down", worst_ratio=1 / c)
+    _zero("06-worst", "supremum", worst_ratio=2 * c)
+    _zero("06-worst", "below", worst_ratio=c / 2)
+    _zero("06-worst", "number", worst_ratio=(c, f))        # the pair worst_case_ratio returns
+    _zero("06-worst", status="not attempted", worst_ratio=...)
+
+
+def test_worst_hand_rounded_asks_for_digits(worst):
+    c = worst[0]
+    for typed in (float(f"{c:.3g}"), float(f"{c:.5g}"), np.trunc(c * 1e5) / 1e5):
+        _zero("06-worst", "digits", worst_ratio=typed)
+
+
+def test_worst_verdict_is_deterministic(worst):
+    assert verdict("06-worst", worst_ratio=worst[0] / 2) == verdict("06-worst", worst_ratio=worst[0] / 2)
+
+
+# --- 06-ties-recap (recap, partial credit) ------------------------------------------------------------
+
+def test_recap_solution_and_other_spellings():
+    _full("06-ties-recap", **answers(solution("06-ties-recap"), "q1", "q2", "q3"))
+    _full("06-ties-recap", q1="No", q2="a lower bound", q3="2")
+    _full("06-ties-recap", q1=False, q2="Lower", q3=2.0)
+    _full("06-ties-recap", q1=" no ", q2="LOWER BOUND", q3="quadratic")
+    _full("06-ties-recap", q1="no", q2="lower", q3=np.int64(2))
+
+
+@pytest.mark.parametrize("given, points, hints", [
+    (("yes", "lower", 2), 2.0, ["question 1", "tilted"]),
+    (("no", "exactly", 2), 2.0, ["question 2", "cancel"]),
+    (("no", "exact", 2), 2.0, ["question 2", "cancel"]),
+    (("no", "upper", 1), 1.0, ["question 2", "overestimate", "question 3", "first-order"]),
+    (("no", "lower", 4), 2.0, ["question 3", "doubles"]),
+    (("no", ..., ...), 1.0, ["not answered"]),
+])
+def test_recap_partial_credit(given, points, hints):
+    got, _, message = verdict("06-ties-recap", q1=given[0], q2=given[1], q3=given[2])
+    assert got == points, message
+    for hint in hints:
+        assert hint in message.lower(), message
+    assert '"lower"' not in message and "power 2" not in message   # never the right answers
+
+
+def test_recap_all_wrong_and_placeholders():
+    _zero("06-ties-recap", "0 of 3", q1="yes", q2="upper", q3=1)
+    _zero("06-ties-recap", "one of", q1="maybe", q2=3, q3="θ")
+    _zero("06-ties-recap", status="not attempted", **answers(student_edition("06-ties-recap"), "q1", "q2", "q3"))
+    assert verdict("06-ties-recap", q1="yes", q2="lower", q3=2) == verdict("06-ties-recap", q1="yes", q2="lower", q3=2)
