@@ -46,6 +46,21 @@ c.ClearSolutions.text_stub = "YOUR ANSWER HERE"
 # A notebook runs in well under a minute; a cell (a graded run included) may take up to this long.
 c.Execute.timeout = 600
 c.Autograde.create_student = True
+# The grade is decided outside the student's kernel: each hidden test publishes the answers it was
+# given, and this preprocessor (right after nbgrader's Execute) judges them in a fresh process and
+# writes the cell's outcome, whatever the student's code did to the kernel (docs/exercises.md).
+from nbconvert.preprocessors import ClearMetadataPreprocessor  # noqa: E402
+from nbgrader.preprocessors import (  # noqa: E402
+    AssignLatePenalties, CheckCellMetadata, Execute, IgnorePattern, LimitOutput, SaveAutoGrades,
+)
+
+from lbo_notebooks.exercises.grading.autograde import GradeOutsideKernel  # noqa: E402
+
+os.environ["LBO_GRADE_OUTSIDE_KERNEL"] = "1"  # read by the hidden tests' grade(): publish, do not judge
+c.Autograde.autograde_preprocessors = [
+    Execute, GradeOutsideKernel, IgnorePattern, ClearMetadataPreprocessor, LimitOutput, SaveAutoGrades,
+    AssignLatePenalties, CheckCellMetadata,
+]
 # Kernels on local IPC sockets, not TCP: ipykernel warns at each start that TCP is unencrypted, and
 # a warning in a graded cell's output costs the student its points.
 c.KernelManager.transport = "ipc"

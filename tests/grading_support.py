@@ -9,7 +9,10 @@ goes through the real fresh process, as nbgrader does.
 
 from __future__ import annotations
 
+import json
+import re
 import textwrap
+from pathlib import Path
 from typing import Any
 
 import cloudpickle
@@ -64,3 +67,41 @@ def graded(exercise: str, **given: Any) -> float:
         return grade(exercise, **given)
     except AssertionError:
         return 0.0
+
+
+def assert_full(exercise: str, **given: Any) -> str:
+    """Assert the answers earn the exercise's full points; return the message."""
+    earned, status, message = verdict(exercise, **given)
+    assert earned == full_points(exercise), (given, status, message)
+    return message
+
+
+def assert_zero(exercise: str, *words: str, status: str = "wrong", **given: Any) -> str:
+    """Assert the answers earn nothing, with ``status`` and a message holding each of ``words``
+    (case-insensitive); return the message."""
+    earned, got, message = verdict(exercise, **given)
+    assert earned == 0 and got == status, (given, got, message)
+    for word in words:
+        assert word.lower() in message.lower(), (word, message)
+    return message
+
+
+_MARKERS = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
+_REGION = re.compile(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*")
+
+
+def answer_cell(notebook: Path, exercise: str) -> str:
+    """The source of ``exercise``'s answer cell (grade id ``<exercise>-answer``) in ``notebook``."""
+    cells = json.loads(notebook.read_text(encoding="utf-8"))["cells"]
+    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
+    return "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+
+
+def solution_of(notebook: Path, exercise: str) -> str:
+    """The instructor's answer cell as a student who wrote it would run it (markers stripped)."""
+    return _MARKERS.sub("", answer_cell(notebook, exercise))
+
+
+def stub_of(notebook: Path, exercise: str) -> str:
+    """The answer cell as the student edition hands it out (the solution replaced by the stub)."""
+    return _REGION.sub(r"\1# YOUR CODE HERE\n\1pass", answer_cell(notebook, exercise))

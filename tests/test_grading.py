@@ -147,3 +147,42 @@ def test_a_verdict_is_a_fraction():
         grading.Verdict(1.5, "too much")
     with pytest.raises(ValueError, match="kind"):
         grading.grader("99-x", kind="essay")
+
+
+def _check_cell(exercise: str, outputs: list) -> "nbformat.NotebookNode":
+    import nbformat
+
+    cell = nbformat.v4.new_code_cell("feedback = ...", metadata={"nbgrader": {
+        "grade": True, "solution": False, "grade_id": f"{exercise}-check", "points": 1}})
+    cell.outputs = [nbformat.from_dict(o) for o in outputs]
+    return cell
+
+
+def _published(exercise: str, **answers) -> dict:
+    import base64
+
+    import cloudpickle
+
+    payload = base64.b64encode(cloudpickle.dumps(answers)).decode("ascii")
+    return {"output_type": "display_data", "metadata": {}, "data": {grading.ANSWERS_MIME: {"exercise": exercise, "payload": payload}}}
+
+
+def test_autograde_decides_outside_the_kernel():
+    """The course's preprocessor judges the published answers itself: what the kernel claimed (a
+    score, an error, a warning on stderr) is replaced, and a cell that published nothing earns 0."""
+    pytest.importorskip("nbconvert")
+    from lbo_notebooks.exercises.grading.autograde import GradeOutsideKernel
+
+    claimed = {"output_type": "execute_result", "execution_count": 1, "metadata": {}, "data": {"text/plain": "1.0"}}
+    warning = {"output_type": "stream", "name": "stderr", "text": "a student's warning\n"}
+    pre = GradeOutsideKernel()
+    right, _ = pre.preprocess_cell(_check_cell("01-stretch", [warning, _published("01-stretch", stretch="double")]), {}, 0)
+    kinds = [o.output_type for o in right.outputs]
+    assert kinds[-1] == "execute_result" and right.outputs[-1].data["text/plain"] == "1.0" and "error" not in kinds
+    assert all(o.get("name") != "stderr" for o in right.outputs)        # nbgrader would score stderr as 0
+    wrong, _ = pre.preprocess_cell(_check_cell("01-stretch", [claimed, _published("01-stretch", stretch="same")]), {}, 0)
+    assert [o.output_type for o in wrong.outputs] == ["error"] and "0 / 1 points" in wrong.outputs[0].evalue
+    faked, _ = pre.preprocess_cell(_check_cell("01-stretch", [claimed]), {}, 0)   # grade() replaced: nothing published
+    assert [o.output_type for o in faked.outputs] == ["error"] and "no answers reached" in faked.outputs[0].evalue
+    other, _ = pre.preprocess_cell(_check_cell("01-stretch", [_published("01-area", area_factor=2.56)]), {}, 0)
+    assert other.outputs[-1].output_type == "error"                     # answers of another exercise

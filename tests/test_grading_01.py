@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from .grading_support import answers, full_points, graded, verdict
+from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "01_shapes.ipynb"
 MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
@@ -26,14 +26,11 @@ def _answer_cell(exercise: str) -> str:
 
 
 def solution(exercise: str) -> str:
-    """The instructor's answer cell, markers stripped (the placeholders, then the solution)."""
-    return MARKER.sub("", _answer_cell(exercise))
+    return solution_of(NOTEBOOK, exercise)
 
 
 def student_edition(exercise: str) -> str:
-    """The answer cell as handed out (scripts/student_edition.py's stub in place of the solution)."""
-    return re.sub(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*", r"\1# YOUR CODE HERE\n\1pass",
-                  _answer_cell(exercise))
+    return stub_of(NOTEBOOK, exercise)
 
 
 @pytest.fixture(scope="module")
@@ -46,18 +43,8 @@ def context():
             "dog": creature("dog", n_vertices=N), "parts": creature_parts("dog", n_vertices=N)}
 
 
-def _full(exercise, **given):
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (status, message)
-    return message
-
-
-def _zero(exercise, *words, status="wrong", **given):
-    points, got_status, message = verdict(exercise, **given)
-    assert points == 0 and got_status == status, (points, got_status, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
+_full = assert_full
+_zero = assert_zero
 
 
 def test_points_follow_the_kinds():

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks.exercises.grading import nb04
-from tests.grading_support import answers, full_points, graded, verdict
+from tests.grading_support import answers, assert_full, assert_zero, full_points, graded, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "04_your_own_data.ipynb"
 EXERCISES = ("04-repair", "04-operator", "04-cloud", "04-largest", "04-neighbors", "04-gap", "04-recap")
@@ -67,17 +67,8 @@ def context(notebook: dict, *names: str) -> dict:
     return {name: notebook[name] for name in names}
 
 
-def full(exercise: str, **given) -> None:
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (given, status, message)
-
-
-def zero(exercise: str, *words: str, status: str = "wrong", **given) -> str:
-    points, got, message = verdict(exercise, **given)
-    assert points == 0 and got == status, (given, got, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
+full = assert_full
+zero = assert_zero
 
 
 def test_points_follow_the_kinds():

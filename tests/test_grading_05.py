@@ -4,7 +4,6 @@ calls in the build exercise, placeholders; see lbo_notebooks/exercises/grading/n
 
 from __future__ import annotations
 
-import json
 import re
 import warnings
 from pathlib import Path
@@ -12,25 +11,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from .grading_support import answers, full_points, graded, verdict
+from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "05_optimality_theorem.ipynb"
 MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 
 
 def solution(exercise: str) -> str:
-    """The instructor's answer cell of ``exercise``, markers stripped (placeholders, then the solution)."""
-    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
-    return MARKER.sub("", "".join(cell["source"]))
+    return solution_of(NOTEBOOK, exercise)
 
 
 def student_edition(exercise: str) -> str:
-    """The answer cell as the student edition hands it out (scripts/student_edition.py's stub)."""
-    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
-    source = "".join(cell["source"])
-    return re.sub(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*", r"\1# YOUR CODE HERE\n\1pass", source)
+    return stub_of(NOTEBOOK, exercise)
 
 
 @pytest.fixture(scope="module")
@@ -45,18 +37,8 @@ def notebook():
     return {"dog": dog, "spectra": {"dog": lbo.eigenbasis(dog, 101)}}
 
 
-def _full(exercise, **given):
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (status, message)
-    return message
-
-
-def _zero(exercise, *words, status="wrong", **given):
-    points, got_status, message = verdict(exercise, **given)
-    assert points == 0 and got_status == status, (got_status, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
+_full = assert_full
+_zero = assert_zero
 
 
 def test_points_follow_the_kinds():

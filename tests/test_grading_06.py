@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from .grading_support import answers, full_points, graded, verdict
+from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "06_optimality_ties.ipynb"
 MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
@@ -27,14 +27,11 @@ def _answer_cell(exercise: str) -> str:
 
 
 def solution(exercise: str) -> str:
-    """The instructor's answer cell of ``exercise``, markers stripped (placeholders, then the solution)."""
-    return MARKER.sub("", _answer_cell(exercise))
+    return solution_of(NOTEBOOK, exercise)
 
 
 def student_edition(exercise: str) -> str:
-    """The answer cell as the student edition hands it out (scripts/student_edition.py's stub)."""
-    return re.sub(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*", r"\1# YOUR CODE HERE\n\1pass",
-                  _answer_cell(exercise))
+    return stub_of(NOTEBOOK, exercise)
 
 
 @pytest.fixture(scope="module")
@@ -56,18 +53,8 @@ def notebook():
             "plotting": types.SimpleNamespace(plot_mesh=lambda *args, **kwargs: None)}
 
 
-def _full(exercise, **given):
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (status, message)
-    return message
-
-
-def _zero(exercise, *words, status="wrong", **given):
-    points, got_status, message = verdict(exercise, **given)
-    assert points == 0 and got_status == status, (got_status, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
+_full = assert_full
+_zero = assert_zero
 
 
 def test_points_follow_the_kinds():

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.grading_support import answers, full_points, graded, verdict
+from tests.grading_support import answers, assert_full, assert_zero, full_points, graded, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "09_spectral_mds.ipynb"
 
@@ -24,17 +24,8 @@ def solution(exercise: str) -> str:
     return "\n".join(line for line in lines if not re.match(r"\s*### (BEGIN|END) SOLUTION", line))
 
 
-def full(exercise: str, **given) -> None:
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (given, status, message)
-
-
-def zero(exercise: str, *words: str, status: str = "wrong", **given) -> str:
-    points, got, message = verdict(exercise, **given)
-    assert points == 0 and got == status, (given, got, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
+full = assert_full
+zero = assert_zero
 
 
 def test_points_follow_the_kinds():

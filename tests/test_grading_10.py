@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.grading_support import answers, full_points, graded, verdict
+from tests.grading_support import answers, assert_full, assert_zero, full_points, graded, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "10_spectral_mds_at_scale.ipynb"
 
@@ -22,19 +22,6 @@ def solution(exercise: str) -> str:
     (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
     lines = "".join(cell["source"]).splitlines()
     return "\n".join(line for line in lines if not re.match(r"\s*### (BEGIN|END) SOLUTION", line))
-
-
-def full(exercise: str, **given) -> None:
-    points, status, message = verdict(exercise, **given)
-    assert points == full_points(exercise), (given, status, message)
-
-
-def zero(exercise: str, *words: str, status: str = "wrong", **given) -> str:
-    points, got, message = verdict(exercise, **given)
-    assert points == 0 and got == status, (given, got, message)
-    for word in words:
-        assert word.lower() in message.lower(), (word, message)
-    return message
 
 
 @pytest.fixture(scope="module")
@@ -52,6 +39,10 @@ def notebook():
     X_smds = spectral_mds(dog, spectrum=spectrum, sampling=sampling)
     return {"dog": dog, "spectrum": spectrum, "sampling": sampling, "X_classical": X_classical, "X_smds": X_smds,
             "spectral_mds": spectral_mds, "classical_mds": classical_mds, "gram_error": gram_error}
+
+
+full = assert_full
+zero = assert_zero
 
 
 def test_points_follow_the_kinds():

@@ -15,6 +15,8 @@ from the prompt's definitions (not from the notebook's variables), functions on 
 never shows, and for a *build it yourself* exercise with the library function it replaces made
 unavailable. Patching the checks, :class:`~lbo_notebooks.exercises.Feedback`, NumPy or the library
 from an answer cell therefore changes nothing, and the same answers get the same points every time.
+Under ``nbgrader autograde`` of a course written by ``./make.sh course``, the verdict is reached
+outside the student's kernel altogether (:mod:`~lbo_notebooks.exercises.grading.autograde`).
 
 The points of an exercise follow its kind (:data:`POINTS`; docs/exercises.md, "Points").
 
@@ -41,7 +43,7 @@ from typing import Any
 
 from ._registry import GRADERS, POINTS, Grader, LibraryUsed, Verdict, from_feedback, grader, student_call
 
-__all__ = ["grade", "POINTS", "GRADERS", "Grader", "Verdict", "grader", "student_call", "from_feedback",
+__all__ = ["grade", "graded_run", "ANSWERS_MIME", "POINTS", "GRADERS", "Grader", "Verdict", "grader", "student_call", "from_feedback",
            "LibraryUsed", "load_graders"]
 
 TIMEOUT = 300.0
@@ -66,7 +68,14 @@ def _environment() -> dict[str, str]:
     return env
 
 
-def grade(exercise: str, /, **answers: Any) -> float:
+ANSWERS_MIME = "application/vnd.lbo-notebooks.graded-answers+json"
+"""MIME type of the output in which :func:`grade` publishes the answers it sends (base64 of the
+pickle): ``nbgrader autograde`` with the course's preprocessor
+(:class:`~lbo_notebooks.exercises.grading.autograde.GradeOutsideKernel`) grades that output outside
+the student's kernel, whatever the kernel did."""
+
+
+def grade(exercise: str, /, **answers: Any) -> float | None:
     """The points the answers earn, judged in a fresh process; raises AssertionError with the reason
     when they earn none.
 
@@ -80,9 +89,12 @@ def grade(exercise: str, /, **answers: Any) -> float:
 
     Returns
     -------
-    float
+    float or None
         The points earned, more than 0; as a cell's last value nbgrader takes it as the score
-        (partial credit).
+        (partial credit). Under the course's ``nbgrader autograde`` (``NBGRADER_EXECUTION=autograde``
+        and :data:`OUTSIDE_KERNEL` set) it only publishes the answers as an output of the cell
+        (:data:`ANSWERS_MIME`) and returns None: the course's preprocessor grades them outside
+        the kernel, so that nothing an answer cell patched decides the points.
 
     Raises
     ------
@@ -97,6 +109,48 @@ def grade(exercise: str, /, **answers: Any) -> float:
     except Exception as err:  # noqa: BLE001 - anything an answer can hold
         raise AssertionError(f"{exercise} · 0 points: your answer could not be sent to the grader "
                              f"({type(err).__name__}: {err}).") from None
+    if _graded_outside() and _publish(exercise, payload):
+        return None
+    points, text = graded_run(exercise, payload)
+    if points <= 0:
+        raise AssertionError(text)
+    if points < POINTS_OF.get(exercise, points + 1):
+        print(text)
+    return points
+
+
+POINTS_OF: dict[str, float] = {}
+"""The full points of the exercises graded in this process (so that a partial score is explained)."""
+
+
+OUTSIDE_KERNEL = "LBO_GRADE_OUTSIDE_KERNEL"
+"""Set to 1 by the course's ``nbgrader_config.py``, which registers the preprocessor that grades
+the published answers outside the kernel; the kernels nbgrader starts inherit it."""
+
+
+def _graded_outside() -> bool:
+    return os.environ.get("NBGRADER_EXECUTION") == "autograde" and os.environ.get(OUTSIDE_KERNEL) == "1"
+
+
+def _publish(exercise: str, payload: bytes) -> bool:
+    """Publish the answers as an output of the running cell, for the course's preprocessor; False
+    outside IPython."""
+    try:
+        from IPython import get_ipython
+        from IPython.display import display
+    except ImportError:  # pragma: no cover - IPython comes with every kernel
+        return False
+    if get_ipython() is None:
+        return False
+    import base64
+
+    display({ANSWERS_MIME: {"exercise": exercise, "payload": base64.b64encode(payload).decode("ascii")}}, raw=True)
+    return True
+
+
+def graded_run(exercise: str, payload: bytes) -> tuple[float, str]:
+    """Judge pickled answers in a fresh process: (points, message). Never raises; a run that fails,
+    hangs or stops without a verdict earns 0 with a message that says so."""
     timeout = float(os.environ.get("LBO_GRADE_TIMEOUT", TIMEOUT))
     with tempfile.TemporaryDirectory(prefix="lbo-grade-") as tmp:
         answers_path, result_path = Path(tmp, "answers.pickle"), Path(tmp, "result.json")
@@ -108,19 +162,14 @@ def grade(exercise: str, /, **answers: Any) -> float:
         try:
             run = subprocess.run(command, cwd=tmp, env=_environment(), capture_output=True, timeout=timeout)
         except subprocess.TimeoutExpired:
-            raise AssertionError(f"{exercise} · 0 points: the graded run of your answer took longer than "
-                                 f"{timeout:g} s.") from None
+            return 0.0, f"{exercise} · 0 points: the graded run of your answer took longer than {timeout:g} s."
         if not result_path.exists():  # os._exit in an answer, memory exhausted, a crash in a library
             tail = " ".join(run.stderr.decode(errors="replace").strip().splitlines()[-3:])
-            raise AssertionError(f"{exercise} · 0 points: the graded run stopped before a verdict (exit status "
-                                 f"{run.returncode}). Does your answer end the process or use too much memory? {tail}".rstrip())
+            return 0.0, (f"{exercise} · 0 points: the graded run stopped before a verdict (exit status "
+                         f"{run.returncode}). Does your answer end the process or use too much memory? {tail}").rstrip()
         result = json.loads(result_path.read_text(encoding="utf-8"))
     if "error" in result:
-        raise AssertionError(f"{exercise}: the grader failed; tell your lecturer.\n{result['error']}")
+        return 0.0, f"{exercise}: the grader failed; tell your lecturer.\n{result['error']}"
+    POINTS_OF[exercise] = result["points"]
     points = round(result["fraction"] * result["points"], 2)
-    text = f"{exercise} · {points:g} / {result['points']} points: {result['message']}"
-    if points <= 0:
-        raise AssertionError(text)
-    if points < result["points"]:
-        print(text)
-    return float(points)
+    return float(points), f"{exercise} · {points:g} / {result['points']} points: {result['message']}"
