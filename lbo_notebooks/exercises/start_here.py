@@ -174,7 +174,7 @@ def _without_path(message: str) -> str:
 
 def check_load_error(error: Any, *, show: bool = True) -> Feedback:
     """Exercise 00-missing: the exception ``load_mesh`` raised for a face naming a vertex that does not exist."""
-    from ..mesh import Mesh, MeshError
+    from ..mesh import MeshError
 
     def body() -> str:
         require_attempt(error)
@@ -183,15 +183,23 @@ def check_load_error(error: Any, *, show: bool = True) -> Feedback:
                 return "Right: a `MeshError` that names the face and the vertex index that does not exist."
             raise Stop(WRONG, "That `MeshError` is about another defect of the file: read its message. Make one face "
                               "use an index past the last vertex (faces count vertices from 0).")
-        if isinstance(error, type):
-            raise Stop(WRONG, "That is an exception class; keep the exception object: `except lbo.MeshError as err: error = err`.")
-        if isinstance(error, str):
-            raise Stop(WRONG, "Keep the exception object itself (`error = err` inside the `except` block), not its text.")
-        if isinstance(error, Mesh):
-            raise Stop(WRONG, "`load_mesh` returned a mesh: no face of your file refers to a missing vertex. "
-                               "Faces count vertices from 0, so a file with 3 vertices has indices 0, 1, 2.")
-        if isinstance(error, BaseException):
-            raise Stop(WRONG, f"`load_mesh` refuses a broken mesh with a `MeshError`; you caught a {type(error).__name__}. "
-                               "Is the file's header (counts of vertices and faces) consistent?")
-        raise Stop(WRONG, f"Expected the exception object, got {type(error).__name__}.")
+        raise Stop(WRONG, not_a_mesh_error(error))
     return run_check("00-missing", show, body)
+
+
+def not_a_mesh_error(error: Any) -> str:
+    """The hint for an answer to 00-missing that is not a ``MeshError`` (the check and the graded
+    test share it)."""
+    from ..mesh import Mesh
+
+    if isinstance(error, type):
+        return "That is an exception class; keep the exception object: `except lbo.MeshError as err: error = err`."
+    if isinstance(error, str):
+        return "Keep the exception object itself (`error = err` inside the `except` block), not its text."
+    if isinstance(error, Mesh):
+        return ("`load_mesh` returned a mesh: no face of your file refers to a missing vertex. "
+                "Faces count vertices from 0, so a file with 3 vertices has indices 0, 1, 2.")
+    if isinstance(error, BaseException):
+        return (f"`load_mesh` refuses a broken mesh with a `MeshError`; you kept a {type(error).__name__}. "
+                "Is the file's path right, and its header (counts of vertices and faces) consistent?")
+    return f"Expected the exception object, got {type(error).__name__}."

@@ -85,7 +85,7 @@ def _names_a_missing_vertex(body: str) -> bool:
 
 @grader("00-missing", kind="explore")
 def _missing(error: Any) -> Verdict:
-    from ...mesh import Mesh, MeshError
+    from ...mesh import MeshError
 
     if is_placeholder(error):
         raise Stop(NOT_ATTEMPTED, "Replace the `...` placeholder with the exception `load_mesh` raises and run the cell again.")
@@ -99,14 +99,6 @@ def _missing(error: Any) -> Verdict:
                                 "the range of the file's indices.")
         raise Stop(WRONG, "That `MeshError` is about another defect of the file: read its message. Make one face use "
                           "an index past the last vertex (faces count vertices from 0 in OFF and PLY, from 1 in OBJ).")
-    if isinstance(error, type):
-        raise Stop(WRONG, "That is an exception class; keep the exception object: `except lbo.MeshError as err: error = err`.")
-    if isinstance(error, str):
-        raise Stop(WRONG, "Keep the exception object itself (`error = err` inside the `except` block), not its text.")
-    if isinstance(error, Mesh):
-        raise Stop(WRONG, "`load_mesh` returned a mesh: no face of your file refers to a missing vertex. Faces count "
-                          "vertices from 0, so a file with 3 vertices has indices 0, 1, 2.")
-    if isinstance(error, BaseException):
-        raise Stop(WRONG, f"`load_mesh` refuses a broken mesh with a `MeshError`; you kept a {type(error).__name__}. "
-                          "Is the file's path right, and its header (counts of vertices and faces) consistent?")
-    raise Stop(WRONG, f"Expected the exception object, got {type(error).__name__}.")
+    from ..start_here import not_a_mesh_error
+
+    raise Stop(WRONG, not_a_mesh_error(error))
