@@ -175,7 +175,12 @@ def test_autograde_decides_outside_the_kernel():
 
     claimed = {"output_type": "execute_result", "execution_count": 1, "metadata": {}, "data": {"text/plain": "1.0"}}
     warning = {"output_type": "stream", "name": "stderr", "text": "a student's warning\n"}
+    import nbformat
+
     pre = GradeOutsideKernel()
+    nb = nbformat.v4.new_notebook(cells=[_check_cell("01-stretch", [claimed])])
+    nb, _ = pre(nb, {})                                                  # as nbconvert calls it: enabled
+    assert [o.output_type for o in nb.cells[0].outputs] == ["error"]
     right, _ = pre.preprocess_cell(_check_cell("01-stretch", [warning, _published("01-stretch", stretch="double")]), {}, 0)
     kinds = [o.output_type for o in right.outputs]
     assert kinds[-1] == "execute_result" and right.outputs[-1].data["text/plain"] == "1.0" and "error" not in kinds

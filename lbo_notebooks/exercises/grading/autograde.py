@@ -20,6 +20,7 @@ from typing import Any
 
 from nbconvert.preprocessors import Preprocessor
 from nbformat.v4 import new_output
+from traitlets import Bool
 
 from . import ANSWERS_MIME, graded_run
 
@@ -32,6 +33,9 @@ def _is_check(cell: Any) -> bool:
 
 class GradeOutsideKernel(Preprocessor):
     """Replace each check cell's outcome by the verdict on the answers its hidden test published."""
+
+    # nbconvert's preprocessors do nothing unless enabled; this one is registered only to run.
+    enabled = Bool(True).tag(config=True)
 
     def preprocess_cell(self, cell: Any, resources: Any, index: int) -> tuple[Any, Any]:
         if not _is_check(cell):
