@@ -191,3 +191,16 @@ def test_autograde_decides_outside_the_kernel():
     assert [o.output_type for o in faked.outputs] == ["error"] and "no answers reached" in faked.outputs[0].evalue
     other, _ = pre.preprocess_cell(_check_cell("01-stretch", [_published("01-area", area_factor=2.56)]), {}, 0)
     assert other.outputs[-1].output_type == "error"                     # answers of another exercise
+
+
+def test_under_the_courses_autograde_grade_only_publishes_and_fails_safe(monkeypatch):
+    """With NBGRADER_EXECUTION=autograde and the course's flag, grade() leaves the verdict to the
+    preprocessor: in a kernel it publishes the answers and raises, so that a course without the
+    preprocessor scores the cell 0, never full marks."""
+    published = []
+    monkeypatch.setenv("NBGRADER_EXECUTION", "autograde")
+    monkeypatch.setenv(grading.OUTSIDE_KERNEL, "1")
+    monkeypatch.setattr(grading, "_publish", lambda exercise, payload: published.append(exercise) or True)
+    with pytest.raises(AssertionError, match="course's grader"):
+        grading.grade("01-stretch", stretch="double")
+    assert published == ["01-stretch"]

@@ -75,7 +75,7 @@ pickle): ``nbgrader autograde`` with the course's preprocessor
 the student's kernel, whatever the kernel did."""
 
 
-def grade(exercise: str, /, **answers: Any) -> float | None:
+def grade(exercise: str, /, **answers: Any) -> float:
     """The points the answers earn, judged in a fresh process; raises AssertionError with the reason
     when they earn none.
 
@@ -89,12 +89,13 @@ def grade(exercise: str, /, **answers: Any) -> float | None:
 
     Returns
     -------
-    float or None
+    float
         The points earned, more than 0; as a cell's last value nbgrader takes it as the score
         (partial credit). Under the course's ``nbgrader autograde`` (``NBGRADER_EXECUTION=autograde``
         and :data:`OUTSIDE_KERNEL` set) it only publishes the answers as an output of the cell
-        (:data:`ANSWERS_MIME`) and returns None: the course's preprocessor grades them outside
-        the kernel, so that nothing an answer cell patched decides the points.
+        (:data:`ANSWERS_MIME`) and raises: the course's preprocessor grades them outside the
+        kernel and replaces the error by its verdict, so that nothing an answer cell patched
+        decides the points (and a course without that preprocessor scores 0, not full marks).
 
     Raises
     ------
@@ -110,7 +111,9 @@ def grade(exercise: str, /, **answers: Any) -> float | None:
         raise AssertionError(f"{exercise} · 0 points: your answer could not be sent to the grader "
                              f"({type(err).__name__}: {err}).") from None
     if _graded_outside() and _publish(exercise, payload):
-        return None
+        # Fail-safe: without the course's preprocessor, which replaces this error by its verdict,
+        # the cell scores 0, never full marks.
+        raise AssertionError(f"{exercise}: the answers went to the course's grader, whose verdict replaces this line.")
     points, text = graded_run(exercise, payload)
     if points <= 0:
         raise AssertionError(text)
