@@ -5,8 +5,6 @@ hidden tests used to assert (sizes honoured, triangle quality, the leg-area pred
 
 from __future__ import annotations
 
-import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -15,14 +13,7 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "01_shapes.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 N = 5000  # the notebook's N
-
-
-def _answer_cell(exercise: str) -> str:
-    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
-    return "".join(cell["source"])
 
 
 def solution(exercise: str) -> str:

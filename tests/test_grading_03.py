@@ -6,8 +6,6 @@ to assert (the sphere's spectrum with either mass, the kernels, W under scaling)
 
 from __future__ import annotations
 
-import json
-import re
 import textwrap
 from pathlib import Path
 
@@ -18,13 +16,6 @@ import pytest
 from .grading_support import answers, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "03_laplace_beltrami.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
-
-
-def _answer_cell(exercise: str) -> str:
-    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
-    return "".join(cell["source"])
 
 
 class Sent(bytes):

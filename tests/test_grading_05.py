@@ -4,7 +4,6 @@ calls in the build exercise, placeholders; see lbo_notebooks/exercises/grading/n
 
 from __future__ import annotations
 
-import re
 import warnings
 from pathlib import Path
 
@@ -14,7 +13,6 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "05_optimality_theorem.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 
 
 def solution(exercise: str) -> str:

@@ -5,8 +5,6 @@ notebook's data. See lbo_notebooks/exercises/grading/nb06.py."""
 
 from __future__ import annotations
 
-import json
-import re
 import types
 import warnings
 from pathlib import Path
@@ -17,13 +15,6 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "06_optimality_ties.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
-
-
-def _answer_cell(exercise: str) -> str:
-    cells = json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-    (cell,) = [c for c in cells if c["metadata"].get("nbgrader", {}).get("grade_id") == f"{exercise}-answer"]
-    return "".join(cell["source"])
 
 
 def solution(exercise: str) -> str:

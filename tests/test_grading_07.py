@@ -6,7 +6,6 @@ hidden tests asserted, kept here as facts of the library (they belong to no stud
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -15,7 +14,6 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "07_min_max.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 
 
 def solution(exercise: str) -> str:

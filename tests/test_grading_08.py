@@ -7,7 +7,6 @@ asserted, kept here as facts of the library (they belong to no student's answer)
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -16,7 +15,6 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "08_scale_invariant.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 TWO_PI = 2 * np.pi
 
 

@@ -8,7 +8,6 @@ are tests of the library here."""
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -17,18 +16,12 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, cell, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "11_regularized_pca.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 EXERCISES = {"11-energy": "compute", "11-limits": "predict", "11-validation": "compute", "11-scale": "predict",
              "11-objective": "build", "11-recap": "recap"}
 
 
 def _cells() -> list[dict]:
     return json.loads(NOTEBOOK.read_text(encoding="utf-8"))["cells"]
-
-
-def _source(grade_id: str) -> str:
-    (found,) = [c for c in _cells() if c["metadata"].get("nbgrader", {}).get("grade_id") == grade_id]
-    return "".join(found["source"])
 
 
 def solution(exercise: str) -> str:

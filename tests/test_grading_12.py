@@ -7,7 +7,6 @@ bound holds for f_z) is a test of the library here; the 12-mirror explanation is
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
 import numpy as np
@@ -16,7 +15,6 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "12_spectral_toolbox.ipynb"
-MARKER = re.compile(r"^[ \t]*### (BEGIN|END) SOLUTION[^\n]*\n?", re.MULTILINE)
 EXERCISES = {"12-hks": "build", "12-fmap": "build", "12-alpha": "predict", "12-bound": "compute",
              "12-mirror": "predict", "12-zoomout": "predict", "12-recap": "recap"}
 NAMES = {"12-hks": ["my_hks"], "12-fmap": ["my_functional_map"], "12-alpha": ["best_alpha"], "12-bound": ["bound_z"],
