@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import json
 import re
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -15,7 +17,7 @@ import scipy.sparse as sp
 
 from lbo_notebooks import exercises as ex
 from lbo_notebooks import operators, shapes
-from lbo_notebooks.exercises import CORRECT, NOT_ATTEMPTED, WRONG
+from lbo_notebooks.exercises import CORRECT, NOT_ATTEMPTED, WRONG, Feedback
 
 NOTEBOOKS = Path(__file__).resolve().parent.parent / "notebooks"
 PLACEHOLDERS = [..., None, NotImplemented, "...", ""]
@@ -1587,3 +1589,77 @@ def test_step_decay():
         _status(ex.check_step_decay(placeholder, show=False), NOT_ATTEMPTED)
     message = ex.check_step_decay(3, show=False).message
     assert not any(np.isclose(float(v), _step_error_ratio(), rtol=0.05) for v in re.findall(r"\d+\.?\d*", message))
+
+
+# --- answers that are hostile objects (issue 41 item 7) -----------------------------------------
+
+class _Sly(str):
+    """A str whose methods read the check's options from the calling frame and answer the right one."""
+
+    def _look(self) -> str:
+        frame = sys._getframe(1)
+        while frame is not None:
+            options = frame.f_locals.get("options")
+            if isinstance(options, dict):
+                return next(k for k, v in options.items() if v is None or type(v).__name__ == "right")
+            frame = frame.f_back
+        return str.__str__(self)
+
+    lower = strip = casefold = _look
+
+    def split(self, *args):  # noqa: ANN002
+        return [self._look()]
+
+
+def _choice_checks():
+    """Every multiple-choice check and the answer slot it takes (a check whose options dict is
+    passed to ``feedback.choose``)."""
+    return [ex.check_consistent_mass, ex.check_stretch_growth, ex.check_fmm_gap, ex.check_landmark_samples,
+            ex.check_mu_range, ex.check_shifted_basis, ex.check_extra_function, ex.check_stationary_frame,
+            ex.check_lowest_family, ex.check_interlacing, ex.check_sphere_alpha, ex.check_consistent_invariance,
+            ex.check_zoomout, ex.check_neighbors_effect]
+
+
+@pytest.mark.parametrize("check", _choice_checks(), ids=lambda c: c.__name__)
+def test_a_str_subclass_cannot_read_the_options(check):
+    """The answer is read as its plain text: overridden str methods never run inside a check."""
+    _status(check(_Sly("no such option"), show=False), WRONG)
+
+
+def test_answers_whose_conversion_never_returns_are_wrong_in_bounded_time(monkeypatch):
+    monkeypatch.setenv("LBO_CHECK_SECONDS", "2")
+
+    class Forever:
+        def __float__(self):
+            while True:
+                pass
+
+    class ForeverFloat(float):
+        def __float__(self):
+            while True:
+                pass
+
+    def forever(*args):  # noqa: ANN002
+        while True:
+            try:
+                pass
+            except Exception:  # noqa: BLE001 - the loop swallows what it can
+                pass
+
+    start = time.monotonic()
+    _status(ex.check_area_factor(Forever(), scale=1.6, show=False), WRONG, "Expected")
+    _status(ex.check_area_factor(ForeverFloat(1.6 ** 2), scale=1.6, show=False), CORRECT)  # its value, not its method
+    _status(ex.check_stiffness(forever, show=False), WRONG, "did not finish")
+    assert time.monotonic() - start < 30
+
+
+def test_feedback_renders_inline_markdown():
+    html = Feedback("03-x", WRONG, "Off by *two*: use λ_0 and Φ_{n-1}, not `Phi.T @ f`.")._repr_html_()
+    assert "<em>two</em>" in html and "λ<sub>0</sub>" in html and "Φ<sub>n-1</sub>" in html
+    assert "<code>Phi.T @ f</code>" in html and "*" not in html.split("exercise 03-x:")[1]
+
+
+def test_solution_refuses_paths_in_an_exercise_id():
+    for bad in ("../../etc-passwd", "03-mass/../x", "03_mass", "", 3):
+        with pytest.raises(ValueError, match="exercise id"):
+            ex.solution(bad, show=False)

@@ -42,6 +42,31 @@ from .start_here import check_sphere_eigenvalues, check_mesh_size, check_eigenfu
 from .regularized_pca import check_rpca_limits, check_dirichlet_energies, check_validation_choice, check_mu_scaling, check_rpca_objective, check_recap_rpca
 from .toolbox import check_hks, check_functional_map, check_truncation_bound, check_alpha_choice, check_mirror_maps, check_zoomout, check_recap_toolbox
 
+
+
+def _reading_plain(check):  # type: ignore[no-untyped-def]
+    """``check`` with its answers read as :func:`~lbo_notebooks.exercises.feedback.plain` data first,
+    so that no method of an answer's own class (a ``str`` subclass's ``lower``) runs inside it."""
+    import functools
+
+    @functools.wraps(check)
+    def reading_plain(*args, **kwargs):  # type: ignore[no-untyped-def]
+        try:
+            args = tuple(_plain(a) for a in args)
+            kwargs = {k: _plain(v) for k, v in kwargs.items()}
+        except _Stop as stop:
+            return _result(check.__name__, stop.status, stop.message, kwargs.get("show", True))
+        return check(*args, **kwargs)
+    del reading_plain.__wrapped__  # the check's own globals stay out of reach of an answer
+    return reading_plain
+
+
+from .feedback import Stop as _Stop, plain as _plain, result as _result  # noqa: E402
+
+for _name in [n for n in dir() if n.startswith("check_")]:
+    globals()[_name] = _reading_plain(globals()[_name])
+del _name
+
 __all__ = [
     "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "check_edge_count",
     "check_area_factor", "check_stretch_growth", "check_smallest_angles", "check_leg_area",

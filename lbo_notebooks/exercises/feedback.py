@@ -19,6 +19,9 @@ import html
 import json
 import os
 import re
+import signal
+import threading
+from contextlib import contextmanager
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
@@ -29,7 +32,7 @@ __all__ = [
     "Feedback", "CORRECT", "WRONG", "NOT_ATTEMPTED", "MIME_TYPE", "solution", "Stop", "run_check",
     "require_attempt", "as_number", "call_attempt", "close_to", "same_values", "choose",
     "unanswered", "is_placeholder", "result", "pick", "number_judge", "recap", "solutions_available",
-    "SELF_STUDY_MARKER", "ratio_one", "as_array", "named_option",
+    "SELF_STUDY_MARKER", "ratio_one", "as_array", "named_option", "plain", "right", "CHECK_SECONDS",
 ]
 
 CORRECT, WRONG, NOT_ATTEMPTED = "correct", "wrong", "not attempted"
@@ -84,7 +87,7 @@ class Feedback:
 
     def _repr_html_(self) -> str:
         colour, mark = _STYLE[self.status]
-        text = re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(self.message, quote=False))
+        text = _inline_markdown(self.message)
         reveal = ("" if self.correct or not solutions_available() else
                   f' <span style="opacity: 0.6">(to see a solution: <code>exercises.solution("{html.escape(self.exercise)}")</code>)</span>')
         return (f'<div class="lbo-feedback" data-exercise="{html.escape(self.exercise)}" data-status="{self.status}" '
@@ -101,6 +104,36 @@ class Feedback:
         if shell is not None and self._shown_at == shell.execution_count:
             return
         _show(self)
+
+
+_SUB = re.compile(r"(?<![\w\\])([A-Za-zα-ωΑ-Ω])_(\{[^{}]+\}|\([^()]+\)|[0-9A-Za-z]+)")
+_SUP = re.compile(r"(?<=[\w)])\^(\{[^{}]+\}|\([^()]*(?:\([^()]*\)[^()]*)*\)|[0-9A-Za-z−-]+)")
+
+
+def _inline_markdown(message: str) -> str:
+    """A message's inline Markdown as HTML: `code`, **strong**, *emphasis*, and the subscripts and
+    superscripts of formulas (λ_0, φ_{n−1}, s^(2(1−α))), never inside code.
+
+    >>> _inline_markdown("Not *two*: `Phi.T @ A` gives λ_0 and Φ_{n-1}, e^(−λt).")
+    'Not <em>two</em>: <code>Phi.T @ A</code> gives λ<sub>0</sub> and Φ<sub>n-1</sub>, e<sup>−λt</sup>.'
+    """
+    pieces = re.split(r"(`[^`]+`)", message)
+    out = []
+    for k, piece in enumerate(pieces):
+        if k % 2:
+            out.append(f"<code>{html.escape(piece[1:-1], quote=False)}</code>")
+            continue
+        text = html.escape(piece, quote=False)
+        text = re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", text)
+        text = re.sub(r"(?<![\w*])\*([^*\s](?:[^*]*[^*\s])?)\*(?![\w*])", r"<em>\1</em>", text)
+        text = _SUB.sub(lambda m: f"{m.group(1)}<sub>{_unwrap(m.group(2))}</sub>", text)
+        text = _SUP.sub(lambda m: f"<sup>{_unwrap(m.group(1))}</sup>", text)
+        out.append(text)
+    return "".join(out)
+
+
+def _unwrap(group: str) -> str:
+    return group[1:-1] if group[:1] in "{(" else group
 
 
 def _shell() -> Any:
@@ -131,15 +164,77 @@ def result(exercise: str, status: str, message: str, show: bool) -> Feedback:
 
 # --- the answer as given -------------------------------------------------------------------------
 
+_PLAIN_ITEMS = 10_000_000
+
+
+def plain(x: Any) -> Any:
+    """The answer as plain built-in data, read without running any method its own class defines.
+
+    A subclass of ``str``, ``int``, ``float``, ``list``, ``tuple``, ``dict`` or of NumPy's array
+    comes back as the base type with the same content, so that no override (a ``lower()`` that
+    looks around, a ``__float__`` that never returns) runs while a check reads it; containers are
+    read item by item (up to ten million items); anything else (a function, a mesh, a sparse
+    matrix) is returned as it is.
+
+    Examples
+    --------
+    >>> class Sly(str):
+    ...     def lower(self): return "whatever the check wants"
+    >>> type(plain(Sly("Double"))), plain([Sly("a"), (1, 2.5)])
+    (<class 'str'>, ['a', (1, 2.5)])
+    """
+    budget = [_PLAIN_ITEMS]
+
+    def read(x: Any, depth: int) -> Any:
+        budget[0] -= 1
+        if budget[0] < 0 or depth > 50:
+            raise Stop(WRONG, "Your answer is nested too deeply or is too large to be an answer here.")
+        if x is None or x is Ellipsis or x is NotImplemented or type(x) in (bool, int, float, complex, str):
+            return x
+        if isinstance(x, bool):
+            return bool(x)
+        if isinstance(x, int):
+            return int.__int__(x)
+        if isinstance(x, float):
+            return float.__float__(x)
+        if isinstance(x, complex):
+            return complex(complex.real.__get__(x), complex.imag.__get__(x))
+        if isinstance(x, str):
+            return str.__str__(x)
+        if isinstance(x, np.generic) and type(x).__module__ == "numpy":
+            return x
+        if isinstance(x, np.ndarray):
+            array = np.ndarray.view(x, np.ndarray)
+            if array.dtype != object:
+                return array
+            budget[0] -= array.size
+            if budget[0] < 0:
+                raise Stop(WRONG, "Your answer is too large to be an answer here.")
+            items = [read(item, depth + 1) for item in array.reshape(-1).tolist()]
+            out = np.empty(len(items), dtype=object)
+            out[:] = items
+            return out.reshape(array.shape)
+        if isinstance(x, (list, tuple)):
+            items = [read(item, depth + 1) for item in (list.__iter__(x) if isinstance(x, list) else tuple.__iter__(x))]
+            return items if isinstance(x, list) else tuple(items)
+        if isinstance(x, dict):
+            return {read(key, depth + 1): read(value, depth + 1) for key, value in dict.items(x)}
+        return x
+
+    return read(x, 0)
+
+
 def is_placeholder(x: Any) -> bool:
-    return x is None or x is Ellipsis or x is NotImplemented or (isinstance(x, str) and x.strip() in ("", "..."))
+    return (x is None or x is Ellipsis or x is NotImplemented
+            or (isinstance(x, str) and str.strip(str.__str__(x)) in ("", "...")))
 
 
 def unanswered(x: Any) -> str | None:
     """Why ``x`` counts as not attempted (a message), or None if it is an attempt."""
     if is_placeholder(x):
         return "Replace the `...` placeholder with your answer and run the cell again."
-    parts = list(x.values()) if isinstance(x, Mapping) else list(x) if isinstance(x, (list, tuple)) else []
+    x = plain(x)
+    parts = list(x.values()) if isinstance(x, dict) else list(x) if isinstance(x, (list, tuple)) else []
     if parts and all(is_placeholder(p) for p in parts):
         return "Replace the `...` placeholders with your answers and run the cell again."
     return None
@@ -153,12 +248,61 @@ class Stop(Exception):
         self.status, self.message = status, message
 
 
-def run_check(exercise: str, show: bool, body: Callable[[], str]) -> Feedback:
-    """Run a check's body: it returns the message of a correct answer or raises Stop."""
+CHECK_SECONDS = 120.0
+"""How long a check may run (``LBO_CHECK_SECONDS`` overrides it): an answer that never finishes (a
+student function that loops, an object whose conversion to a number never returns) is reported
+as wrong after that long instead of hanging the cell."""
+
+
+class _Overtime(BaseException):
+    """Raised into a check that ran past its time (a BaseException: the student's ``except
+    Exception`` cannot swallow it)."""
+
+
+@contextmanager
+def _time_limit(seconds: float) -> Any:
+    """Raise :class:`_Overtime` into the block after ``seconds`` of wall time, with a real-time
+    interval timer; only where signals can be used (the main thread of a POSIX process, no timer
+    of someone else's running), else the block runs unbounded."""
+    usable = (hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+              and signal.getitimer(signal.ITIMER_REAL)[0] == 0)
+    if not usable:
+        yield
+        return
+
+    def overtime(signum: int, frame: Any) -> None:
+        raise _Overtime
+
+    previous = signal.signal(signal.SIGALRM, overtime)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
     try:
-        return result(exercise, CORRECT, body(), show)
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def _check_seconds() -> float:
+    try:
+        seconds = float(os.environ.get("LBO_CHECK_SECONDS", CHECK_SECONDS))
+    except ValueError:
+        return CHECK_SECONDS
+    return seconds if np.isfinite(seconds) and seconds > 0 else CHECK_SECONDS
+
+
+def run_check(exercise: str, show: bool, body: Callable[[], str]) -> Feedback:
+    """Run a check's body: it returns the message of a correct answer or raises Stop. A body that
+    runs past :data:`CHECK_SECONDS` ends as *wrong*: the answer did not finish."""
+    seconds = _check_seconds()
+    try:
+        with _time_limit(seconds):
+            message = body()
     except Stop as stop:
         return result(exercise, stop.status, stop.message, show)
+    except _Overtime:
+        return result(exercise, WRONG, f"The check stopped after {seconds:g} s: your answer (or a function it calls) "
+                      "did not finish. Look for a loop that never ends, then run the cell again.", show)
+    return result(exercise, CORRECT, message, show)
 
 
 def require_attempt(x: Any) -> None:
@@ -172,6 +316,11 @@ def require_attempt(x: Any) -> None:
 
 
 def as_number(x: Any, what: str = "a number") -> float:
+    x = plain(x)
+    # Only types whose conversion runs no code of the answer's own (a Fraction or a Decimal is fine).
+    if not (isinstance(x, (bool, int, float, complex, str, list, tuple, np.ndarray, np.generic))
+            or type(x).__module__ in ("fractions", "decimal")):
+        raise Stop(WRONG, f"Expected {what} (a finite float), got {_shown_type(x)}.")
     try:
         value = float(np.asarray(x, dtype=np.float64).reshape(()))
     except (TypeError, ValueError, OverflowError, ArithmeticError):
@@ -195,9 +344,12 @@ def as_array(value: Any, what: str, *, finite: bool = True) -> np.ndarray:
 
     if sp.issparse(value):
         value = value.toarray()
+    value = plain(value)
+    if not isinstance(value, (bool, int, float, list, tuple, np.ndarray, np.generic)):
+        raise Stop(WRONG, f"Expected {what}, got {type(value).__name__}.")
     try:
         arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise Stop(WRONG, f"Expected {what}, got {type(value).__name__}.") from None
     if finite and not np.all(np.isfinite(arr)):
         raise Stop(WRONG, "Your answer has NaN or infinite entries.")
@@ -208,7 +360,7 @@ def named_option(value: Any, options: tuple[str, ...]) -> str | None:
     """The option ``value`` names, compared without case and spaces ("PCA+smooth" is "pca + smooth"), or None."""
     if not isinstance(value, str):
         return None
-    key = "".join(value.split()).lower().replace("→", "->")
+    key = "".join(str.split(str.__str__(value))).lower().replace("→", "->")
     return next((o for o in options if "".join(o.split()) == key), None)
 
 
@@ -233,16 +385,36 @@ def close_to(x: float, target: float, rtol: float = 1e-2) -> bool:
     return abs(x - target) <= rtol * abs(target)
 
 
+class right(str):  # noqa: N801 - used like a marker: options = {"double": right("because ..."), ...}
+    """The reason of the right choice, in a choice's ``options`` (where a wrong one has its hint).
+
+    >>> choose("00-demo", "b", {"a": "not a", "b": right("b, because ...")}, show=False).message
+    'Right: b, because ...'
+    """
+
+
+def _is_right(hint: Any) -> bool:
+    return hint is None or isinstance(hint, right)
+
+
+def _right_message(hint: Any) -> str:
+    return f"Right: {hint}" if isinstance(hint, right) else "Right."
+
+
 def choose(exercise: str, answer: Any, options: Mapping[str, str | None], show: bool) -> Feedback:
-    """A multiple-choice answer: ``options`` maps each choice to its hint (None: the right one)."""
+    """A multiple-choice answer: ``options`` maps each choice to its hint, the right one to its
+    reason (:class:`right`; None: no reason). The answer is read as plain text, case and outer
+    spaces ignored."""
     def body() -> str:
         require_attempt(answer)
-        if not isinstance(answer, str) or answer.strip().lower() not in options:
+        text = plain(answer)
+        key = text.strip().lower() if isinstance(text, str) else None
+        if key not in options:
             raise Stop(WRONG, "Answer with one of: " + ", ".join(f'"{o}"' for o in options) + ".")
-        hint = options[answer.strip().lower()]
-        if hint is not None:
+        hint = options[key]
+        if not _is_right(hint):
             raise Stop(WRONG, hint)
-        return "Right."
+        return _right_message(hint)
     return run_check(exercise, show, body)
 
 def same_values(m: np.ndarray, ref: np.ndarray, rtol: float = 1e-8) -> bool:
@@ -269,10 +441,13 @@ def pick(options: Mapping[str, str | None]) -> Callable[[Any], str | None]:
     """A judge for one choice question, ``{choice: hint, or None for the right one}``: it returns the
     hint of a wrong choice, ``None`` for the right one (choices compared lower-case, trimmed)."""
     def judge(answer: Any) -> str | None:
+        answer = plain(answer)
         key = str(answer).strip().lower() if isinstance(answer, (str, int, float)) else None
         if key not in options:
             return "answer with one of: " + ", ".join(f'"{o}"' for o in options) + "."
-        return options[key]
+        hint = options[key]
+        return None if _is_right(hint) else hint
+    judge.reasons = {key: str(hint) for key, hint in options.items() if isinstance(hint, right)}  # type: ignore[attr-defined]
     return judge
 
 
@@ -306,7 +481,9 @@ def recap(exercise: str, answers: list[Any], judges: list[Callable[[Any], str | 
                  if (hint := judge(answer)) is not None]
         if wrong:
             raise Stop(WRONG, f"{len(answers) - len(wrong)} of {len(answers)} right. " + " ".join(wrong))
-        return f"Right, all {len(answers)}."
+        reasons = [f"({k}) {why}" for k, (answer, judge) in enumerate(zip(answers, judges), 1)
+                   if (why := getattr(judge, "reasons", {}).get(str(plain(answer)).strip().lower()))]
+        return f"Right, all {len(answers)}" + (": " + " ".join(reasons) if reasons else ".")
     return run_check(exercise, show, body)
 
 
@@ -380,6 +557,8 @@ def solution(exercise: str, *, show: bool = True) -> str | None:
     True
     >>> del os.environ["LBO_NOTEBOOKS_SOLUTIONS"]
     """
+    if not isinstance(exercise, str) or not re.fullmatch(r"\d\d-[a-z0-9]+(?:-[a-z0-9]+)*", exercise):
+        raise ValueError(f"exercise must be an exercise id as its check shows it, such as \"03-mass\"; got {exercise!r}.")
     folder = _instructor_notebooks()
     if folder is None:
         text = "The solutions are not part of this edition (no instructor notebooks found next to the package)."
