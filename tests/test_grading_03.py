@@ -61,9 +61,9 @@ def student_edition(exercise: str) -> str:
 
 
 def test_points_follow_the_kinds():
-    exercises = ("03-stiffness", "03-mass", "03-convergence", "03-coefficients", "03-consistent", "03-scaling",
-                 "03-kernel", "03-lbo-recap")
-    assert [full_points(e) for e in exercises] == [5, 5, 1, 2, 2, 1, 2, 3]
+    exercises = ("03-stiffness", "03-mass", "03-eigensolve", "03-convergence", "03-coefficients", "03-consistent",
+                 "03-scaling", "03-kernel", "03-lbo-recap")
+    assert [full_points(e) for e in exercises] == [5, 5, 5, 1, 2, 2, 1, 2, 3]
 
 
 # --- 03-stiffness (build it yourself) ------------------------------------------------------------
@@ -461,6 +461,263 @@ def test_mass_may_use_the_cotangents_through_the_graded_run():
     assert graded("03-mass", **answers(VORONOI_WITH_LIBRARY_COTANGENTS, "my_mass")) == 5.0
 
 
+# --- 03-eigensolve (build it yourself) -----------------------------------------------------------
+# Pickled at collection, like the builds above (library functions go by reference).
+
+EIGEN_HELPERS = """
+def my_sigma(A):
+    return -1e-2 * 4 * np.pi / A.sum()
+
+
+def my_right(W, A, k):
+    # the k smallest eigenpairs, done right, for the slips below to spoil
+    values, vectors = sla.eigsh(W, k, M=A, sigma=my_sigma(A), which="LM")
+    order = np.argsort(values)
+    return values[order], vectors[:, order]
+"""
+
+EIGEN = {
+    "dense eigh of the pencil": """
+        import scipy.linalg
+
+        def my_eigenbasis(W, A, k):
+            lam, phi = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
+            return lam, phi
+    """,
+    "Cholesky to a standard problem, a list, signs flipped": """
+        def my_eigenbasis(W, A, k):
+            L = np.linalg.cholesky(A.toarray())
+            B = np.linalg.solve(L, np.linalg.solve(L, W.toarray()).T)   # L^-1 W L^-T (W symmetric)
+            mu, Y = np.linalg.eigh((B + B.T) / 2)
+            X = np.linalg.solve(L.T, Y[:, :k])
+            return [list(mu[:k]), -X]
+    """,
+    "own shift-invert operator, every repeated eigenspace rotated": """
+        def my_eigenbasis(W, A, k):
+            n = W.shape[0]
+            s = 0.05 * 4 * np.pi / A.sum()
+            lu = sla.splu(sp.csc_matrix(W + s * A))
+            op = sla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
+            vals, vecs = sla.eigsh(W, k, M=A, sigma=-s, OPinv=op, v0=np.linspace(1.0, 2.0, n))
+            idx = np.argsort(vals)
+            vals, vecs = vals[idx], vecs[:, idx]
+            rng = np.random.default_rng(5)
+            start = 0
+            while start < k:   # any A-orthonormal basis of a repeated eigenvalue is as good
+                stop = start + 1
+                while stop < k and vals[stop] - vals[start] < 1e-8 * vals[-1]:
+                    stop += 1
+                R = np.linalg.qr(rng.normal(size=(stop - start, stop - start)))[0]
+                vecs[:, start:stop] = vecs[:, start:stop] @ R
+                start = stop
+            return vals, vecs
+    """,
+    "eig of A^-1 W, then Gram-Schmidt in the A inner product": """
+        def my_eigenbasis(W, A, k):
+            Wd, Ad = W.toarray(), A.toarray()
+            lam, X = np.linalg.eig(np.linalg.solve(Ad, Wd))
+            keep = np.argsort(lam.real)[:k]
+            lam, X = lam.real[keep], X.real[:, keep]
+            for j in range(k):
+                for _ in range(2):   # twice is enough
+                    for i in range(j):
+                        X[:, j] -= (X[:, i] @ Ad @ X[:, j]) * X[:, i]
+                X[:, j] /= np.sqrt(X[:, j] @ Ad @ X[:, j])
+            return lam, X
+    """,
+}
+
+EIGEN_SLIPS = {
+    "the largest eigenvalues": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = sla.eigsh(W, k, M=A)
+            order = np.argsort(values)
+            return values[order], vectors[:, order]
+    """, "largest"),
+    "A left out": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = sla.eigsh(W, k, sigma=my_sigma(A))
+            order = np.argsort(values)
+            return values[order], vectors[:, order]
+    """, "W alone"),
+    "Euclidean normalisation": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = my_right(W, A, k)
+            return values, vectors / np.linalg.norm(vectors, axis=0)
+    """, "Euclidean"),
+    "descending": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = my_right(W, A, k)
+            return values[::-1], vectors[:, ::-1]
+    """, "ascending"),
+    "values sorted, vectors not": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = my_right(W, A, k)
+            return np.sort(values[::-1]), vectors[:, ::-1]
+    """, "reorder the vectors"),
+    "transposed vectors": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = my_right(W, A, k)
+            return values, vectors.T
+    """, "columns"),
+    "(vectors, values)": ("my_eigenbasis = lambda W, A, k: my_right(W, A, k)[::-1]", "swapped"),
+    "the zero eigenvalue dropped": ("""
+        def my_eigenbasis(W, A, k):
+            values, vectors = my_right(W, A, k + 1)
+            return values[1:], vectors[:, 1:]
+    """, "λ₀ = 0"),
+    "shift-inverted eigenvalues not turned back": ("""
+        def my_eigenbasis(W, A, k):
+            s = my_sigma(A)
+            nu, vectors = sla.eigsh(A, k, M=W - s * A, which="LA")   # A x = nu (W - s A) x
+            order = np.argsort(nu)
+            return nu[order], vectors[:, order]
+    """, "1/(λ − σ)"),
+    "A-normalised, but a repeated eigenspace not orthogonalised": ("""
+        def my_eigenbasis(W, A, k):
+            lam, X = np.linalg.eig(np.linalg.solve(A.toarray(), W.toarray()))
+            keep = np.argsort(lam.real)[:k]
+            X = X.real[:, keep]
+            return lam.real[keep], X / np.sqrt(np.einsum("ij,ij->j", X, A @ X))
+    """, "not A-orthogonal"),
+    "one pair short": ("my_eigenbasis = lambda W, A, k: my_right(W, A, k - 1)", "asked for k"),
+    "a dict": ("my_eigenbasis = lambda W, A, k: dict(zip(('values', 'vectors'), my_right(W, A, k)))", "tuple"),
+}
+
+EIGEN_LIBRARY = {
+    "the library's eigenbasis on the pencil": ("""
+        def my_eigenbasis(W, A, k):
+            spectrum = lbo.eigenbasis((W, A), k)
+            return spectrum.values, spectrum.vectors
+    """, "eigenbasis"),
+    "spectrum slicing": ("""
+        from lbo_notebooks.eigensolver import slice_eigsh
+
+        def my_eigenbasis(W, A, k):
+            return slice_eigsh(W, A, k, v0=np.ones(W.shape[0]) + np.arange(W.shape[0]) % 3, shift=-my_sigma(A))[:2]
+    """, "slice_eigsh"),
+    "the block Lanczos underneath": ("""
+        from lbo_notebooks.krylov import nearest_eigenpairs
+
+        def my_eigenbasis(W, A, k):
+            s = my_sigma(A)
+            lu = sla.splu(sp.csc_matrix(W - s * A))
+            return nearest_eigenpairs(lu.solve, W, A, s, k, start=np.linspace(1, 2, W.shape[0]))
+    """, "nearest_eigenpairs"),
+    "deflation with the constrained minimum": ("""
+        from lbo_notebooks.minmax import min_rayleigh_quotient
+
+        def my_eigenbasis(W, A, k):
+            values, vectors = [], []
+            for _ in range(k):
+                C = np.column_stack(vectors) if vectors else None
+                lam, phi = min_rayleigh_quotient(W, A, C, return_vector=True)
+                values.append(lam)
+                vectors.append(phi)
+            return np.array(values), np.column_stack(vectors)
+    """, "min_rayleigh_quotient"),
+    "pyFM": ("""
+        from pyFM.mesh.laplacian import laplacian_spectrum
+
+        my_eigenbasis = lambda W, A, k: laplacian_spectrum(W, A, spectrum_size=k)
+    """, "laplacian_spectrum"),
+}
+
+
+def _eigen(code):
+    return sent(**answers(EIGEN_HELPERS + textwrap.dedent(code), "my_eigenbasis"))
+
+
+EIGEN_ANSWERS = {name: _eigen(code) for name, code in EIGEN.items()}
+EIGEN_WRONG = {name: (_eigen(code), hint) for name, (code, hint) in EIGEN_SLIPS.items()}
+EIGEN_LIB = {name: (_eigen(code), where) for name, (code, where) in EIGEN_LIBRARY.items()}
+SOLUTION_EIGEN = _eigen(solution("03-eigensolve"))
+STUB_EIGEN = _eigen(student_edition("03-eigensolve"))
+
+
+def test_eigensolve_solution():
+    assert "Right on four pencils" in _full("03-eigensolve", payload=SOLUTION_EIGEN)
+
+
+@pytest.mark.parametrize("name", list(EIGEN))
+def test_eigensolve_written_differently(name):
+    _full("03-eigensolve", payload=EIGEN_ANSWERS[name])
+
+
+@pytest.mark.parametrize("name", list(EIGEN_SLIPS))
+def test_eigensolve_slips(name):
+    function, hint = EIGEN_WRONG[name]
+    message = _zero("03-eigensolve", hint, "graded on", payload=function)
+    assert "notebook does not show" in message
+
+
+@pytest.mark.parametrize("name", list(EIGEN_LIBRARY))
+def test_eigensolve_library_calls(name):
+    function, where = EIGEN_LIB[name]
+    _zero("03-eigensolve", "build it yourself", "not available", where, payload=function)
+
+
+def test_eigensolve_placeholders():
+    _zero("03-eigensolve", status="not attempted", payload=STUB_EIGEN)
+    _zero("03-eigensolve", status="not attempted", my_eigenbasis=...)
+    _zero("03-eigensolve", "pass the function", my_eigenbasis=(np.zeros(3), np.eye(3)))
+
+
+def test_eigensolve_through_the_graded_run():
+    from lbo_notebooks.exercises.grading import grade
+
+    assert graded("03-eigensolve", **answers(EIGEN_HELPERS + solution("03-eigensolve"), "my_eigenbasis")) == 5.0
+    with pytest.raises(AssertionError, match="0 / 5 points: This exercise asks you to build it yourself"):
+        grade("03-eigensolve", **answers(EIGEN_HELPERS + textwrap.dedent(EIGEN_LIBRARY["the library's eigenbasis on "
+                                                                                      "the pencil"][0]), "my_eigenbasis"))
+
+
+def test_eigensolve_verdict_is_deterministic():
+    for payload in (SOLUTION_EIGEN, EIGEN_WRONG["Euclidean normalisation"][0]):
+        assert _judged("03-eigensolve", {"payload": payload}) == _judged("03-eigensolve", {"payload": payload})
+
+
+def test_eigensolve_graded_pencils():
+    """The graded pencils: unseen by the visible check, each k below a gap (so the span is determined),
+    an exactly repeated eigenvalue on the icosphere, two zero eigenvalues on the two pieces, a
+    non-diagonal mass on the sheet; the instructor's solution within 1e-12 there."""
+    from lbo_notebooks.exercises import laplace_beltrami as lb
+    from lbo_notebooks.exercises.grading import nb03
+
+    graded_problems, visible = nb03._unseen_eigenproblems(), lb._eigen_problems()
+    sizes = {W.shape[0] for W, *_ in visible}
+    assert all(W.shape[0] not in sizes for W, *_ in graded_problems)
+    my_eigenbasis = answers(solution("03-eigensolve"), "my_eigenbasis")["my_eigenbasis"]
+    zeros = []
+    for W, A, k, where in [*graded_problems, *visible]:
+        ref = lb.eigen_reference(W, A)[0]
+        assert ref[k] - ref[k - 1] > 1e-2 * ref[k - 1], where
+        values, vectors = my_eigenbasis(W, A, k)
+        assert np.abs(values - ref[:k]).max() < 1e-12 * ref[k - 1], where
+        zeros.append(int(np.sum(np.abs(ref) < 1e-10 * ref[-1])))
+    ico = lb.eigen_reference(*graded_problems[0][:2])[0][:16]
+    assert np.allclose(ico[1:4], ico[1]) and np.allclose(ico[4:9], ico[4]) and np.ptp(ico[1:4]) < 1e-12 * ico[-1]
+    assert zeros[3] == 2 and zeros[:3] == [1, 1, 1]
+    assert graded_problems[2][1].nnz > graded_problems[2][1].shape[0]  # the consistent mass: off-diagonal entries
+
+
+def test_eigensolve_visible_check():
+    from lbo_notebooks.exercises import laplace_beltrami as lb
+
+    good = answers(EIGEN_HELPERS + solution("03-eigensolve"), "my_eigenbasis")["my_eigenbasis"]
+    assert lb.check_eigensolve(good, show=False).correct
+    for code, hint in (EIGEN_SLIPS["Euclidean normalisation"], EIGEN_SLIPS["descending"], EIGEN_SLIPS["A left out"]):
+        function = answers(EIGEN_HELPERS + textwrap.dedent(code), "my_eigenbasis")["my_eigenbasis"]
+        feedback = lb.check_eigensolve(function, show=False)
+        assert feedback.status == "wrong" and hint.lower() in feedback.message.lower(), feedback.message
+        assert "first seen on" in feedback.message
+    stub = answers(student_edition("03-eigensolve"), "my_eigenbasis")["my_eigenbasis"]
+    assert lb.check_eigensolve(stub, show=False).status == "not attempted"
+    assert lb.check_eigensolve(..., show=False).status == "not attempted"
+    assert lb.check_eigensolve("eigsh", show=False).status == "wrong"   # never raises
+    assert lb.check_eigensolve(lambda W, A, k: 1 / 0, show=False).status == "wrong"
+
+
 # --- 03-convergence and 03-scaling (predictions) -------------------------------------------------
 
 def test_convergence():
@@ -635,7 +892,7 @@ def test_every_blocked_function_exists():
     from lbo_notebooks.exercises.grading import _registry, load_graders
 
     graders = load_graders("03-stiffness")
-    for exercise in ("03-stiffness", "03-mass"):
+    for exercise in ("03-stiffness", "03-mass", "03-eigensolve"):
         for target in graders[exercise].replaces:
             module = target.partition(":")[0]
             installed = importlib.util.find_spec(module.split(".")[0]) is not None

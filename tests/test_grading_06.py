@@ -229,3 +229,286 @@ def test_recap_all_wrong_and_placeholders():
     _zero("06-ties-recap", "one of", q1="maybe", q2=3, q3="θ")
     _zero("06-ties-recap", status="not attempted", **answers(student_edition("06-ties-recap"), "q1", "q2", "q3"))
     assert verdict("06-ties-recap", q1="yes", q2="lower", q3=2) == verdict("06-ties-recap", q1="yes", q2="lower", q3=2)
+
+
+# --- 06-schur (build it yourself) -------------------------------------------------------------------
+# Every answer is pickled now, at collection, as a student's kernel pickles it: before any graded
+# run of this test process has made the library unavailable (a library function the answer refers
+# to goes by reference, as from a notebook).
+
+import textwrap  # noqa: E402
+
+import cloudpickle  # noqa: E402
+
+
+class Sent(bytes):
+    """Answers pickled at import (see above)."""
+
+
+def _judged(exercise, payload):
+    from lbo_notebooks.exercises.grading.__main__ import _verdict
+
+    result = _verdict(exercise, payload)
+    assert "error" not in result, result["error"]
+    return round(result["fraction"] * result["points"], 2), result["status"], result["message"]
+
+
+SCHUR_HELPERS = """
+import scipy.linalg
+from scipy.sparse.csgraph import connected_components
+
+
+def my_orthonormal(V, Ad):
+    L = np.linalg.cholesky(V.T @ Ad @ V)
+    return np.linalg.solve(L, V.T).T
+
+
+def my_kernel_missed(W, Ad, Q):
+    count, label = connected_components(W, directed=False)
+    ones = np.eye(count)[label]
+    miss = ones - Q @ (Q.T @ (Ad @ ones))
+    return np.any(np.einsum("ij,ij->j", miss, Ad @ miss) > 1e-16 * np.einsum("ij,ij->j", ones, Ad @ ones))
+
+
+def my_schur(Wd, Q):
+    WQ = Wd @ Q
+    return Wd - WQ @ np.linalg.pinv(Q.T @ WQ) @ WQ.T
+
+
+def my_smallest(left, right):
+    return scipy.linalg.eigh(left, right, eigvals_only=True, subset_by_index=[0, 0])[0]
+"""
+
+SCHUR = {
+    "the pencil with one term per piece": """
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = lbo.a_orthonormalize(V, A)          # the library's orthonormaliser is allowed
+            if my_kernel_missed(W, Ad, Q):
+                return float("inf")
+            count, label = connected_components(W, directed=False)
+            ones = np.eye(count)[label]
+            a = Ad @ ones
+            right = Wd + (a / np.einsum("ij,ij->j", ones, a)) @ a.T
+            left = Ad - (Ad @ Q) @ (Ad @ Q).T
+            n = len(Wd)
+            return float(scipy.linalg.eigh(left, right, eigvals_only=True, subset_by_index=[n - 1, n - 1])[0])
+    """,
+    "a threshold on mu, QR for the complement, lstsq for the Schur complement": """
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q, _ = np.linalg.qr(V)                  # Euclidean QR first, then A-orthonormal
+            Q = my_orthonormal(Q, Ad)
+            WQ = Wd @ Q
+            S = Wd - WQ @ np.linalg.lstsq(Q.T @ WQ, WQ.T, rcond=1e-12)[0]
+            full, _ = scipy.linalg.qr(Ad @ Q)       # the last columns are orthogonal to A Q
+            Z = full[:, Q.shape[1]:]
+            mus = scipy.linalg.eigh((Z.T @ S @ Z + (Z.T @ S @ Z).T) / 2, Z.T @ Ad @ Z, eigvals_only=True)
+            return np.inf if mus[0] <= 1e-10 * mus[-1] else 1.0 / mus[0]
+    """,
+    "the library's kernel basis, a Cholesky whitening of the complement": """
+        from lbo_notebooks.optimality import kernel_basis
+
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(np.asarray(V, dtype=float), Ad)
+            K = kernel_basis(W)
+            gone = K - Q @ (Q.T @ Ad @ K)
+            if (np.einsum("ij,ij->j", gone, Ad @ gone) > 1e-14 * np.einsum("ij,ij->j", K, Ad @ K)).any():
+                return np.inf
+            Z = scipy.linalg.null_space(Q.T @ Ad)
+            Z = Z @ np.linalg.inv(np.linalg.cholesky(Z.T @ Ad @ Z)).T   # now Z^T A Z = I
+            mu = np.linalg.eigvalsh(Z.T @ my_schur(Wd, Q) @ Z)[0]
+            return np.float64(1 / mu)
+    """,
+}
+
+SCHUR_SLIPS = {
+    "the trap: W instead of S": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            if my_kernel_missed(W, Ad, Q):
+                return np.inf
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            return 1 / my_smallest(Z.T @ Wd @ Z, Z.T @ Ad @ Z)
+    """, "trap"),
+    "a Euclidean complement": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            if my_kernel_missed(W, Ad, Q):
+                return np.inf
+            Z = scipy.linalg.null_space(Q.T)
+            return 1 / my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Ad @ Z)
+    """, "A-orthogonal to V"),
+    "the Euclidean norm of r": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            if my_kernel_missed(W, Ad, Q):
+                return np.inf
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            return 1 / my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Z)
+    """, "A-norm"),
+    "mu, not 1/mu": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            if my_kernel_missed(W, Ad, Q):
+                return np.inf
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            return my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Ad @ Z)
+    """, "upside down"),
+    "no infinite case": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            return 1 / my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Ad @ Z)
+    """, "np.inf"),
+    "only the global constant tested": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            one = np.ones(len(Wd))
+            miss = one - Q @ (Q.T @ (Ad @ one))
+            if miss @ Ad @ miss > 1e-16 * (one @ Ad @ one):
+                return np.inf
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            mu = my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Ad @ Z)
+            return 1 / max(mu, 1e-300)
+    """, "each piece"),
+    "a pair (C, mu)": ("""
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            Z = scipy.linalg.null_space((Ad @ Q).T)
+            mu = my_smallest(Z.T @ my_schur(Wd, Q) @ Z, Z.T @ Ad @ Z)
+            return 1 / mu, mu
+    """, "not a pair"),
+}
+
+SCHUR_LIBRARY = {
+    "the library's worst-case ratio": ("my_worst_case = lambda W, A, V: worst_case_ratio(V, W, A)", "worst_case_ratio"),
+    "its dense route": ("""
+        from lbo_notebooks import optimality
+
+        def my_worst_case(W, A, V):
+            Q = lbo.a_orthonormalize(V, A)
+            return optimality._worst_case_dense(Q, W, A, optimality.kernel_basis(W))[0]
+    """, "_worst_case_dense"),
+    "the constrained minimum of S": ("""
+        from lbo_notebooks.minmax import min_rayleigh_quotient
+
+        def my_worst_case(W, A, V):
+            Wd, Ad = W.toarray(), A.toarray()
+            Q = my_orthonormal(V, Ad)
+            if my_kernel_missed(W, Ad, Q):
+                return np.inf
+            return 1 / min_rayleigh_quotient(my_schur(Wd, Q), Ad, orthogonal_to=Q)
+    """, "min_rayleigh_quotient"),
+}
+
+
+def _schur(code):
+    given = answers("from lbo_notebooks.optimality import worst_case_ratio\n" + SCHUR_HELPERS + textwrap.dedent(code),
+                    "my_worst_case")
+    return Sent(cloudpickle.dumps(given))
+
+
+SCHUR_ANSWERS = {name: _schur(code) for name, code in SCHUR.items()}
+SCHUR_WRONG = {name: (_schur(code), hint) for name, (code, hint) in SCHUR_SLIPS.items()}
+SCHUR_LIB = {name: (_schur(code), where) for name, (code, where) in SCHUR_LIBRARY.items()}
+SOLUTION_SCHUR = _schur(solution("06-schur"))
+STUB_SCHUR = _schur(student_edition("06-schur"))
+
+
+def test_schur_points():
+    assert full_points("06-schur") == 5
+
+
+def test_schur_solution():
+    points, status, message = _judged("06-schur", SOLUTION_SCHUR)
+    assert points == 5 and "Right on seven bases" in message, message
+
+
+@pytest.mark.parametrize("name", list(SCHUR))
+def test_schur_written_differently(name):
+    points, status, message = _judged("06-schur", SCHUR_ANSWERS[name])
+    assert points == 5, message
+
+
+@pytest.mark.parametrize("name", list(SCHUR_SLIPS))
+def test_schur_slips(name):
+    payload, hint = SCHUR_WRONG[name]
+    points, status, message = _judged("06-schur", payload)
+    assert points == 0 and status == "wrong" and hint.lower() in message.lower(), message
+    assert "which the notebook does not show" in message
+
+
+@pytest.mark.parametrize("name", list(SCHUR_LIBRARY))
+def test_schur_library_calls(name):
+    payload, where = SCHUR_LIB[name]
+    points, status, message = _judged("06-schur", payload)
+    assert points == 0 and "build it yourself" in message and where in message, message
+
+
+def test_schur_placeholders_and_determinism():
+    assert _judged("06-schur", STUB_SCHUR)[1] == "not attempted"
+    _zero("06-schur", status="not attempted", my_worst_case=...)
+    _zero("06-schur", "pass the function", my_worst_case=0.15)
+    assert _judged("06-schur", SCHUR_WRONG["the trap: W instead of S"][0]) == _judged(
+        "06-schur", SCHUR_WRONG["the trap: W instead of S"][0])
+
+
+def test_schur_through_the_graded_run():
+    assert graded("06-schur", **answers(solution("06-schur"), "my_worst_case")) == 5.0
+    given = answers("from lbo_notebooks.optimality import worst_case_ratio\n"
+                    "my_worst_case = lambda W, A, V: worst_case_ratio(V, W, A)", "my_worst_case")
+    assert graded("06-schur", **given) == 0.0
+
+
+def test_schur_graded_bases():
+    """What the graded bases are: unseen by the visible check; the eigenbasis at the optimum, the
+    others above it; the infinite cases where the kernel of W is missed (the global constant alone
+    on two pieces among them); the instructor's solution within 1e-10 of the library on all."""
+    import scipy.linalg
+
+    from lbo_notebooks.exercises import theory
+    from lbo_notebooks.exercises.grading import nb06
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    graded_bases, visible = nb06._unseen_bases(), theory._worst_case_problems()
+    assert not {W.shape[0] for W, *_ in graded_bases} & {W.shape[0] for W, *_ in visible}
+    my_worst_case = answers(solution("06-schur"), "my_worst_case")["my_worst_case"]
+    normalised = []
+    for W, A, V, where in graded_bases:
+        lam = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+        c = worst_case_ratio(V, W, A, method="dense")
+        got = my_worst_case(W, A, V)
+        assert (got == c == np.inf) or abs(got - c) < 1e-10 * c, where
+        normalised.append(c * lam[V.shape[1]])
+    assert abs(normalised[0] - 1) < 1e-9 and all(x > 1 + 1e-3 for x in normalised[1:3] + normalised[4:5])
+    assert np.isinf(normalised[3]) and np.isinf(normalised[5]) and np.isfinite(normalised[6])
+    trap = theory.worst_case_slips(graded_bases[1][2], *graded_bases[1][:2])[0][0]
+    assert trap < 0.5 * worst_case_ratio(graded_bases[1][2], *graded_bases[1][:2])   # the trap is far off
+
+
+def test_schur_visible_check():
+    from lbo_notebooks.exercises import theory
+    from lbo_notebooks.minmax import complement_ratio
+    from lbo_notebooks.optimality import worst_case_ratio
+
+    good = answers(solution("06-schur"), "my_worst_case")["my_worst_case"]
+    assert theory.check_worst_case(good, show=False).correct
+    trap = theory.check_worst_case(lambda W, A, V: complement_ratio(V, W, A), show=False)
+    assert trap.status == "wrong" and "trap" in trap.message and "first seen on" in trap.message
+    upside = theory.check_worst_case(lambda W, A, V: 1 / worst_case_ratio(V, W, A), show=False)
+    assert "upside down" in upside.message.lower()
+    finite = theory.check_worst_case(lambda W, A, V: min(worst_case_ratio(V, W, A), 1e3), show=False)
+    assert "np.inf" in finite.message
+    stub = answers(student_edition("06-schur"), "my_worst_case")["my_worst_case"]
+    assert theory.check_worst_case(stub, show=False).status == "not attempted"
+    assert theory.check_worst_case("schur", show=False).status == "wrong"   # never raises
+    assert theory.check_worst_case(lambda W, A, V: "big", show=False).status == "wrong"

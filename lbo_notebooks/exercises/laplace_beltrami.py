@@ -14,13 +14,14 @@ import numpy as np
 
 from .basics import loose, more_digits, rounding_of
 from .feedback import (
-    Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
-    same_values, choose, pick, number_judge, recap,
+    Feedback, WRONG, Stop, run_check, require_attempt, as_number, as_array, call_attempt, close_to,
+    same_values, choose, pick, number_judge, recap, plain,
 )
 
 __all__ = [
     "check_stiffness",
     "check_mass",
+    "check_eigensolve",
     "check_convergence_factor",
     "check_coefficients",
     "check_consistent_mass",
@@ -220,6 +221,205 @@ def check_mass(mass: Any, *, show: bool = True) -> Feedback:
                   for mesh in _test_meshes()]
         return judge_mass(mass, meshes)
     return run_check("03-mass", show, body)
+
+
+# --- the generalised eigenproblem W phi = lam A phi (exercise 03-eigensolve) ---------------------
+
+EIGEN_RTOL = 1e-7
+"""How closely a built eigensolver must agree (about seven digits): each eigenvalue within
+``EIGEN_RTOL`` times the largest one asked for, ``vectors.T @ A @ vectors`` within ``EIGEN_RTOL``
+of the identity, and each pair's residual ``||W phi - lam A phi||`` within ``EIGEN_RTOL`` times
+``||W||_1 ||phi||`` (a backward error: it does not depend on how ``phi`` is scaled). ``eigsh``
+at its default tolerance and dense ``eigh`` come within 1e-13."""
+
+
+def _two_spheres() -> Any:
+    """Two disjoint pieces: a unit icosphere(1) and a bumpy, larger copy of it beside it."""
+    from .. import shapes
+    from ..mesh import Mesh
+
+    ball = shapes.icosphere(1)
+    rng = np.random.default_rng(41)
+    other = 1.3 * ball.vertices * rng.uniform(0.9, 1.1, size=(ball.n_vertices, 1)) + [3.0, 0.0, 0.0]
+    return Mesh(np.vstack([ball.vertices, other]), np.vstack([ball.faces, ball.faces + ball.n_vertices]))
+
+
+@lru_cache(maxsize=1)
+def _eigen_problems() -> tuple[tuple[Any, Any, int, str], ...]:
+    """The pencils the visible check of 03-eigensolve runs on, as (W, A, k, where): the icosphere(1)
+    (an exactly threefold eigenvalue, k = 4), the irregular blob and the open sheet of
+    :func:`_test_meshes`, the sheet with the *consistent* (non-diagonal) mass."""
+    from .. import shapes
+    from ..operators import mass_matrix, stiffness_matrix
+
+    _, blob, sheet = _test_meshes()
+    ball = shapes.icosphere(1)
+    return ((stiffness_matrix(ball), mass_matrix(ball), 4, "the icosphere of 42 vertices, with a threefold eigenvalue"),
+            (stiffness_matrix(blob), mass_matrix(blob), 7, f"an irregular closed surface of {blob.n_vertices} vertices"),
+            (stiffness_matrix(sheet), mass_matrix(sheet, "consistent"), 5,
+             f"an open sheet of {sheet.n_vertices} vertices with the consistent (non-diagonal) mass"))
+
+
+def eigen_reference(W: Any, A: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Every eigenpair of ``W phi = lam A phi`` (dense ``scipy.linalg.eigh``; small pencils only)."""
+    import scipy.linalg
+
+    return scipy.linalg.eigh(W.toarray(), A.toarray())
+
+
+def _eigen_parts(answer: Any, n: int, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(values, vectors)`` of an answer as float arrays of shapes (k,) and (n, k), or a 'wrong' stop."""
+    answer = plain(answer)
+    if not isinstance(answer, (tuple, list)) or len(answer) != 2:
+        what = f"a {type(answer).__name__}" if not isinstance(answer, (tuple, list)) else f"{len(answer)} items"
+        raise Stop(WRONG, f"Return a tuple `(values, vectors)`: the k eigenvalues and the n × k matrix of eigenvectors; "
+                          f"got {what}.")
+    values = as_array(answer[0], "the eigenvalues (a NumPy array of shape (k,)) first")
+    vectors = as_array(answer[1], "the eigenvectors (an array of shape (n, k)) second")
+    if values.ndim == 2 and vectors.ndim == 1:
+        raise Stop(WRONG, "Swapped: return `(values, vectors)`, the eigenvalues first.")
+    if values.ndim == 2 and 1 in values.shape:
+        values = values.ravel()  # a row or a column of eigenvalues
+    if values.ndim != 1:
+        raise Stop(WRONG, f"The eigenvalues should be a 1-D array of shape (k,) = ({k},); got shape {values.shape}.")
+    if values.size != k:
+        raise Stop(WRONG, f"Asked for k = {k} eigenpairs, got {values.size} eigenvalues.")
+    if vectors.shape == (k, n) and k != n:
+        raise Stop(WRONG, f"The eigenvectors are the *columns*: shape (n, k) = ({n}, {k}), not ({k}, {n}). A transpose?")
+    if vectors.shape != (n, k):
+        raise Stop(WRONG, f"The eigenvectors should form an array of shape (n, k) = ({n}, {k}), one column per "
+                          f"eigenvalue; got shape {vectors.shape}.")
+    return values, vectors
+
+
+def _eigenvalue_hint(v: np.ndarray, ref: np.ndarray, W: Any, k: int, tol: float, scale: float) -> str:
+    """Why the sorted eigenvalues ``v`` are not the ``k`` smallest ``ref`` (ascending, all of them)."""
+    def near(a: np.ndarray, b: np.ndarray) -> bool:
+        return a.shape == b.shape and bool(np.abs(a - b).max() <= tol)
+
+    top = max(abs(ref[-1]), scale)
+    if near(v, ref[-k:]) or (v.min() > ref[k] and np.abs(v[:, None] - ref[None, -2 * k:]).min(axis=1).max() <= EIGEN_RTOL * top):
+        return ("These are the *largest* eigenvalues, where Lanczos converges first. Ask for the eigenvalues nearest "
+                "a small negative shift σ instead (shift-invert: `sigma=`, with `which=\"LM\"`).")
+    if near(v, np.sort(-ref[:k])):
+        return "Wrong sign: W is positive semidefinite, so every eigenvalue of Wφ = λAφ is ≥ 0."
+    standard = np.linalg.eigvalsh(W.toarray())
+    if near(v, standard[:k]) or near(v, standard[-k:]):
+        return ("These are eigenvalues of W alone (Wφ = λφ): the problem is generalised, Wφ = λAφ; pass the mass "
+                "matrix too (`M=A`).")
+    if near(v, ref[1:k + 1]):
+        return ("λ₀ = 0 is missing: the constant function has zero energy and is the first eigenvector; the k smallest "
+                "include it.")
+    if np.all(v != 0):
+        shift = ref[:k] - np.sort(1 / v)
+        if np.ptp(shift) <= tol and abs(shift.mean()) <= scale:
+            return ("These are the eigenvalues ν = 1/(λ − σ) of the shift-inverted operator: turn them back, "
+                    "λ = σ + 1/ν (`eigsh` does this itself when you pass `sigma=`).")
+    if np.abs(v[:, None] - ref[None, :]).min(axis=1).max() <= tol:
+        return ("Each of your values is an eigenvalue, but they are not the k smallest: a copy of a repeated eigenvalue "
+                "is missing, or the shift σ is not just below 0 (shift-invert finds the eigenvalues nearest σ).")
+    return ("Not the k smallest eigenvalues of Wφ = λAφ. Solve with W as the matrix and A as the mass (`M=A`), "
+            "around a small negative shift σ, and keep what the solver returns for λ.")
+
+
+def judge_eigenpairs(answer: Any, W: Any, A: Any, k: int, reference: tuple[np.ndarray, np.ndarray]) -> None:
+    """None when ``answer`` is the ``k`` smallest eigenpairs of ``W phi = lam A phi``, else Stop with a hint.
+
+    ``answer`` must be ``(values, vectors)``, ``values`` ascending (shape (k,)), ``vectors`` (n, k)
+    A-orthonormal with column j an eigenvector of ``values[j]``. Any sign of each eigenvector and
+    any A-orthonormal basis of a repeated eigenvalue's eigenspace are right: the eigenvalues are
+    compared with ``reference`` (every eigenpair, :func:`eigen_reference`) relative to the largest
+    one asked for, the vectors by their residuals and ``vectors.T @ A @ vectors`` (see
+    :data:`EIGEN_RTOL`), and, where ``lam[k-1] < lam[k]``, their span with the reference's.
+    """
+    ref, ref_vectors = reference
+    n = W.shape[0]
+    values, vectors = _eigen_parts(answer, n, k)
+    scale = float(max(np.abs(ref[:k]).max(), abs(ref[-1]) * 1e-12, 1e-300))
+    tol = EIGEN_RTOL * scale
+    if np.any(np.diff(values) < -tol):
+        if np.abs(np.sort(values) - ref[:k]).max() <= tol:
+            raise Stop(WRONG, "Right eigenvalues, but not in ascending order: sort them, and reorder the eigenvectors with "
+                              "the same permutation (`order = np.argsort(values)`).")
+    if np.abs(np.sort(values) - ref[:k]).max() > tol:
+        raise Stop(WRONG, _eigenvalue_hint(np.sort(values), ref, W, k, tol, scale))
+    norm_w = float(abs(W).sum(axis=0).max())  # ||W||_1 >= ||W||_2 for a symmetric W
+    lengths = np.linalg.norm(vectors, axis=0)
+    if np.any(lengths == 0):
+        raise Stop(WRONG, "A column of your eigenvectors is zero: an eigenvector is nonzero.")
+    Av = A @ vectors
+    residual = np.linalg.norm(W @ vectors - Av * values, axis=0) / (norm_w * lengths)
+    if residual.max() > EIGEN_RTOL:
+        quotients = np.einsum("ij,ij->j", vectors, W @ vectors) / np.einsum("ij,ij->j", vectors, Av)
+        own = np.linalg.norm(W @ vectors - Av * quotients, axis=0) / (norm_w * lengths)
+        if own.max() <= EIGEN_RTOL:
+            raise Stop(WRONG, "Each column is an eigenvector, but not of the eigenvalue at its index: reorder the vectors "
+                              "with the values (the same permutation for both).")
+        plain_residual = np.linalg.norm(W @ vectors - vectors * (np.einsum("ij,ij->j", vectors, W @ vectors) / lengths**2),
+                                        axis=0) / (norm_w * lengths)
+        if plain_residual.max() <= EIGEN_RTOL:
+            raise Stop(WRONG, "These are eigenvectors of W alone (Wφ = λφ): the problem is Wφ = λAφ; pass the mass "
+                              "matrix too (`M=A`).")
+        j = int(np.argmax(residual))
+        raise Stop(WRONG, f"Column {j} is not an eigenvector of values[{j}]: ‖Wφ − λAφ‖ is {residual[j]:.0e} × ‖W‖ ‖φ‖ "
+                          "(round-off, about 1e-13, for an eigenpair).")
+    gram = vectors.T @ Av
+    if np.abs(gram - np.eye(k)).max() > EIGEN_RTOL:
+        if np.abs(vectors.T @ vectors - np.eye(k)).max() <= 1e-6:
+            raise Stop(WRONG, "Orthonormal in the Euclidean sense (ΦᵀΦ = I), but the eigenvectors of Wφ = λAφ are "
+                              "normalised in the A inner product: φᵀAφ = 1, so that ΦᵀAΦ = I.")
+        diagonal = np.diag(gram)
+        if np.abs(gram - np.diag(diagonal)).max() <= EIGEN_RTOL * diagonal.max():
+            raise Stop(WRONG, "A-orthogonal, but not A-normalised: divide each eigenvector by its A-norm √(φᵀAφ).")
+        raise Stop(WRONG, "The eigenvectors are not A-orthogonal (ΦᵀAΦ should be I). Eigenvectors of different "
+                          "eigenvalues are A-orthogonal by themselves; within a repeated eigenvalue choose an "
+                          "A-orthonormal basis.")
+    if ref[k] - ref[k - 1] > 1e-6 * scale:  # a gap after the k-th: the span is determined
+        cosines = np.linalg.svd(ref_vectors[:, :k].T @ Av, compute_uv=False)
+        if cosines.min() < 1 - EIGEN_RTOL:
+            raise Stop(WRONG, "The vectors do not span the eigenspace of the k smallest eigenvalues.")
+    return None
+
+
+def judge_eigensolve(eigensolve: Any, problems: Any, call: Any = call_attempt, seen: str = "first seen on {}") -> str:
+    """The message of a correct ``eigensolve(W, A, k)`` on every ``(W, A, k, where)`` of ``problems``
+    (``call(eigensolve, W, A, k)`` runs it on copies), else Stop with the hint of the first miss,
+    followed by ``seen`` (formatted with its ``where``) in parentheses."""
+    for W, A, k, where in problems:
+        try:
+            answer = call(eigensolve, W.copy(), A.copy(), k)
+        except Stop as stop:
+            if stop.status == WRONG and "singular" in stop.message.lower():
+                raise Stop(WRONG, f"{stop.message} W is singular (the constants are in its kernel): factorise "
+                                  f"W − σA with a small *negative* shift σ, not σ = 0. ({seen.format(where)}.)") from None
+            raise
+        try:
+            judge_eigenpairs(answer, W, A, k, eigen_reference(W, A))
+        except Stop as stop:
+            raise Stop(stop.status, f"{stop.message} ({seen.format(where)}.)") from None
+    return ("Right: the k smallest eigenpairs, ascending and A-orthonormal, also where an eigenvalue is repeated "
+            "and with a non-diagonal mass.")
+
+
+def check_eigensolve(eigensolve: Any, *, show: bool = True) -> Feedback:
+    """Exercise 03-eigensolve: the student's ``my_eigenbasis(W, A, k)``, the k smallest eigenpairs of
+    ``W phi = lam A phi`` as ``(values, vectors)``.
+
+    Run on three small pencils (an icosphere with a threefold eigenvalue, an irregular blob, an
+    open sheet with the consistent mass) against dense ``eigh``; any signs and any A-orthonormal
+    basis of a repeated eigenvalue are accepted (:func:`judge_eigenpairs`).
+
+    Examples
+    --------
+    >>> import scipy.linalg
+    >>> def dense(W, A, k):
+    ...     return scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
+    >>> check_eigensolve(dense, show=False).correct
+    True
+    >>> print(check_eigensolve(lambda W, A, k: dense(W, A, k)[::-1], show=False).message)
+    Swapped: return `(values, vectors)`, the eigenvalues first. (first seen on the icosphere of 42 vertices, with a threefold eigenvalue.)
+    """
+    return run_check("03-eigensolve", show, lambda: judge_eigensolve(eigensolve, _eigen_problems()))
 
 
 def check_convergence_factor(factor: Any, *, show: bool = True) -> Feedback:

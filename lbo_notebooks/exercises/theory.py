@@ -8,6 +8,7 @@ see :mod:`lbo_notebooks.exercises` for how an exercise works.
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from collections.abc import Mapping
 from typing import Any
 
@@ -26,6 +27,7 @@ __all__ = [
     "check_consistent_optimality",
     "check_extra_function",
     "check_worst_ratio",
+    "check_worst_case",
     "check_recap_optimality",
     "check_stationary_frame",
     "check_recap_ties",
@@ -245,6 +247,141 @@ def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show
             raise Stop(WRONG, "Above C(V), which is a supremum: check the error ‖f − P_V f‖²_A (A-norm) and the energy fᵀ W f.")
         raise Stop(WRONG, "Below C(V): use the function `worst_case_ratio(..., return_vector=True)` returns, and the A-norm of f − P_V f.")
     return run_check("06-worst", show, body)
+
+
+# --- 06 · the worst-case constant from the Schur complement (exercise 06-schur) --------------------
+
+WORST_RTOL = 1e-6
+"""How close a built C(V) must come to the exact one (relative); the dense Schur route gives 1e-10."""
+
+def _dense_pencil_parts(V: np.ndarray, W: Any, A: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(Wd, Ad, Q, S): dense W and A, an A-orthonormal Q of span V and the Schur complement S."""
+    from ..inner_product import a_orthonormalize
+
+    Wd, Ad = W.toarray(), A.toarray()
+    Q = a_orthonormalize(V, A)
+    WQ = Wd @ Q
+    S = Wd - WQ @ np.linalg.pinv(Q.T @ WQ, hermitian=True) @ WQ.T
+    return Wd, Ad, Q, (S + S.T) / 2
+
+
+def _reciprocal_min(left: np.ndarray, right: np.ndarray) -> float:
+    """1 / (smallest eigenvalue of the pencil (left, right)), infinite for a zero minimum."""
+    import scipy.linalg
+
+    mu = float(scipy.linalg.eigh((left + left.T) / 2, (right + right.T) / 2, eigvals_only=True, subset_by_index=[0, 0])[0])
+    return np.inf if mu <= 1e-12 * max(np.abs(np.diag(left)).max(), 1e-300) else 1.0 / mu
+
+
+def worst_case_slips(V: np.ndarray, W: Any, A: Any) -> list[tuple[float, str]]:
+    """The values of the usual wrong routes to C(V) (small meshes, dense), each with its hint."""
+    import scipy.linalg
+
+    Wd, Ad, Q, S = _dense_pencil_parts(V, W, A)
+    Z = scipy.linalg.null_space((Ad @ Q).T)  # the A-orthogonal complement of V
+    Ze = scipy.linalg.null_space(Q.T)  # the Euclidean one
+    return [
+        (_reciprocal_min(Z.T @ Wd @ Z, Z.T @ Ad @ Z),
+         "That is the trap: W on the complement of V is the energy of r alone. Minimise the energy of r + v over v in "
+         "V first: the Schur complement S = W − WQ(QᵀWQ)⁺QᵀW."),
+        (_reciprocal_min(Ze.T @ S @ Ze, Ze.T @ Ad @ Ze),
+         "The complement must be A-orthogonal to V (Qᵀ A r = 0), not Euclidean-orthogonal (Qᵀ r = 0)."),
+        (_reciprocal_min(Z.T @ S @ Z, Z.T @ Z),
+         "The error is measured in the A-norm: divide by rᵀ A r, not by rᵀ r."),
+    ]
+
+
+def _worst_case_where(value: float, ref: float, V: np.ndarray, W: Any, A: Any, pieces: int) -> str | None:
+    """None when ``value`` is C(V) = ``ref`` (``numpy.inf`` itself when it is infinite, as the prompt
+    asks), else the hint."""
+    if np.isnan(value):
+        return "Your C(V) is NaN."
+    if np.isinf(ref):
+        if value == np.inf:
+            return None
+        if value < 0:
+            return ("C(V) is never negative. Here the minimum of rᵀSr / rᵀAr is zero (to round-off, maybe a tiny negative "
+                    "number): W's kernel is not in V, and C(V) = ∞. Return `np.inf` then.")
+        if pieces > 1:
+            return ("On a mesh of several pieces, W's kernel holds the constant of each piece (zero energy on each one): when "
+                    "one of them is not in V, C(V) = ∞. Return `np.inf` then.")
+        return ("The constant function is not in V here: it has zero energy and a nonzero error, so C(V) = ∞. Return "
+                "`np.inf` then (a huge finite 1/μ from a μ that is zero to round-off is not it).")
+    if np.isinf(value):
+        return "C(V) is finite here: W's kernel (the constant on each piece of the mesh) lies in V."
+    if value <= 0:
+        return "C(V) is a ratio of an error and an energy, both ≥ 0, and it is finite here: positive."
+    if abs(value - ref) <= WORST_RTOL * ref:
+        return None
+    if abs(1 / value - ref) <= WORST_RTOL * ref:
+        return "Upside down: C(V) = 1/μ, μ the smallest eigenvalue of the Schur pencil."
+    for slip, hint in worst_case_slips(V, W, A):
+        if np.isfinite(slip) and abs(value - slip) <= WORST_RTOL * slip:
+            return hint
+    return ("Not C(V): with Q an A-orthonormal basis of V, 1/C(V) is the smallest eigenvalue μ of (ZᵀSZ) y = μ (ZᵀAZ) y, "
+            "S = W − WQ(QᵀWQ)⁺QᵀW and Z a basis of the A-orthogonal complement of V.")
+
+
+def judge_worst_case(worst_case: Any, problems: Any, call: Any = call_attempt, seen: str = "first seen on {}") -> str:
+    """The message of a correct ``worst_case(W, A, V)`` on every ``(W, A, V, where)`` of ``problems``
+    (``call(worst_case, W, A, V)`` runs it, on copies), else Stop with the first miss's hint and
+    ``seen`` formatted with its ``where``. The exact C(V) is ``worst_case_ratio``'s (dense)."""
+    from ..optimality import kernel_basis, worst_case_ratio
+
+    problems = list(problems)
+    refs = [worst_case_ratio(V, W, A, method="dense") for W, A, V, _ in problems]
+    for (W, A, V, where), ref in zip(problems, refs):
+        got = call(worst_case, W.copy(), A.copy(), np.array(V))
+        if isinstance(got, (tuple, list)) and len(got) == 2:
+            raise Stop(WRONG, f"Return C(V) alone, one number (a float), not a pair. ({seen.format(where)}.)")
+        value = as_number(got, "C(V), a float (`np.inf` when it is infinite)") if not (
+            isinstance(got, (float, np.floating)) and np.isinf(got)) else float(got)
+        hint = _worst_case_where(value, ref, np.asarray(V, dtype=np.float64), W, A, kernel_basis(W).shape[1])
+        if hint is not None:
+            raise Stop(WRONG, f"{hint} ({seen.format(where)}.)")
+    return ("Right: C(V) from the Schur complement, for the eigenbasis (the optimum 1/λ_n), perturbed and other bases, "
+            "and ∞ when V misses W's kernel.")
+
+
+@lru_cache(maxsize=1)
+def _worst_case_problems() -> tuple[tuple[Any, Any, np.ndarray, str], ...]:
+    """The (W, A, V, where) the visible check of 06-schur runs on: a small torus with its first six
+    eigenvectors mixed by an invertible matrix (C(V) = 1/λ_6), the same perturbed (the constant
+    kept), and eigenvectors 1..6 (no constant: C(V) = ∞)."""
+    import scipy.linalg
+
+    from .. import shapes
+    from ..operators import mass_matrix, stiffness_matrix
+
+    ring = shapes.torus(n_major=16, n_minor=8)
+    W, A = stiffness_matrix(ring), mass_matrix(ring)
+    _, phi = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, 7])
+    rng = np.random.default_rng(606)
+    mixed = phi[:, :6] @ (np.eye(6) + 0.3 * rng.normal(size=(6, 6)))
+    perturbed = phi[:, :6].copy()
+    perturbed[:, 1:] += 0.3 * np.abs(phi[:, 1:6]).mean() * rng.normal(size=(ring.n_vertices, 5))
+    where = f"a torus of {ring.n_vertices} vertices"
+    return ((W, A, mixed, f"{where}, its first six eigenvectors mixed"),
+            (W, A, perturbed, f"{where}, a perturbed eigenbasis"),
+            (W, A, phi[:, 1:7], f"{where}, eigenvectors 1 to 6"))
+
+
+def check_worst_case(worst_case: Any, *, show: bool = True) -> Feedback:
+    """Exercise 06-schur: the student's ``my_worst_case(W, A, V)``, the exact C(V) from the Schur complement.
+
+    Run on a small torus: the eigenbasis in a mixed-up basis (C(V) = 1/λ_6), a perturbed one, and
+    one without the constant (C(V) = ∞); the hint names the usual wrong routes (the trap that
+    uses W instead of the Schur complement, a Euclidean complement or norm, 1/C).
+
+    Examples
+    --------
+    >>> from lbo_notebooks.optimality import worst_case_ratio
+    >>> check_worst_case(lambda W, A, V: worst_case_ratio(V, W, A), show=False).correct
+    True
+    >>> check_worst_case(lambda W, A, V: 1 / worst_case_ratio(V, W, A), show=False).status
+    'wrong'
+    """
+    return run_check("06-schur", show, lambda: judge_worst_case(worst_case, _worst_case_problems()))
 
 
 def _words(answer: Any, synonyms: Mapping[str, Any] | None = None) -> Any:

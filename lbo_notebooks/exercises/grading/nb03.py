@@ -1,8 +1,8 @@
 """Graded tests of notebook 03 (the Laplace–Beltrami operator): see :mod:`lbo_notebooks.exercises.grading`.
 
-The two builds run on meshes neither the notebook nor the visible checks use, with the library's
-operators (and the other installed libraries that compute the same matrices) made unavailable;
-the values are judged against the notebook's objects rebuilt from their definitions.
+The three builds run on meshes neither the notebook nor the visible checks use, with the library's
+operators or eigensolvers (and the other installed libraries that compute the same) made
+unavailable; the values are judged against the notebook's objects rebuilt from their definitions.
 """
 
 from __future__ import annotations
@@ -63,6 +63,24 @@ _MASS = (
 )
 
 
+# What a build of the generalised eigensolve must not call: every route of the library to
+# eigenpairs of (W, A) (the public eigenbasis and the function behind it, spectrum slicing and the
+# block Lanczos it runs, the bases and the constrained minimum that deflation would turn into a
+# solver, regularized PCA's Ritz pairs) and the other installed libraries' solvers of the same
+# pencil. SciPy's eigsh / eigh are what the exercise asks for, and stay.
+_EIGENSOLVE = (
+    "lbo_notebooks.spectrum:eigenbasis", "lbo_notebooks.spectrum:_solve_in_unit_area",
+    "lbo_notebooks.eigensolver:slice_eigsh", "lbo_notebooks.eigensolver:_window_set", "lbo_notebooks.eigensolver:_stitch",
+    "lbo_notebooks.krylov:nearest_eigenpairs",
+    "lbo_notebooks.bases:lbo_basis", "lbo_notebooks.bases:_smallest_eigenvectors",
+    "lbo_notebooks.minmax:min_rayleigh_quotient", "lbo_notebooks.minmax:_min_dense",
+    "lbo_notebooks.minmax:ConstrainedRayleigh.minimum", "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",
+    "lbo_notebooks.rpca_pencil:rayleigh_ritz", "lbo_notebooks.rpca_pencil:data_eigenpairs",
+    "lbo_notebooks.rpca_pencil:complement_lanczos", "lbo_notebooks.rpca:regularized_pca",
+    "pyFM.mesh.laplacian:laplacian_spectrum", "lapy.solver:Solver.eigs",
+)
+
+
 def _unseen_meshes() -> list[Any]:
     """Meshes no notebook cell and no visible check uses: a bumpy torus, an open patch with
     obtuse triangles and boundary edges, and a lone obtuse triangle. Fresh objects at every call,
@@ -113,6 +131,40 @@ def _mass(my_mass: Any) -> Verdict:
     meshes = [(mesh, f"{_where(mesh)} the notebook does not show") for mesh in _unseen_meshes()]
     message = laplace_beltrami.judge_mass(my_mass, meshes, call=lambda f, mesh: student_call(f, _fresh(mesh)))
     return Verdict(1.0, message.replace("Right:", f"Right on {_UNSEEN}:", 1))
+
+
+def _unseen_eigenproblems() -> list[tuple[Any, Any, int, str]]:
+    """Pencils (W, A, k, where) no notebook cell and no visible check uses: the icosphere(2), whose
+    first 16 eigenvalues come in exactly repeated groups of 1, 3, 5, 3 and 4 (icosahedral symmetry);
+    a bumpy torus; an open sheet with the consistent (non-diagonal) mass; two disjoint pieces (a
+    twofold zero eigenvalue). Each k ends below a gap of the spectrum, so the span is determined."""
+    from ... import shapes
+    from ...operators import mass_matrix, stiffness_matrix
+
+    rng = np.random.default_rng(3032)
+    ball = shapes.icosphere(2)
+    ring = shapes.torus(n_major=24, n_minor=10)
+    bumpy = ring.with_vertices(ring.vertices * rng.uniform(0.92, 1.08, size=(ring.n_vertices, 1)))
+    sheet = shapes.rectangle(1.5, 1.0, 12, 8)
+    v = sheet.vertices.copy()
+    v[:, :2] += rng.uniform(-0.03, 0.03, size=(len(v), 2))
+    v[:, 2] = 0.2 * np.sin(3 * v[:, 0]) * np.cos(2 * v[:, 1])
+    sheet = sheet.with_vertices(v)
+    pieces = laplace_beltrami._two_spheres()
+    return [(stiffness_matrix(ball), mass_matrix(ball), 16, f"the icosphere of {ball.n_vertices} vertices"),
+            (stiffness_matrix(bumpy), mass_matrix(bumpy), 12, f"a bumpy torus of {bumpy.n_vertices} vertices"),
+            (stiffness_matrix(sheet), mass_matrix(sheet, "consistent"), 10,
+             f"an open sheet of {sheet.n_vertices} vertices with the consistent mass"),
+            (stiffness_matrix(pieces), mass_matrix(pieces), 5, f"a mesh of two separate pieces ({pieces.n_vertices} vertices)")]
+
+
+@grader("03-eigensolve", kind="build", replaces=_EIGENSOLVE)
+def _eigensolve(my_eigenbasis: Any) -> Verdict:
+    message = laplace_beltrami.judge_eigensolve(
+        my_eigenbasis, _unseen_eigenproblems(), call=lambda f, W, A, k: student_call(f, W, A, k),
+        seen="graded on {} the notebook does not show")
+    return Verdict(1.0, message.replace("Right:", "Right on four pencils the notebook does not show (an icosphere, a "
+                                        "bumpy torus, an open sheet, two separate pieces):", 1))
 
 
 @grader("03-convergence", kind="predict")
