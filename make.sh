@@ -12,6 +12,9 @@
 #                     `student lab` opens JupyterLab on it for self-study (docs/exercises.md)
 #   ./make.sh course DIR  write a ready nbgrader course to DIR, one assignment per notebook;
 #                     `course --check` runs the nbgrader workflow on a simulated class (CI)
+#   ./make.sh slides  lecture slides, one reveal.js deck per notebook, into build/slides (offline;
+#                     npm fetches reveal.js once into build/vendor); `slides booklet` builds both
+#   ./make.sh booklet the lecturers' solutions booklet (every exercise, solution, rubric) into build/booklet
 #   ./make.sh bench   print the benchmark tables (benchmarks/*.py)
 #   ./make.sh install only install
 #   ./make.sh pull    update a clone in which notebooks have been run (see README, "Course staff")
@@ -152,6 +155,21 @@ case "${1:-}" in
     [ -n "${2:-}" ] || { echo "usage: ./make.sh course DIR [NOTEBOOK ...] [--force]   |   ./make.sh course --check" >&2; exit 2; }
     "$VENV/bin/python" scripts/course.py "${@:2}"
     log "next: source $VENV/bin/activate && cd $2 && nbgrader generate_assignment 00_start_here (docs/exercises.md)" ;;
+  slides)
+    system_packages; python_env "[test]"
+    if [ ! -f "build/vendor/reveal.js-4.0.2/dist/reveal.js" ] && ! command -v npm >/dev/null 2>&1; then
+      log "installing Debian's npm (it fetches the reveal.js package the slides are served with, once)"
+      { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq npm >/dev/null; } \
+        || { log "install npm with: sudo apt-get install -y npm"; exit 1; }
+    fi
+    if [ "${2:-}" = booklet ]; then
+      "$VENV/bin/python" scripts/slides.py
+      exec "$VENV/bin/python" scripts/booklet.py
+    fi
+    exec "$VENV/bin/python" scripts/slides.py "${@:2}" ;;
+  booklet)
+    system_packages; python_env "[test]"
+    exec "$VENV/bin/python" scripts/booklet.py "${@:2}" ;;
   binder)
     exec scripts/binder_parity.sh "${@:2}" ;;
   bench)
@@ -164,5 +182,5 @@ case "${1:-}" in
     git add -u -- notebooks
     exec git pull "${@:2}" ;;
   *)
-    echo "usage: ./make.sh {lab|test|browser|binder|site|student|course|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
+    echo "usage: ./make.sh {lab|test|browser|binder|site|student|course|slides|booklet|bench|install|pull} [extra arguments]" >&2; exit 2 ;;
 esac

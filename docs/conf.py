@@ -64,7 +64,7 @@ html_theme_options = {
     "show_toc_level": 2,
     # The page's table of contents, not "edit this page" / "show source" links; none beside a
     # notebook (see html_sidebars).
-    "secondary_sidebar_items": {"docs/*": ["page-toc"], "generated/*": ["page-toc"], "reference": ["page-toc"]},
+    "secondary_sidebar_items": {"docs/*": ["page-toc"], "docs/lecturers/*": ["page-toc"], "generated/*": ["page-toc"], "reference": ["page-toc"]},
     "footer_start": ["copyright"],
     "footer_end": [],
     "header_links_before_dropdown": 6,

@@ -27,7 +27,8 @@ plotly.js copied into it, no CDN). This script does what Sphinx cannot, then han
    widgets (which need a kernel) are replaced by a note.
 4. **The source folder** for Sphinx (``<out>-src``, rebuilt each time, laid out like the
    repository so that links between notebooks and ``docs/`` resolve): ``notebooks/`` (executed),
-   ``docs/*.md``, ``index.md`` (every notebook with its title, its topic from the series map, a
+   ``docs/*.md`` and ``docs/lecturers/*.md`` (the "For lecturers" pages; the slides and the
+   solutions booklet built by ``./make.sh slides booklet`` are copied to ``<out>/lecturers/``), ``index.md`` (every notebook with its title, its topic from the series map, a
    link to the clean ``.ipynb`` and its run time), ``notebooks/index.md`` (the series' table of
    contents) and ``reference.rst`` (an autosummary of ``lbo_notebooks.__all__``, read when the site
    is built: names added or moved by the library need no change here).
@@ -275,6 +276,8 @@ def index_page(pages: list[Page], with_reference: bool = True) -> str:
                     f"   {p.description}\\\n"
                     f"   {{download}}`{p.source.name} <_clean/{p.source.name}>` · runs in {p.seconds:.0f} s\n")
     docs = "".join(f"docs/{d.stem}\n" for d in sorted((REPO / "docs").glob("*.md")))
+    if (REPO / "docs" / "lecturers" / "index.md").exists():
+        docs += "docs/lecturers/index\n"      # "For lecturers": plan, project, exam, slides, booklet
     reference = "reference\n" if with_reference else ""
     built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     return f"""# Spectral shape analysis with the Laplace–Beltrami operator
@@ -305,10 +308,31 @@ def sphinx_sources(src: Path, pages: list[Page], names: list[str]) -> None:
     (src / "docs").mkdir(parents=True, exist_ok=True)
     for doc in sorted((REPO / "docs").glob("*.md")):
         shutil.copy2(doc, src / "docs" / doc.name)
+    lecturers = sorted((REPO / "docs" / "lecturers").glob("*.md"))
+    if lecturers:
+        (src / "docs" / "lecturers").mkdir(exist_ok=True)
+        for doc in lecturers:
+            shutil.copy2(doc, src / "docs" / "lecturers" / doc.name)
     (src / "index.md").write_text(index_page(pages, bool(names)), encoding="utf-8")
     (src / "notebooks" / "index.md").write_text(notebooks_page(pages), encoding="utf-8")
     if names:
         (src / "reference.rst").write_text(reference_page(names), encoding="utf-8")
+
+
+def lecturer_pack(out: Path) -> list[str]:
+    """Copy the built slides and solutions booklet (``./make.sh slides booklet``) into ``<out>/lecturers/``.
+
+    The "For lecturers" page (``docs/lecturers/index.md``) links them there. Returns what was
+    missing (not built yet), by name.
+    """
+    missing = []
+    for name in ("slides", "booklet"):
+        built = REPO / "build" / name
+        if (built / "index.html").exists():
+            shutil.copytree(built, out / "lecturers" / name, dirs_exist_ok=True)
+        else:
+            missing.append(name)
+    return missing
 
 
 def run_sphinx(src: Path, out: Path) -> int:
@@ -386,6 +410,11 @@ def main(argv: list[str] | None = None) -> int:
     status = run_sphinx(src, out)
     html_pages = sum(1 for _ in out.rglob("*.html"))
     print(f"Sphinx: {html_pages} pages in {time.perf_counter() - start:.0f} s; wrote {out / 'index.html'}", flush=True)
+    if (REPO / "docs" / "lecturers" / "index.md").exists():
+        missing = lecturer_pack(out)
+        if missing:
+            print(f"not built, so not in the site's lecturer pages: {', '.join(missing)} "
+                  "(run ./make.sh slides booklet first)", flush=True)
     return 1 if status or any(p.error for p in pages) else 0
 
 
