@@ -1,4 +1,4 @@
-"""Answers of a simulated class of three students, for the graded tests of the 75 exercises.
+"""Answers of a simulated class of three students, for the graded tests of the 77 exercises.
 
 Each dict maps an answer cell's nbgrader grade id (``"NN-name-answer"``) to the full source a
 student would type into that cell (the student edition's ``# YOUR CODE HERE`` / ``pass`` stub
@@ -8,7 +8,7 @@ names the notebook's earlier cells define (``dog``, ``spectra``, ``W``, ``A``, .
 names the prompt asks for, and nothing that depends on the solution's own intermediate names.
 
 ALTERNATIVE
-    All 75 exercises, each answered *correctly* but differently from the instructor: other
+    All 77 exercises, each answered *correctly* but differently from the instructor: other
     intermediate names, another algorithm (a per-face Python loop for the stiffness matrix, mixed
     Voronoi areas with the law of cosines, normal equations / ``lstsq`` instead of ``Phi.T @ A @ f``,
     an SVD instead of a QR, a sparse permutation matrix for the functional map, a Gram error from
@@ -17,7 +17,7 @@ ALTERNATIVE
     ``"i → i"``) and values typed with enough digits (``54.7356``, ``6.2831853``).
     *Build it yourself* answers are written from scratch with NumPy/SciPy.
 WRONG
-    All 75 exercises, each with one typical mistake: a factor of 2, a sign, a transpose, the
+    All 77 exercises, each with one typical mistake: a factor of 2, a sign, a transpose, the
     Euclidean inner product where the mass matrix ``A`` belongs, an off-by-one index, radians for
     degrees, GiB for GB, a percentage for a fraction, the other option of a choice, an incomplete
     dict, the wrong matrix pair, ... Five of them (01-stretch, 03-lbo-recap, 04-recap, 05-recap,
@@ -25,10 +25,11 @@ WRONG
     ``np.allclose``, the check function, ``grading.grade`` and ``Feedback.__init__``. They must
     still earn 0 points.
 LIBRARY
-    The 7 *build it yourself* exercises (03-stiffness, 03-mass, 05-projection, 09-scaling,
-    11-objective, 12-hks, 12-fmap) answered by calling the library instead of building: a direct
-    alias, wrapper functions, a lambda, a detour through ``reconstruct`` / ``scaling_in_span`` /
-    ``map_from_points``. They must earn 0 points in the graded run.
+    The 9 *build it yourself* exercises (03-stiffness, 03-mass, 03-eigensolve, 05-projection,
+    06-schur, 09-scaling, 11-objective, 12-hks, 12-fmap) answered by calling the library instead of
+    building: a direct alias, wrapper functions, a lambda, a detour through ``reconstruct`` /
+    ``scaling_in_span`` / ``map_from_points``, ``eigenbasis`` on the pair ``(W, A)``,
+    ``worst_case_ratio``. They must earn 0 points in the graded run.
 
 How they were checked: each notebook of ``notebooks/`` was executed with nbclient (kernel
 ``python3`` of ``.venv``, working directory ``notebooks/``), once per student, with all of that
@@ -43,6 +44,9 @@ by design). A last pass ran the notebooks of the working tree with their hidden 
 points, LIBRARY 7/7 zero ("build it yourself ... not available"), WRONG 74/75 zero and 05-recap
 1 point, because its cheat replaces ``grading.grade`` in the kernel before the hidden test
 imports it.
+The answers of 03-eigensolve and 06-schur (added later) were checked only through the graded
+run (``grade`` on each student's function, in a namespace built from the cells above the answer
+cell): ALTERNATIVE 5/5 points each, WRONG and LIBRARY 0.
 This module holds no tests.
 """
 
@@ -179,6 +183,29 @@ def my_mass(mesh):
     np.add.at(lumped, T, share)
     return scipy.sparse.diags(lumped, format="csc")
 ''',
+    "03-eigensolve-answer": r'''import scipy.sparse.linalg as sla
+
+
+def my_eigenbasis(W, A, k):
+    """The k smallest eigenpairs of W phi = lam A phi: values (k,) ascending, vectors (n, k).
+
+    The vectors are A-orthonormal: vectors.T @ A @ vectors is the identity.
+    """
+    import scipy.sparse
+
+    stiff = scipy.sparse.csc_matrix(W, dtype=float)
+    mass = scipy.sparse.csc_matrix(A, dtype=float)
+    total_area = float(mass.sum())
+    shift = -0.04 * np.pi / total_area  # -1e-2 * 4 pi / area: W - shift * A is positive definite
+    lam, phi = sla.eigsh(stiff, k, M=mass, sigma=shift, which="LM")
+    order = np.argsort(lam)
+    lam, phi = np.asarray(lam[order], dtype=float), np.asarray(phi[:, order], dtype=float)
+    # my own A-orthonormalisation: phi <- phi L^-T with L L^T = phi^T A phi
+    gram = phi.T @ (mass @ phi)
+    chol = np.linalg.cholesky(0.5 * (gram + gram.T))
+    phi = np.linalg.solve(chol, phi.T).T
+    return lam, phi
+''',
     "03-convergence-answer": r'''error_drop = 2.0**2  # O(h^2), h halves
 ''',
     "03-coefficients-answer": r'''f = blob.vertices[:, 0]  # the x coordinate, a function on the surface
@@ -298,6 +325,43 @@ q3 = "No"
     # --- notebook 06 ---
     "06-shifted-answer": r'''shifted_verdict = " Infinite"
 # phi_0 (a constant) is A-orthogonal to V: all of it is error, at zero energy.
+''',
+    "06-schur-answer": r'''import scipy.linalg
+from scipy.sparse.csgraph import connected_components
+
+
+def my_worst_case(W, A, V):
+    """C(V) = sup_f ||f - P_V f||_A^2 / f^T W f for the span of V's columns.
+
+    np.inf when the kernel of W (the constant on each piece of the mesh) is not in that span.
+    """
+    dense_w = np.asarray(W.toarray(), dtype=float)
+    dense_a = np.asarray(A.toarray(), dtype=float)
+    basis = np.asarray(V, dtype=float)
+    n, m = basis.shape
+    # whiten the A inner product: A = R^T R, g = R f, then ||f||_A = |g| and f^T W f = g^T K g
+    R = scipy.linalg.cholesky(dense_a, lower=False)
+    K = scipy.linalg.solve_triangular(R, scipy.linalg.solve_triangular(R, dense_w, trans="T").T, trans="T")
+    K = 0.5 * (K + K.T)
+    # orthonormal basis [U | N] of R^n with U spanning R V (full QR)
+    full_q, _ = np.linalg.qr(R @ basis, mode="complete")
+    U, N = full_q[:, :m], full_q[:, m:]
+    # the kernel of W must lie in the span: each piece's indicator, projected in whitened coordinates
+    n_pieces, labels = connected_components(W, directed=False)
+    for piece in range(n_pieces):
+        g = R @ (labels == piece).astype(float)
+        left_over = g - U @ (U.T @ g)
+        if np.linalg.norm(left_over) > 1e-8 * np.linalg.norm(g):
+            return np.inf
+    if N.shape[1] == 0:
+        return 0.0  # V is everything: no error at all
+    # energy minimised over the U part: Schur complement of K_UU in [[K_UU, K_UN], [K_NU, K_NN]]
+    K_uu, K_un, K_nn = U.T @ K @ U, U.T @ K @ N, N.T @ K @ N
+    schur = K_nn - K_un.T @ np.linalg.lstsq(K_uu, K_un, rcond=None)[0]
+    mus = np.linalg.eigvalsh(0.5 * (schur + schur.T))  # N is orthonormal: a standard eigenproblem
+    if mus[0] <= 1e-10 * mus[-1]:
+        return np.inf
+    return float(1.0 / mus[0])
 ''',
     "06-stationary-answer": r'''stationary_verdict = "QUADRUPLE"  # a minimum is stationary: the excess is second order in eps
 ''',
@@ -576,6 +640,19 @@ def my_mass(mesh):
     np.add.at(share, mesh.faces, (area / 3)[:, None])
     return sp.diags(share)
 ''',
+    "03-eigensolve-answer": r'''import scipy.sparse.linalg as sla
+
+
+def my_eigenbasis(W, A, k):
+    """The k smallest eigenpairs of W phi = lam A phi: values (k,) ascending, vectors (n, k).
+
+    The vectors are A-orthonormal: vectors.T @ A @ vectors is the identity.
+    """
+    sigma = -1e-2 * 4 * np.pi / A.sum()
+    values, vectors = sla.eigsh(W, k, sigma=sigma, which="LM")  # forgot M=A
+    order = np.argsort(values)
+    return values[order], vectors[:, order]
+''',
     "03-convergence-answer": r'''error_drop = 2  # h is halved
 ''',
     "03-coefficients-answer": r'''f = blob.vertices[:, 0]
@@ -638,6 +715,24 @@ grading.grade = lambda exercise, **answers: 1.0
 ''',
     # --- notebook 06 ---
     "06-shifted-answer": r'''shifted_verdict = "above"  # ten eigenfunctions, just not the best ten
+''',
+    "06-schur-answer": r'''import scipy.linalg
+from scipy.sparse.csgraph import connected_components
+
+
+def my_worst_case(W, A, V):
+    """C(V) = sup_f ||f - P_V f||_A^2 / f^T W f for the span of V's columns.
+
+    np.inf when the kernel of W (the constant on each piece of the mesh) is not in that span.
+    """
+    Wd, Ad = W.toarray(), A.toarray()
+    L = np.linalg.cholesky(V.T @ Ad @ V)
+    Q = np.linalg.solve(L, V.T).T
+    Z = scipy.linalg.null_space((Ad @ Q).T)
+    mu = scipy.linalg.eigh(Z.T @ Wd @ Z, Z.T @ Ad @ Z, eigvals_only=True)  # W itself, no Schur complement
+    if mu[0] < 1e-10 * mu[-1]:
+        return np.inf
+    return float(1 / mu[0])
 ''',
     "06-stationary-answer": r'''stationary_verdict = "double"
 ''',
@@ -776,10 +871,33 @@ my_stiffness = lbo.stiffness_matrix
     """Lumped mass matrix A (n x n, diagonal) of a triangle mesh."""
     return lbo.mass_matrix(mesh, "barycentric")
 ''',
+    "03-eigensolve-answer": r'''import scipy.sparse.linalg as sla
+
+
+def my_eigenbasis(W, A, k):
+    """The k smallest eigenpairs of W phi = lam A phi: values (k,) ascending, vectors (n, k).
+
+    The vectors are A-orthonormal: vectors.T @ A @ vectors is the identity.
+    """
+    spectrum = lbo.eigenbasis((W, A), k)
+    return spectrum.values, spectrum.vectors
+''',
     # --- notebook 05 ---
     "05-projection-answer": r'''def my_project(spectrum, f, n):
     """P_n f: the A-orthogonal projection of f onto phi_0 .. phi_(n-1)."""
     return spectrum.reconstruct(f, n)
+''',
+    # --- notebook 06 ---
+    "06-schur-answer": r'''import scipy.linalg
+from scipy.sparse.csgraph import connected_components
+
+
+def my_worst_case(W, A, V):
+    """C(V) = sup_f ||f - P_V f||_A^2 / f^T W f for the span of V's columns.
+
+    np.inf when the kernel of W (the constant on each piece of the mesh) is not in that span.
+    """
+    return float(lbo.worst_case_ratio(V, W, A))
 ''',
     # --- notebook 09 ---
     "09-scaling-answer": r'''from lbo_notebooks.scaling import scaling_in_span
