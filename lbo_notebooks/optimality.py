@@ -282,9 +282,14 @@ def worst_case_ratio(
     How it is computed (docs/maths.md, "Optimality"): with ``f = r + v``, ``v`` in V and ``r`` A-orthogonal to
     V, the error is ``||r||_A^2`` and the smallest energy over ``v`` is the Schur complement
     ``r @ S @ r``, ``S = W - W Q (Q.T W Q)^+ Q.T W``. Equivalently ``C(V)`` is the largest eigenvalue
-    of the pencil ``(A - (A Q)(A Q).T,  W + a a.T / s)``, ``Q`` an A-orthonormal basis of V,
-    ``a = A 1``, ``s = 1 @ A @ 1``; the rank-one term makes the right side definite and does not
-    change the ratio. (Using ``W`` instead of ``S`` on the complement is the trap:
+    of the pencil ``(A - (A Q)(A Q).T,  W + sum_c a_c a_c.T / area_c)``, ``Q`` an A-orthonormal basis
+    of V, with one rank-one term per connected component ``c``: ``a_c = A 1_c`` for the indicator
+    ``1_c`` of the component and ``area_c = 1_c @ A @ 1_c`` (a single ``a a.T / area`` on a connected
+    mesh). These terms make the right side positive definite (one term alone would not on a mesh with
+    several components). They change the ratio of an individual ``f``, whose energy gains
+    ``sum_c (a_c @ f)**2 / area_c``, but not the supremum: with the constants in V, adding a constant
+    on each component changes neither the error nor the energy and makes every ``a_c @ f`` zero.
+    (Using ``W`` instead of ``S`` on the complement is the trap:
     :func:`~lbo_notebooks.minmax.complement_ratio`.)
 
     Parameters
@@ -295,8 +300,9 @@ def worst_case_ratio(
         ``W`` and ``A``.
     method : {"auto", "dense", "sparse"}
         ``"dense"``: ``scipy.linalg.eigh`` of the pencil (O(n_vertices^3), small meshes);
-        ``"sparse"``: Lanczos (``eigsh``, ``k=1``, ``which="LA"``) with ``(W + a a.T/s)^{-1}``
-        applied by a sparse LU of ``W`` with one vertex pinned, corrected by the constant; no dense
+        ``"sparse"``: Lanczos (``eigsh``, ``k=1``, ``which="LA"``) with
+        ``(W + sum_c a_c a_c.T/area_c)^{-1}`` applied by a sparse LU of ``W`` with one vertex pinned
+        per component, corrected by the constants; no dense
         n_vertices x n_vertices matrix is formed. ``"auto"`` picks dense below
         ``DENSE_LIMIT`` vertices.
     return_vector : bool
