@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import lbo_notebooks
 from lbo_notebooks import exercises
 from lbo_notebooks.exercises import grading
 from lbo_notebooks.exercises.grading import _registry
@@ -140,6 +141,20 @@ def test_a_blocked_function_raises_only_inside_the_answer():
     with pytest.raises(_registry.LibraryUsed):                        # caught, still seen
         _registry.student_call(hides_it, mesh)
     assert operators.stiffness_matrix(mesh).shape == (42, 42)
+
+
+def test_a_blocked_function_keeps_its_signature():
+    """Blocking lasts for the process; help() and inspect still see the original's parameters
+    (a notebook cell asserts a default through inspect.signature)."""
+    import inspect
+
+    from lbo_notebooks import spectrum
+
+    before = inspect.signature(spectrum.eigenbasis)
+    _registry.block(("lbo_notebooks.spectrum:eigenbasis",))
+    assert getattr(spectrum.eigenbasis, "__lbo_guard__", False)
+    assert inspect.signature(spectrum.eigenbasis) == before
+    assert inspect.signature(lbo_notebooks.eigenbasis).parameters["n_neighbors"].default == 30
 
 
 def test_a_verdict_is_a_fraction():

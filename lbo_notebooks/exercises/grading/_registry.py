@@ -139,6 +139,10 @@ def block(targets: tuple[str, ...]) -> None:
 
         guard.__lbo_guard__ = True  # type: ignore[attr-defined]
         del guard.__wrapped__  # functools.wraps' way back to the original: not for the answer
+        try:  # but the original's signature stays, for help() and inspect in the same process
+            guard.__signature__ = inspect.signature(function)  # type: ignore[attr-defined]
+        except (TypeError, ValueError):  # a C function without one
+            pass
         replacement: Any = staticmethod(guard) if is_static else guard
         setattr(owner, attr, replacement)
         if isinstance(owner, type):
