@@ -23,6 +23,7 @@ True
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 from typing import Union
 
@@ -30,7 +31,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._deprecation import moved, warn
-from .formats import BINARY_FORMATS, FORMATS, POINT_FORMATS, mesh_text, read_point_text, read_raw, write_mesh_binary
+from .formats import (
+    BINARY_FORMATS, FORMATS, POINT_FORMATS, RawMesh, mesh_text, read_point_text, read_raw, write_mesh_binary,
+)
 from .mesh import Mesh, MeshError, unique_rows
 from .pointcloud import PointCloud
 from .repair import clean_arrays
@@ -165,7 +168,7 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
                 raw.vertices, raw.triangles, keep_largest_component=keep_largest_component, polygons_split=raw.n_polygons
             )
         except MeshError as exc:
-            raise MeshError(f"{str(p)!r}: cannot be repaired: {exc}") from None
+            raise MeshError(f"{str(p)!r}: cannot be repaired: {exc}{_in_the_file(raw, str(exc), p)}") from None
         if report.noteworthy:
             warn(f"{str(p)!r} loaded with clean=True: {report}", MeshRepairWarning)
         return mesh
@@ -178,7 +181,30 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
     try:
         return Mesh(raw.vertices, raw.triangles)
     except MeshError as exc:
-        raise MeshError(f"{str(p)!r}: {exc}") from None
+        raise MeshError(f"{str(p)!r}: {exc}{_in_the_file(raw, str(exc), p)}") from None
+
+
+_MENTION = re.compile(r"\b(face|vertex) (\d+)\b(?! (?:has|have|is|are)\b)")
+
+
+def _in_the_file(raw: RawMesh, message: str, p: Path) -> str:
+    """Where the faces and vertices a mesh error names (counted from 0) are in the file, for OFF and OBJ.
+
+    An OBJ file numbers its vertices from 1, so ``face 12 = [8, 29, 9]`` is the line ``f 9 30 10``;
+    the sentence returned shows that line (empty if the reader cannot point at lines).
+    """
+    if raw.locate is None:
+        return ""
+    places = []
+    for kind, index in dict.fromkeys(_MENTION.findall(message)):
+        where = raw.locate(kind, int(index))
+        if where is not None:
+            places.append(f"{kind} {index} is {where}")
+    if not places:
+        return ""
+    counting = (" (which numbers its vertices from 1, where this message counts from 0)"
+                if p.suffix.lower() == ".obj" else "")
+    return f" In the file{counting}: {'; '.join(places)}."
 
 
 def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path:

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["Mesh", "MeshError", "validate_topology", "degenerate_faces", "unique_rows", "per_mesh", "USABLE_SIZE_RANGE",
-           "box_diagonal", "check_coordinate_range", "real_coordinates"]
+           "box_diagonal", "check_coordinate_range", "real_coordinates", "plural"]
 
 T = TypeVar("T")
 
@@ -28,6 +28,21 @@ DEGENERATE_AREA_TOL = 1e-14
 #: every face that is not degenerate (area above ``DEGENERATE_AREA_TOL`` times the squared size)
 #: and the eigenvalues (about 1/size**2) far inside the range.
 USABLE_SIZE_RANGE = (1e-60, 1e60)
+
+
+def plural(n: int, singular: str, plural_form: str | None = None) -> str:
+    """``n`` and the noun in the right number, for messages: "1 face", "2 faces", "1 vertex", "3 vertices".
+
+    ``plural_form`` defaults to ``singular`` + "s" (so a phrase must end in its noun).
+
+    Examples
+    --------
+    >>> plural(1, "duplicate face"), plural(2, "duplicate face"), plural(1, "vertex", "vertices")
+    ('1 duplicate face', '2 duplicate faces', '1 vertex')
+    """
+    if n == 1:
+        return f"{n} {singular}"
+    return f"{n} {plural_form if plural_form is not None else singular + 's'}"
 
 
 class MeshError(ValueError):
@@ -135,7 +150,8 @@ def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
     if bad.any():
         rows = np.flatnonzero(bad)
         raise MeshError(
-            f"{rows.size} vertices have non-finite (NaN or inf) coordinates (first: vertex {rows[0]}); "
+            f"{plural(rows.size, 'vertex has', 'vertices have')} non-finite (NaN or inf) coordinates (first: vertex "
+            f"{rows[0]}, counted from 0); "
             "fix or remove them before building the mesh."
         )
     return v
@@ -165,7 +181,8 @@ def _as_faces(faces: ArrayLike, n_vertices: int) -> NDArray[np.int64]:
         bad = np.flatnonzero(outside)
         raise MeshError(
             f"{bad.size} faces use vertex indices outside 0..{n_vertices - 1} (first: face {bad[0]} = "
-            f"{[int(x) for x in f[bad[0]]]}); indices are 0-based and must refer to existing vertices."
+            f"{[int(x) for x in f[bad[0]]]}, faces and vertices counted from 0); indices are 0-based and must refer "
+            "to existing vertices."
         )
     return f.astype(np.int64)
 
@@ -517,7 +534,8 @@ def _check_degenerate(m: Mesh) -> None:
     bad = np.flatnonzero(degenerate_faces(m))
     if bad.size:
         raise MeshError(
-            f"{bad.size} degenerate (zero-area) faces (first: face {bad[0]} = {f[bad[0]].tolist()}); "
+            f"{plural(bad.size, 'degenerate (zero-area) face')} (first: face {bad[0]} = {f[bad[0]].tolist()}, "
+            "faces and vertices counted from 0); "
             "their cotangent weights are undefined. Remove them, or load with "
             "load_mesh(path, clean=True), which drops them."
         )
@@ -535,12 +553,15 @@ def validate_topology(mesh: Mesh) -> None:
 
     key = np.sort(f, axis=1)
     key = (key[:, 0] * np.int64(n) + key[:, 1]) * np.int64(n) + key[:, 2] if n < 2**21 else key
-    _, first, counts = np.unique(key, axis=0 if key.ndim == 2 else None, return_index=True, return_counts=True)
+    _, first, inverse, counts = np.unique(key, axis=0 if key.ndim == 2 else None, return_index=True,
+                                          return_inverse=True, return_counts=True)
     if np.any(counts > 1):
-        dup = np.sort(first[counts > 1])
+        repeats = np.flatnonzero(first[inverse.ravel()] != np.arange(len(f)))  # every copy after the first
+        again, original = int(repeats[0]), int(first[inverse.ravel()[repeats[0]]])
         raise MeshError(
-            f"{int((counts - 1).sum())} duplicate faces (first repeated: face {dup[0]} = "
-            f"{f[dup[0]].tolist()}); each triangle must appear once. Load with clean=True to drop them."
+            f"{plural(int((counts - 1).sum()), 'duplicate face')} (first: face {again} = {f[again].tolist()} repeats "
+            f"face {original} = {f[original].tolist()}, faces and vertices counted from 0); each triangle must "
+            "appear once. Load with clean=True to drop them."
         )
 
     used = np.zeros(n, dtype=bool)
@@ -548,7 +569,8 @@ def validate_topology(mesh: Mesh) -> None:
     if not used.all():
         unused = np.flatnonzero(~used)
         raise MeshError(
-            f"{unused.size} unreferenced vertices (first: vertex {unused[0]}) belong to no face; "
+            f"{plural(unused.size, 'unreferenced vertex', 'unreferenced vertices')} (first: vertex {unused[0]}, "
+            f"counted from 0) {'belongs' if unused.size == 1 else 'belong'} to no face; "
             "they would get a zero row in the mass matrix. Load with clean=True to drop them."
         )
 
@@ -556,8 +578,8 @@ def validate_topology(mesh: Mesh) -> None:
     if np.any(counts > 2):
         bad = mesh.edges[counts > 2]
         raise MeshError(
-            f"{len(bad)} non-manifold edges are shared by more than two faces (first: edge "
-            f"{bad[0].tolist()}); the cotangent LBO needs an edge-manifold surface. Load with "
+            f"{plural(len(bad), 'non-manifold edge is', 'non-manifold edges are')} shared by more than two faces "
+            f"(first: edge {bad[0].tolist()}, vertices counted from 0); the cotangent LBO needs an edge-manifold surface. Load with "
             "load_mesh(path, clean=True) (or build Mesh(..., check=False)): eigenbasis then uses the robust "
             "Laplacian, which serves non-manifold meshes."
         )
@@ -567,7 +589,7 @@ def validate_topology(mesh: Mesh) -> None:
         twice = keys[dcounts > 1]
         bad = np.stack([twice // n, twice % n], axis=1)
         raise MeshError(
-            f"inconsistent orientation: {len(bad)} edges are traversed in the same direction by both "
-            f"of their faces (first: edge {bad[0].tolist()}). Flip faces so that neighbours agree, "
+            f"inconsistent orientation: {plural(len(bad), 'edge is', 'edges are')} traversed in the same direction "
+            f"by both of their faces (first: edge {bad[0].tolist()}, vertices counted from 0). Flip faces so that neighbours agree, "
             "or load with clean=True, which re-orients each orientable component."
         )

@@ -15,7 +15,7 @@ from typing import Any, Sequence, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import Mesh, MeshError, degenerate_faces, real_coordinates, unique_rows
+from .mesh import Mesh, MeshError, degenerate_faces, plural, real_coordinates, unique_rows
 
 __all__ = ["clean_mesh", "clean_arrays", "CleanReport", "triangulate_polygons"]
 
@@ -109,22 +109,24 @@ class CleanReport:
         )
 
     def __str__(self) -> str:
-        items = [
-            (self.polygons_split, "polygons split into triangles"),
-            (self.vertices_welded, "duplicate vertices welded"),
-            (self.degenerate_faces, "degenerate faces removed"),
-            (self.duplicate_faces, "duplicate faces removed"),
-            (self.unreferenced_vertices, "unreferenced vertices removed"),
-            (self.faces_flipped, "faces flipped to a consistent orientation"),
-            (self.components_removed, "smaller components removed"),
+        items = [  # (count, singular, plural)
+            (self.polygons_split, "polygon split into triangles", "polygons split into triangles"),
+            (self.vertices_welded, "duplicate vertex welded", "duplicate vertices welded"),
+            (self.degenerate_faces, "degenerate face removed", "degenerate faces removed"),
+            (self.duplicate_faces, "duplicate face removed", "duplicate faces removed"),
+            (self.unreferenced_vertices, "unreferenced vertex removed", "unreferenced vertices removed"),
+            (self.faces_flipped, "face flipped to a consistent orientation", "faces flipped to a consistent orientation"),
+            (self.components_removed, "smaller component removed", "smaller components removed"),
         ]
-        parts = [f"{n} {what}" for n, what in items if n]
+        parts = [plural(n, one, many) for n, one, many in items if n]
         done = "; ".join(parts) if parts else "nothing to repair"
         kept = [
-            (self.non_manifold_edges, "non-manifold edges kept (eigenbasis will use the robust Laplacian)"),
-            (self.non_orientable_components, "non-orientable components kept as they are"),
+            (self.non_manifold_edges, "non-manifold edge", "non-manifold edges",
+             " kept (eigenbasis will use the robust Laplacian)"),
+            (self.non_orientable_components, "non-orientable component", "non-orientable components",
+             " kept as they are" if self.non_orientable_components > 1 else " kept as it is"),
         ]
-        notes = "".join(f"; {n} {what}" for n, what in kept if n)
+        notes = "".join(f"; {plural(n, one, many)}{what}" for n, one, many, what in kept if n)
         if self.n_components > 1:
             notes += (
                 f"; {self.n_components} connected components, so the spectrum starts with "
@@ -189,7 +191,7 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
     >>> m.faces.tolist()
     [[0, 1, 2], [2, 1, 3]]
     >>> print(report)
-    1 duplicate vertices welded; 1 duplicate faces removed; 1 unreferenced vertices removed; 1 faces flipped to a consistent orientation (6 -> 4 vertices, 3 -> 2 faces)
+    1 duplicate vertex welded; 1 duplicate face removed; 1 unreferenced vertex removed; 1 face flipped to a consistent orientation (6 -> 4 vertices, 3 -> 2 faces)
     """
     if isinstance(mesh, Mesh):
         vertices, faces = mesh.vertices, mesh.faces
@@ -222,7 +224,8 @@ def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Me
         polygons = [list(map(int, poly)) for poly in faces]
         short = [k for k, poly in enumerate(polygons) if len(poly) < 3]
         if short:
-            raise MeshError(f"{len(short)} faces have fewer than 3 corners (first: face {short[0]}).") from None
+            raise MeshError(f"{plural(len(short), 'face has', 'faces have')} fewer than 3 corners (first: face "
+                            f"{short[0]}, counted from 0).") from None
         f, n_poly = triangulate_polygons(polygons)
     return clean_arrays(v, f, keep_largest_component=keep_largest_component, polygons_split=n_poly)
 
@@ -250,7 +253,8 @@ def clean_arrays(
     if f.min() < 0 or f.max() >= n_in:
         bad = np.flatnonzero(((f < 0) | (f >= n_in)).any(axis=1))
         raise MeshError(
-            f"{bad.size} faces use vertex indices outside 0..{n_in - 1} (first: face {bad[0]} = {f[bad[0]].tolist()}); "
+            f"{bad.size} faces use vertex indices outside 0..{n_in - 1} (first: face {bad[0]} = {f[bad[0]].tolist()}, "
+            "faces and vertices counted from 0); "
             "fix the file: indices must refer to existing vertices."
         )
     used = np.zeros(n_in, dtype=bool)
@@ -259,7 +263,8 @@ def clean_arrays(
     if np.any(used & ~finite):
         bad = np.flatnonzero(used & ~finite)
         raise MeshError(
-            f"{bad.size} vertices used by faces have non-finite (NaN or inf) coordinates (first: vertex {bad[0]}); "
+            f"{plural(bad.size, 'vertex used by faces has', 'vertices used by faces have')} non-finite (NaN or inf) "
+            f"coordinates (first: vertex {bad[0]}, counted from 0); "
             "fix them in the source."
         )
 

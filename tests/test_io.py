@@ -220,7 +220,7 @@ BROKEN = [
     ("off-bad-counts", "b.off", "OFF\nthree one zero\n", "integers"),
     ("off-absurd-counts", "a.off", "OFF\n999999999 999999999 0\n" + _TRI + "3 0 1 2\n", "announces 999999999"),
     ("off-truncated", "tr.off", "OFF\n4 2 0\n" + _TRI + "1 1 0\n3 0 1 2\n", "truncated"),
-    ("off-non-numeric", "nn.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", "not three numbers"),
+    ("off-non-numeric", "nn.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", "'zero', which is not a number"),
     ("off-nan", "nan.off", "OFF\n3 1 0\n0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n", "non-finite"),
     ("off-index-out-of-range", "oor.off", "OFF\n3 1 0\n" + _TRI + "3 0 1 7\n", "outside 0..2"),
     ("off-negative-index", "neg.off", "OFF\n3 1 0\n" + _TRI + "3 0 1 -1\n", "outside 0..2"),
@@ -228,7 +228,7 @@ BROKEN = [
     ("off-quad", "q.off", off_text(SQUARE_V, [[0, 1, 2, 3]]), "more than three corners"),
     ("off-degenerate", "dg.off", off_text([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], [[0, 1, 2], [0, 1, 3]]), "degenerate"),
     ("off-repeated-corner", "rc.off", off_text(SQUARE_V, [[0, 1, 2], [0, 2, 2]]), "degenerate"),
-    ("off-duplicate-faces", "du.off", off_text(SQUARE_V, [[0, 1, 2], [0, 2, 3], [2, 0, 1]]), "duplicate faces"),
+    ("off-duplicate-faces", "du.off", off_text(SQUARE_V, [[0, 1, 2], [0, 2, 3], [2, 0, 1]]), "1 duplicate face "),
     ("off-unreferenced", "ur.off", off_text(SQUARE_V + [[5, 5, 5]], SQUARE_F), "unreferenced"),
     ("off-non-manifold", "nm.off", _NONMANIFOLD, "non-manifold"),
     ("off-inconsistent-orientation", "io.off", off_text(SQUARE_V, [[0, 1, 2], [0, 3, 2]]), "orientation"),
@@ -321,14 +321,14 @@ def _load_clean(path: Path, **kw) -> tuple[Mesh, str]:
 
 REPAIRABLE = [
     # (case id from BROKEN, expected report words, expected (n_vertices, n_faces) after cleaning)
-    ("off-quad", "1 polygons split", (4, 2)),
-    ("obj-quad", "1 polygons split", (4, 2)),
-    ("ply-quad", "polygons split", (4, 2)),
-    ("off-degenerate", "1 degenerate faces removed", (3, 1)),
-    ("off-repeated-corner", "1 degenerate faces removed", (3, 1)),
-    ("off-duplicate-faces", "1 duplicate faces removed", (4, 2)),
-    ("off-unreferenced", "1 unreferenced vertices removed", (4, 2)),
-    ("off-inconsistent-orientation", "1 faces flipped", (4, 2)),
+    ("off-quad", "1 polygon split", (4, 2)),
+    ("obj-quad", "1 polygon split", (4, 2)),
+    ("ply-quad", "1 polygon split", (4, 2)),
+    ("off-degenerate", "1 degenerate face removed", (3, 1)),
+    ("off-repeated-corner", "1 degenerate face removed", (3, 1)),
+    ("off-duplicate-faces", "1 duplicate face removed", (4, 2)),
+    ("off-unreferenced", "1 unreferenced vertex removed", (4, 2)),
+    ("off-inconsistent-orientation", "1 face flipped", (4, 2)),
 ]
 
 
@@ -356,7 +356,7 @@ def test_moebius_strip_is_kept_as_it_is_and_reported_non_orientable():
     mesh, report = clean_mesh((v, f))
     assert report.non_orientable_components == 1 and report.faces_flipped == 0
     np.testing.assert_array_equal(mesh.faces, f)  # no choice of orientations is right: keep the file's
-    assert "1 non-orientable components kept" in str(report)
+    assert "1 non-orientable component kept" in str(report)
     with pytest.raises(MeshError, match="orientation"):
         Mesh(v, f)  # the checked constructor still refuses it
 
@@ -368,7 +368,7 @@ def test_non_manifold_edge_is_kept_counted_and_the_other_repairs_still_happen():
     assert (report.non_manifold_edges, report.duplicate_faces, report.unreferenced_vertices) == (1, 1, 1)
     assert mesh.n_faces == 3 and mesh.n_vertices == 5
     assert mesh.edge_face_counts.max() == 3
-    assert "1 non-manifold edges kept" in str(report)
+    assert "1 non-manifold edge kept" in str(report)
 
 
 def test_clean_restores_the_orientation_of_randomly_flipped_faces():
@@ -403,7 +403,7 @@ def test_clean_keeps_the_largest_component_and_maps_vertices(tmp_path):
     mesh, message = _load_clean(path, keep_largest_component=True)
     assert mesh.n_components == 1 and mesh.n_vertices == big.n_vertices
     np.testing.assert_array_equal(mesh.vertices, big.vertices + 5.0)
-    assert "1 smaller components removed" in message
+    assert "1 smaller component removed" in message
     _, report = clean_mesh((v, f), keep_largest_component=True)
     kept = report.vertex_map >= 0
     np.testing.assert_array_equal(mesh.vertices[report.vertex_map[kept]], v[kept])
@@ -635,7 +635,7 @@ def test_ply_with_extra_properties_polygons_and_other_elements(tmp_path, binary)
     mesh, message = _load_clean(path)
     np.testing.assert_array_equal(mesh.vertices[:, 1], [0, 0, 1, 1, -1])
     np.testing.assert_array_equal(mesh.faces, [[0, 1, 2], [0, 2, 3], [1, 0, 4]])
-    assert "1 polygons split" in message
+    assert "1 polygon split" in message
 
 
 @pytest.mark.parametrize("ext,binary", WRITE_MODES)
@@ -800,7 +800,7 @@ def test_clean_load_of_a_mesh_in_pieces_says_how_many_zero_eigenvalues_to_expect
     assert loaded == mesh  # nothing to repair: the warning is only the note
     values = eigenbasis(loaded, 4).values
     assert np.all(np.abs(values[:2]) < 1e-9 * values[3]) and values[2] > 1e-3 * values[3]
-    with pytest.warns(MeshRepairWarning, match="1 smaller components removed") as caught:
+    with pytest.warns(MeshRepairWarning, match="1 smaller component removed") as caught:
         largest = load_mesh(path, clean=True, keep_largest_component=True)
     assert largest.n_components == 1 and "connected components" not in str(caught[0].message)
 
@@ -931,7 +931,7 @@ def test_a_utf8_byte_order_mark_and_indented_obj_lines_do_not_drop_a_vertex(tmp_
     # (a silent wrong mesh whenever the last vertex is unused, a misleading error otherwise).
     body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 2 3 4\n"
     for name, data in (("bom.obj", b"\xef\xbb\xbf" + body.encode()), ("indented.obj", ("  " + body).encode())):
-        with pytest.warns(MeshRepairWarning, match="1 unreferenced vertices removed"):  # vertex 0, unused
+        with pytest.warns(MeshRepairWarning, match="1 unreferenced vertex removed"):  # vertex 0, unused
             mesh = load_mesh(write(tmp_path / name, data), clean=True)
         np.testing.assert_array_equal(mesh.vertices, [[1, 0, 0], [0, 1, 0], [0, 0, 1]])
     bom_off = b"\xef\xbb\xbf" + off_text(SQUARE_V, SQUARE_F).encode()
@@ -944,3 +944,243 @@ def test_point_list_header_and_count_lines(tmp_path):
         assert load_points(write(tmp_path / "p.txt", header + rows)).n_points == 5
     # A comment after the last number shows the line ended: no line break needed.
     assert load_points(write(tmp_path / "c.xyz", rows + "2 2 2 # last")).n_points == 6
+
+
+# --- issue 41: declared counts, mixed binary polygons, per-line counts, locales, trailing data, BOMs ------
+_PLY_HEAD = ("ply\nformat {fmt} 1.0\nelement vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n"
+             "{extra}element face {nf}\nproperty list uchar int vertex_indices\nend_header\n")
+
+
+def _run_under_a_memory_limit(code: str, limit: int = 1 << 30) -> subprocess.CompletedProcess[str]:
+    """``code`` in a fresh interpreter that may allocate at most ``limit`` bytes of address space beyond its start."""
+    prelude = (
+        "import resource, lbo_notebooks.io\n"
+        "used = int(open('/proc/self/statm').read().split()[0]) * resource.getpagesize()\n"
+        f"resource.setrlimit(resource.RLIMIT_AS, (used + {limit}, resource.RLIM_INFINITY))\n"
+    )
+    return subprocess.run([sys.executable, "-c", prelude + code], capture_output=True, text=True, timeout=120,
+                          env={"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "PATH": "/usr/bin:/bin"})
+
+
+def test_a_propertyless_element_count_is_bounded_by_the_lines_an_ascii_file_holds(tmp_path):
+    # Issue 41, item 1: a 204-byte file announcing 2e9 rows of an element with no properties asked for 14.9 GiB.
+    text = _PLY_HEAD.format(fmt="ascii", nv=3, nf=1, extra="element junk 2000000000\n") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
+    path = write(tmp_path / "bomb.ply", text)
+    assert path.stat().st_size == 204
+    code = (f"from lbo_notebooks.io import load_mesh, MeshError\ntry:\n    load_mesh({str(path)!r})\n"
+            "except MeshError as exc:\n    print('MeshError', exc)\n")
+    result = _run_under_a_memory_limit(code)
+    assert result.stdout.startswith("MeshError"), result.stdout + result.stderr
+    assert "2000000000" in result.stdout and "junk" in result.stdout and "bomb.ply" in result.stdout
+    # Rows of a propertyless element are one (empty) line each in ASCII: a count that fits loads.
+    fits = _PLY_HEAD.format(fmt="ascii", nv=3, nf=1, extra="element junk 2\n").replace("element junk 2\nelement face",
+                                                                                       "element face")
+    fits = fits.replace("end_header\n", "element junk 2\nend_header\n") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n\n"
+    assert load_mesh(write(tmp_path / "fits.ply", fits)).n_faces == 1
+
+
+def test_a_propertyless_element_takes_no_bytes_in_a_binary_file(tmp_path):
+    head = _PLY_HEAD.format(fmt="binary_little_endian", nv=3, nf=1, extra="element junk 2000000000\n").encode()
+    body = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2)
+    path = write(tmp_path / "nothing.ply", head + body)
+    code = f"from lbo_notebooks.io import load_mesh\nprint(load_mesh({str(path)!r}).faces.tolist())\n"
+    start = time.perf_counter()
+    result = _run_under_a_memory_limit(code)
+    assert time.perf_counter() - start < 30
+    assert result.stdout.strip() == "[[0, 1, 2]]", result.stdout + result.stderr
+
+
+_MIXED_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, -1, 0), (2, 0, 0), (2, 1, 0)]
+_MIXED_ORDERS = {
+    "quad-first": [(0, 1, 2, 3), (1, 0, 4), (1, 5, 6, 2)],
+    "triangle-first": [(1, 0, 4), (0, 1, 2, 3), (1, 5, 6, 2)],
+    "interleaved": [(0, 1, 2, 3), (1, 0, 4), (1, 5, 6, 2), (5, 1, 4)],
+}
+
+
+def _binary_polygon_ply(endian: str, faces: list[tuple[int, ...]], extra_face_scalar: bool = False) -> bytes:
+    fmt = {"<": "binary_little_endian", ">": "binary_big_endian"}[endian]
+    head = _PLY_HEAD.format(fmt=fmt, nv=len(_MIXED_V), nf=len(faces), extra="")
+    if extra_face_scalar:
+        head = head.replace("vertex_indices\n", "vertex_indices\nproperty uchar flag\n")
+    body = b"".join(struct.pack(endian + "3f", *p) for p in _MIXED_V)
+    body += b"".join(struct.pack(f"{endian}B{len(f)}i", len(f), *f) + (b"\x07" if extra_face_scalar else b"")
+                     for f in faces)
+    return head.encode() + body
+
+
+@pytest.mark.parametrize("endian", ["<", ">"])
+@pytest.mark.parametrize("order", list(_MIXED_ORDERS))
+def test_binary_ply_mixing_triangles_and_quads_loads(tmp_path, endian, order):
+    # Issue 41, item 2: refused as "truncated or corrupt" because only the fixed-length readers were tried.
+    faces = _MIXED_ORDERS[order]
+    expected = [t for f in faces for t in ([f] if len(f) == 3 else [(f[0], f[1], f[2]), (f[0], f[2], f[3])])]
+    for scalar in (False, True):
+        path = write(tmp_path / f"mixed{scalar}.ply", _binary_polygon_ply(endian, faces, scalar))
+        n_quads = sum(len(f) == 4 for f in faces)
+        with pytest.raises(MeshError, match=f"{n_quads} of its {len(faces)} faces have more than three corners"):
+            load_mesh(path)
+        mesh, message = _load_clean(path)
+        np.testing.assert_array_equal(mesh.faces, expected)
+        np.testing.assert_array_equal(mesh.vertices, _MIXED_V)
+        assert f"{n_quads} polygon{'s' if n_quads > 1 else ''} split" in message
+        v, f = read_mesh_arrays(path)
+        np.testing.assert_array_equal(f, expected)
+
+
+@pytest.mark.parametrize("fmt", ["ascii", "binary_little_endian"])
+def test_load_points_reads_a_ply_point_cloud_with_an_empty_face_element(tmp_path, fmt):
+    # Issue 41, item 3: MeshLab writes 'element face 0'; load_points raised numpy's "zero-size array" error.
+    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
+    head = _PLY_HEAD.format(fmt=fmt, nv=len(points), nf=0, extra="").encode()
+    body = ("".join("%g %g %g\n" % p for p in points).encode() if fmt == "ascii"
+            else b"".join(struct.pack("<3f", *p) for p in points))
+    path = write(tmp_path / "cloud.ply", head + body)
+    np.testing.assert_array_equal(load_points(path).points, points)
+    with pytest.raises(MeshError, match="point cloud"):
+        load_mesh(path)
+
+
+_SHIFTED = {  # the right total of numbers (3n), spread 2 and 4 over two lines: line 4 holds two numbers
+    "s.off": "OFF\n3 1 0\n# a comment line counts\n0 0\n0 1 0 0\n1 0 0\n3 0 1 2\n",
+    "s.obj": "o s\nv 1 1 1\nv 2 2 2\nv 0 0\nv 0 1 0 0\nv 1 0 0\nf 1 2 3\n",
+    "s.stl": "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nvertex 0 1 0 0\nvertex 1 0 0\nendloop\nendfacet\n"
+             "endsolid s\n",
+}
+
+
+@pytest.mark.parametrize("name", list(_SHIFTED))
+def test_a_vertex_line_with_the_wrong_count_of_numbers_is_refused_naming_its_line(tmp_path, name):
+    # Issue 41, item 4: the fast path checked only the total (3n), so values moved across vertices.
+    path = write(tmp_path / name, _SHIFTED[name])
+    for load in (load_mesh, lambda p: load_mesh(p, clean=True), load_points):
+        with pytest.raises(MeshError, match="line 4") as info:
+            load(path)
+        assert "'0 0'" in str(info.value) and "numbers" in str(info.value), str(info.value)
+    # A line with one number too many was read by its first three numbers; refused too (OBJ allows 'v x y z w').
+    four = _SHIFTED[name].replace("0 0\n", "0 0 0\n", 1)
+    if not name.endswith(".obj"):
+        with pytest.raises(MeshError, match="line 5.*4 numbers"):
+            load_mesh(write(tmp_path / f"four{name}", four))
+
+
+def test_obj_vertex_weights_and_colours_are_valid_and_off_follows_its_variant(tmp_path):
+    rows = ["v 0 0 0", "v 1 0 0 1.0", "v 0 1 0 0.5 0.5 0.5", "v 0 0 1"]
+    mesh = load_mesh(write(tmp_path / "c.obj", "\n".join(rows) + "\nf 1 2 3\nf 1 3 4\n"))
+    np.testing.assert_array_equal(mesh.vertices, [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    with pytest.raises(MeshError, match="line 2"):  # five numbers: neither x y z w nor x y z r g b
+        load_mesh(write(tmp_path / "five.obj", "v 0 0 0\nv 1 0 0 1 1\nv 0 1 0\nf 1 2 3\n"))
+    tri = "3 0 1 2\n"
+    assert load_mesh(write(tmp_path / "n.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n" + tri)).n_faces == 1
+    with pytest.raises(MeshError, match="line 3.*6 numbers"):
+        load_mesh(write(tmp_path / "n3.off", "NOFF\n3 1 0\n0 0 0\n1 0 0 0 0 1\n0 1 0 0 0 1\n" + tri))
+    with pytest.raises(MeshError, match="COFF"):  # colours in a plain OFF: the header must say so
+        load_mesh(write(tmp_path / "c.off", "OFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n" + tri))
+
+
+@pytest.mark.parametrize("name,text", [
+    ("eu.csv", "0,5;1,5;2,5\n1,5;0,5;2,5\n2,5;1,5;0,5\n3,5;1,5;0,5\n0,5;3,5;1,5\n"),
+    ("eu_header.csv", "x;y;z\n0,5 ; 1,5 ; 2,5\n1,5;0,5;2,5\n2,5;1,5;0,5\n3,5;1,5;0,5\n0,5;3,5;1,5\n"),
+    ("eu.txt", "0,5;1,5;2,5;9\n1,5;0,5;2,5;9\n2,5;1,5;0,5;9\n3,5;1,5;0,5;9\n0,5;3.5;1,5;9\n"),
+])
+def test_semicolon_separated_decimal_comma_files_are_read_as_written(tmp_path, name, text):
+    # Issue 41, item 5: a European spreadsheet's '0,5;1,5;2,5' loaded as the point (0, 5, 1).
+    cloud = load_points(write(tmp_path / name, text))
+    np.testing.assert_array_equal(cloud.points, [[0.5, 1.5, 2.5], [1.5, 0.5, 2.5], [2.5, 1.5, 0.5], [3.5, 1.5, 0.5],
+                                                 [0.5, 3.5, 1.5]])
+
+
+@pytest.mark.parametrize("name,text,words", [
+    ("ambiguous.txt", "0,5 1,5 2,5\n1,5 0,5 2,5\n2,5 1,5 0,5\n3,5 1,5 0,5\n0,5 3,5 1,5\n", "decimal comma"),
+    ("thousands.csv", "1.000,5;1;2\n1;0;2\n2;1;0\n3;1;0\n0;3;1\n", "line 1"),
+    ("word_first.csv", "abc,1,2\n0,0,0\n1,0,0\n0,1,0\n0,0,1\n1,1,1\n", "line 1"),
+    ("word_inside.csv", "1.0,abc,2\n0,0,0\n1,0,0\n0,1,0\n0,0,1\n1,1,1\n", "line 1"),
+    ("later_row.xyz", "# scan\n0 0 0\n1 0 0\n\n0 1 x\n0 0 1\n1 1 1\n", "line 5"),
+])
+def test_ambiguous_or_bad_point_rows_are_refused_naming_the_line(tmp_path, name, text, words):
+    # Issue 41, item 5: a first data row starting with a word was silently dropped as a header.
+    with pytest.raises(MeshError, match=words) as info:
+        load_points(write(tmp_path / name, text))
+    assert name in str(info.value)
+
+
+def test_a_large_binary_file_with_a_text_extension_is_refused_from_its_first_chunk(tmp_path):
+    # Issue 41, item 8: a 2 GB sparse .off was read whole (19.7 s) before the NUL-byte check refused it.
+    import tracemalloc
+
+    for name in ("sparse.off", "sparse.obj", "sparse.xyz", "sparse.stl"):
+        path = tmp_path / name
+        with open(path, "wb") as fh:
+            if name.endswith(".stl"):
+                fh.write(b"solid x\n")
+            fh.truncate(100_000_000)
+        tracemalloc.start()
+        with pytest.raises(MeshError, match="binary data|NUL"):
+            load_points(path)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        assert peak < 10_000_000, (name, peak)
+
+
+_TRAILING = [
+    ("face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n", "line 7"),
+    ("vertex.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 0 1\n", "line 7"),
+    ("line.ply", _ascii_ply(3, 1, _TRI + "3 0 1 2\n3 0 2 1\n"), "after"),
+    ("bytes.ply", _binary_ply(3, [(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]) + b"junk", "4 bytes"),
+    ("triangle.ply", _binary_ply(3, [(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2), (0, 2, 1)]).replace(
+        b"element face 2", b"element face 1"), "13 bytes"),
+]
+
+
+@pytest.mark.parametrize("name,content,words", _TRAILING, ids=[t[0] for t in _TRAILING])
+def test_data_after_the_announced_records_is_refused(tmp_path, name, content, words):
+    # Issue 41, item 8: extra OFF faces, extra PLY lines and trailing binary bytes were silently ignored.
+    path = write(tmp_path / name, content)
+    for load in (load_mesh, lambda p: load_mesh(p, clean=True), load_points):
+        with pytest.raises(MeshError, match=words) as info:
+            load(path)
+        assert "after" in str(info.value) and name in str(info.value), str(info.value)
+
+
+def test_comments_and_blank_lines_after_the_records_are_allowed(tmp_path):
+    off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n# written by hand\n\n"
+    assert load_mesh(write(tmp_path / "c.off", off)).n_faces == 1
+    assert load_mesh(write(tmp_path / "blank.ply", _ascii_ply(3, 1, _TRI + "3 0 1 2\n\n  \n"))).n_faces == 1
+
+
+def test_a_utf8_byte_order_mark_is_accepted_in_ascii_stl_and_ply(tmp_path):
+    # Issue 41, item 8: the BOM was stripped for OFF/OBJ/points but refused ASCII STL and PLY.
+    bom = b"\xef\xbb\xbf"
+    facet = "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n"
+    stl = load_mesh(write(tmp_path / "bom.stl", bom + f"solid t\n{facet}endsolid t\n".encode()))
+    np.testing.assert_array_equal(stl.vertices, [[0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    ply = load_mesh(write(tmp_path / "bom.ply", bom + _ascii_ply(3, 1, _TRI + "3 0 1 2\n").encode()))
+    np.testing.assert_array_equal(ply.faces, [[0, 1, 2]])
+    binary = load_mesh(write(tmp_path / "bomb.ply", bom + _binary_ply(3, [(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)])))
+    np.testing.assert_array_equal(binary.faces, [[0, 1, 2]])
+    assert load_points(write(tmp_path / "bom.xyz", bom + b"0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n")).n_points == 5
+
+
+def test_obj_errors_say_how_faces_and_vertices_are_counted_and_show_the_file_line(tmp_path):
+    # Issue 43, item 6: face [8, 29, 9] of a 1-based OBJ file, with no word on the counting; "1 duplicate faces".
+    rows = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n# a comment line\n"
+    path = write(tmp_path / "dup.obj", rows + "f 1 2 3\nf 2 4 3\nf 3 1 2\n")
+    with pytest.raises(MeshError) as info:
+        load_mesh(path)
+    message = str(info.value)
+    assert "1 duplicate face " in message and "counted from 0" in message, message
+    assert "line 8" in message and "'f 3 1 2'" in message, message
+    path = write(tmp_path / "dups.obj", rows + "f 1 2 3\nf 2 4 3\nf 3 1 2\nf 4 3 2\n")
+    with pytest.raises(MeshError, match="2 duplicate faces "):
+        load_mesh(path)
+    path = write(tmp_path / "unused.obj", rows + "v 5 5 5\nf 1 2 3\nf 2 4 3\n")
+    with pytest.raises(MeshError) as info:
+        load_mesh(path)
+    message = str(info.value)
+    assert "1 unreferenced vertex " in message and "counted from 0" in message and "line 6" in message, message
+    path = write(tmp_path / "flat.off", off_text([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], [[0, 1, 3], [0, 1, 2]]))
+    with pytest.raises(MeshError) as info:
+        load_mesh(path)
+    assert "1 degenerate (zero-area) face " in str(info.value) and "counted from 0" in str(info.value)
+    _, message = _load_clean(path)
+    assert "1 degenerate face removed" in message and "1 unreferenced vertex removed" in message, message

@@ -8,9 +8,9 @@ count a header announces is checked against the file size before anything is all
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,7 +22,7 @@ __all__ = [
     "FORMATS", "BINARY_FORMATS", "POINT_FORMATS", "MIN_TEXT_VERTEX_BYTES", "MIN_TEXT_FACE_BYTES",
     "MAX_HEADER_BYTES", "RawMesh", "read_text", "check_ends_with_line_break", "parse_int",
     "parse_float", "clamped", "content_lines", "check_counts", "parse_numbers", "parse_vertex_lines",
-    "parse_counted_faces"
+    "parse_counted_faces", "numbers_per_line", "UTF8_BOM", "check_no_trailing_lines", "line_locator",
 ]
 
 
@@ -47,18 +47,32 @@ class RawMesh:
     triangles: NDArray[np.int64]
     n_file_faces: int  # faces as the file lists them
     n_polygons: int  # faces with more than three corners
+    # Where the file writes a face or a vertex (``locate("face", k)`` -> "line 8, 'f 3 1 2'"), for error
+    # messages; None for formats without lines to point at. Called only when a message needs it.
+    locate: Callable[[str, int], str | None] | None = field(default=None, compare=False, repr=False)
 
+
+
+UTF8_BOM = b"\xef\xbb\xbf"  # a UTF-8 byte order mark, as some Windows editors write it: not data
+_FIRST_CHUNK = 1 << 16
 
 
 def read_text(p: Path, kind: str) -> str:
-    data = p.read_bytes()
-    if b"\x00" in data[: 1 << 16]:
-        raise MeshError(
-            f"this is binary data, not a text {kind} file (it contains NUL bytes). "
-            f"Check that the file really is an {kind} file; re-export it from its source."
-        )
-    if data.startswith(b"\xef\xbb\xbf"):
-        data = data[3:]  # a UTF-8 byte order mark, as some Windows editors write it: not data
+    """The text of ``p`` (latin-1, a UTF-8 byte order mark dropped), after checking its first 64 KiB for NUL bytes.
+
+    The check comes before the rest is read, so that a large binary file given a text extension
+    is refused at once instead of being read whole first.
+    """
+    with open(p, "rb") as fh:
+        first = fh.read(_FIRST_CHUNK)
+        if b"\x00" in first:
+            raise MeshError(
+                f"this is binary data, not a text {kind} file (it contains NUL bytes). "
+                f"Check that the file really is an {kind} file; re-export it from its source."
+            )
+        data = first + fh.read()
+    if data.startswith(UTF8_BOM):
+        data = data[len(UTF8_BOM):]
     return data.decode("latin-1")
 
 
@@ -97,13 +111,15 @@ def clamped(ints: NDArray[np.int64]) -> bool:
     return bool(ints.size) and (int(ints.max()) == info.max or int(ints.min()) == info.min)
 
 
-def content_lines(text: str) -> list[str]:
-    out = []
-    for line in text.splitlines():
+def content_lines(text: str) -> tuple[list[str], list[int]]:
+    """The lines of ``text`` that hold data (comments after ``#`` and blank lines dropped), and their 1-based line numbers."""
+    out, numbers = [], []
+    for number, line in enumerate(text.splitlines(), start=1):
         line = line.split("#", 1)[0].strip()
         if line:
             out.append(line)
-    return out
+            numbers.append(number)
+    return out, numbers
 
 
 def check_counts(p: Path, nv: int, nf: int, min_bytes: int) -> None:
@@ -128,25 +144,68 @@ def parse_numbers(text: str, dtype: Any) -> NDArray[Any] | None:
             return None
 
 
-def parse_vertex_lines(lines: list[str], first_line: int) -> NDArray[np.float64]:
-    arr = parse_numbers("\n".join(lines), np.float64)
-    if arr is not None and arr.size == 3 * len(lines):  # fast path: three numbers per line
-        return arr.reshape(-1, 3)
+def numbers_per_line(joined: str) -> NDArray[np.int64]:
+    """How many whitespace-separated tokens each line of ``joined`` (lines joined by ``\\n``) holds, vectorised.
+
+    A token starts wherever a byte above the space character follows a space, a control
+    character or the start; the starts are counted between consecutive line breaks.
+    """
+    b = np.frombuffer(joined.encode("latin-1"), np.uint8)
+    if b.size == 0:
+        return np.zeros(1, np.int64)
+    space = b <= 32
+    starts = np.flatnonzero(~space & np.concatenate(([True], space[:-1])))
+    bounds = np.concatenate(([0], np.flatnonzero(b == 10) + 1, [b.size]))
+    return np.diff(np.searchsorted(starts, bounds)).astype(np.int64)
+
+
+def parse_vertex_lines(
+    lines: list[str], line_of: Callable[[int], int], allowed: tuple[int, ...] = (3,), layout: str = "x y z",
+) -> NDArray[np.float64]:
+    """The first three numbers of each vertex line, after checking that every line holds an allowed count of numbers.
+
+    ``line_of(k)`` is the file's line number (from 1) of ``lines[k]``, computed only for an
+    error message; ``allowed`` are the counts of numbers a vertex line may hold (the first three
+    are x y z) and ``layout`` says what they are, for the message. The fast path parses
+    everything in one NumPy call and counts the numbers of each line with a vectorised scan, so
+    that ``0 0`` followed by ``0 1 0 0`` (the right total, spread wrongly) is not read as two
+    vertices.
+    """
+    joined = "\n".join(lines)
+    arr = parse_numbers(joined, np.float64)
+    if arr is not None and lines:
+        counts = numbers_per_line(joined)
+        if len(counts) == len(lines) and int(counts.sum()) == arr.size:  # the scan and NumPy agree on the tokens
+            if arr.size == 3 * len(lines) and np.all(counts == 3):
+                return arr.reshape(-1, 3)
+            if np.all(np.isin(counts, allowed)):
+                starts = np.cumsum(counts) - counts
+                return arr[starts[:, None] + np.arange(3)]
     out = np.empty((len(lines), 3))
+    need = " or ".join(str(n) for n in allowed)
     for k, line in enumerate(lines):
         parts = line.split()
-        try:
-            if len(parts) < 3:
-                raise ValueError
-            out[k] = [parse_float(x) for x in parts[:3]]
-        except ValueError:
+        values = []
+        for token in parts:
+            try:
+                values.append(parse_float(token))
+            except ValueError:
+                raise MeshError(
+                    f"line {line_of(k)} ({line.strip()[:60]!r}) holds {token[:30]!r}, which is not a number; a vertex "
+                    f"line holds {need} numbers ({layout}). The file is corrupt."
+                ) from None
+        if len(values) not in allowed:
             raise MeshError(
-                f"vertex {k} ({line[:60]!r}) is not three numbers x y z; the file is corrupt."
-            ) from None
+                f"line {line_of(k)} ({line.strip()[:60]!r}) holds {len(values)} numbers where a vertex line needs "
+                f"{need} numbers ({layout}): the file is corrupt (a number lost, or moved onto another line)."
+            )
+        out[k] = values[:3]
     return out
 
 
-def parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], int]:
+def parse_counted_faces(
+    lines: list[str], nv: int, line_of: Callable[[int], int] | None = None
+) -> tuple[NDArray[np.int64], int]:
     """Faces written as 'k i_1 ... i_k [colour...]' (OFF), with 0-based indices checked against ``nv``."""
     if not lines:
         return np.zeros((0, 3), dtype=np.int64), 0
@@ -161,6 +220,7 @@ def parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], i
                 return arr[:, 1:].copy(), 0
     polygons = []
     for k, line in enumerate(lines):
+        where = f"face {k}" + ("" if line_of is None else f" (line {line_of(k)})")  # faces counted from 0
         parts = line.split()
         try:
             n = parse_int(parts[0])
@@ -169,16 +229,55 @@ def parse_counted_faces(lines: list[str], nv: int) -> tuple[NDArray[np.int64], i
             poly = [parse_int(x) for x in parts[1 : n + 1]]
         except (ValueError, IndexError):
             raise MeshError(
-                f"face {k} ({line[:60]!r}) is not 'n i_1 ... i_n' with integer vertex indices (written as integers, e.g. 2 and not 2.0); the file is corrupt."
+                f"{where}, {line[:60]!r}, is not 'n i_1 ... i_n' with integer vertex indices (written as integers, "
+                "e.g. 2 and not 2.0); the file is corrupt."
             ) from None
         if n < 3:
-            raise MeshError(f"face {k} has {n} corners; a face needs at least 3. Remove it from the file.")
+            raise MeshError(f"{where} has {n} corners; a face needs at least 3. Remove it from the file.")
         outside = [i for i in poly if not 0 <= i < nv]
         if outside:
             raise MeshError(
-                f"face {k} ({line[:60]!r}) uses vertex index {outside[0]}, outside 0..{nv - 1} (the file has {nv} "
+                f"{where}, {line[:60]!r}, uses vertex index {outside[0]}, outside 0..{nv - 1} (the file has {nv} "
                 "vertices, indices are 0-based); fix the file's faces."
             )
         polygons.append(poly)
     tris, n_poly = triangulate_polygons(polygons)
     return tris, n_poly
+
+
+
+def check_no_trailing_lines(extra: list[str], line_of: Callable[[int], int], announced: str) -> None:
+    """Refuse data lines after the records a header announces (comments and blank lines were dropped before)."""
+    if extra:
+        raise MeshError(
+            f"{len(extra)} data line{'s' if len(extra) > 1 else ''} after the {announced} the header announces "
+            f"(first: line {line_of(0)}, {extra[0][:60]!r}): the header's counts are wrong or the file holds more "
+            "than one mesh. Fix the counts in the header, or remove the extra lines."
+        )
+
+
+def line_locator(
+    lines: list[str], vertex_numbers: Callable[[], list[int]], face_numbers: Callable[[], list[int]],
+    face_corners: Callable[[], list[int]] | None, n_polygons: int,
+) -> Callable[[str, int], str | None]:
+    """``locate(kind, k)`` for :class:`RawMesh`: the line of vertex ``k`` or of the file face behind triangle ``k``.
+
+    ``lines`` are the file's lines; ``vertex_numbers()`` and ``face_numbers()`` give the 0-based
+    positions in ``lines`` of the vertex and face records, and ``face_corners()`` the corner
+    count of each face (needed only when polygons were split into fans, which shifts triangle
+    numbers against face numbers). Everything is computed on the first call, for a message.
+    """
+
+    def locate(kind: str, k: int) -> str | None:
+        if kind == "vertex":
+            numbers = vertex_numbers()
+        else:
+            numbers = face_numbers()
+            if n_polygons and face_corners is not None:
+                ends = np.cumsum(np.asarray(face_corners(), dtype=np.int64) - 2)  # a fan has corners - 2 triangles
+                k = int(np.searchsorted(ends, k, side="right"))
+        if not 0 <= k < len(numbers):
+            return None
+        return f"line {numbers[k] + 1}, {lines[numbers[k]].strip()[:60]!r}"
+
+    return locate

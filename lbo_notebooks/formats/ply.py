@@ -14,12 +14,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import MeshError
+from ..mesh import MeshError, plural
 from ..repair import triangulate_polygons
 from .common import (
     MAX_HEADER_BYTES,
+    UTF8_BOM,
     RawMesh,
-    check_counts,
     check_ends_with_line_break,
     parse_int,
     parse_numbers,
@@ -52,7 +52,8 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
     """
     with open(p, "rb") as fh:
         head = fh.read(MAX_HEADER_BYTES)
-    if not head.startswith(b"ply"):
+    start = len(UTF8_BOM) if head.startswith(UTF8_BOM) else 0  # a byte order mark, as Windows editors write it
+    if not head.startswith(b"ply", start):
         raise MeshError("not a PLY file: it must start with the line 'ply'. Check the file or its extension.")
     end = head.find(b"end_header")
     if end < 0:
@@ -60,12 +61,13 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
     newline = head.find(b"\n", end)
     body_start = len(head) if newline < 0 else newline + 1
     try:
-        text = head[:end].decode("ascii")
+        text = head[start:end].decode("ascii")
     except UnicodeDecodeError:
         raise MeshError("the PLY header holds non-ASCII bytes: it is corrupt.") from None
     fmt = None
     out = ["ply"]
     elements: list[_PlyElement] = []
+    element_lines: list[int] = []  # where each element's line is in ``out``
     for line in text.splitlines()[1:]:
         parts = re.sub(r"\{[^}]*\}", " ", line).split()  # '{ ambient color }': a comment
         if not parts:
@@ -84,6 +86,7 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
                 if count < 0:
                     raise MeshError("the PLY header announces a negative element count; it is corrupt.")
                 elements.append(_PlyElement(parts[1], count))
+                element_lines.append(len(out))
                 out.append(f"element {parts[1]} {count}")
             elif parts[0] == "property" and parts[1] == "list":
                 count_type, item_type, name = parts[2], parts[3], parts[4]
@@ -109,11 +112,21 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
             raise MeshError(f"unreadable PLY header line {line[:60]!r}: the header is corrupt.") from None
     if fmt is None:
         raise MeshError("the PLY header has no 'format' line; it is corrupt.")
+    for e, at in zip(elements, element_lines):
+        if not e.properties:
+            # A row without properties holds no data. In ASCII it still takes a line of its own (empty), as
+            # plyfile reads it; in binary it takes no bytes, so the element is left out of what plyfile reads
+            # (whatever its count: reading it row by row would loop for nothing).
+            if fmt == "ascii":
+                e.row_bytes = 1
+            else:
+                out[at] = ""
+    out = [line for line in out if line]
     out.append("end_header\n")
     return "\n".join(out).encode("ascii"), body_start, fmt, elements
 
 
-def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[NDArray[Any], NDArray[Any] | None]:
+def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str, elements: list[_PlyElement]) -> tuple[NDArray[Any], NDArray[Any] | None]:
     """The ``vertex`` and ``face`` rows, read by plyfile.
 
     Binary files are memory-mapped (plyfile reads list rows one by one in Python otherwise:
@@ -142,6 +155,8 @@ def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[ND
                 original.seek(body_start)
                 stream.write(header)
                 stream.write(original.read())
+            # Fixed-length attempts fail on mixed triangles and quads ("unexpected list length", or "early
+            # end-of-file" when the fixed rows overrun the file); the general reader then reads any lists.
             attempts = [{"face": {k: n for k in _FACE_LISTS}} for n in (3, 4)] if fmt != "ascii" else []
             for known in attempts + [{}]:
                 stream.seek(0)
@@ -149,8 +164,12 @@ def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[ND
                     vertex, face = read(stream, known)
                     break
                 except plyfile.PlyElementParseError as exc:
-                    if not known or "list length" not in str(exc):
+                    if not known or ("list length" not in str(exc) and "end-of-file" not in str(exc)):
                         raise
+            trailing = 0  # ASCII: checked in _ply_ascii_body (plyfile reads it through a text wrapper)
+            if fmt != "ascii":
+                end_of_data = stream.tell()
+                trailing = stream.seek(0, 2) - end_of_data
         except (plyfile.PlyParseError, ValueError, TypeError, OverflowError, EOFError, struct.error, KeyError) as exc:
             raise MeshError(
                 f"the PLY data does not match its header ({str(exc)[:120]}): the file is truncated or corrupt."
@@ -158,6 +177,11 @@ def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str) -> tuple[ND
         finally:
             if not same:
                 stream.close()
+    if trailing:
+        raise MeshError(
+            f"{plural(trailing, 'byte')} after the {_rows(elements)} the header announces: the header's counts "
+            "are wrong or the file is corrupt. Re-export it."
+        )
     if vertex is None:
         raise MeshError("the PLY header declares no vertices ('element vertex N'); no mesh.")
     return vertex, face
@@ -177,6 +201,20 @@ def _ply_ascii_body(p: Path, body_start: int, elements: list[_PlyElement]) -> tu
     if "_" in body:
         k = next(k for k, line in enumerate(lines) if "_" in line)
         raise MeshError(f"data line {k} ({lines[k][:60]!r}) holds '_', which is not part of a number; the file is corrupt.")
+    data_rows = sum(e.count for e in elements if e.properties)  # each a line of its own, never blank
+    if len(lines) > data_rows:
+        with open(p, "rb") as fh:
+            header_lines = fh.read(body_start).count(b"\n")
+        seen = 0
+        for number, line in enumerate(body.splitlines(), start=header_lines + 1):
+            seen += bool(line.strip())
+            if seen > data_rows:
+                break
+        raise MeshError(
+            f"{plural(len(lines) - data_rows, 'data line')} after the {_rows(elements)} the header announces "
+            f"(first: line {number}, {line.strip()[:60]!r}): the header's counts are wrong or the file is corrupt. "
+            "Fix the counts, or remove the extra lines."
+        )
     at = 0
     for e in elements:
         if e.name == "face" and [is_list for _, is_list in e.properties] == [True]:
@@ -221,7 +259,7 @@ def _ply_ascii_fast(body: str, lines: list[str], elements: list[_PlyElement]) ->
             if not all(c in names for c in "xyz"):
                 return None
             vertices = rows[:, [names.index(c) for c in "xyz"]].copy()
-        elif e.name == "face":
+        elif e.name == "face" and e.count:
             key = next(name for name in names if name in _FACE_LISTS)
             col = names.index(key)  # scalars before the list take one column each
             block = rows[:, col : col + 4]
@@ -237,6 +275,12 @@ def _ply_ascii_fast(body: str, lines: list[str], elements: list[_PlyElement]) ->
     return RawMesh(vertices, triangles, len(triangles), 0)
 
 
+def _rows(elements: list[_PlyElement]) -> str:
+    """The rows a header announces, for messages: "3 'vertex' rows and 1 'face' row"."""
+    parts = [plural(e.count, f"{e.name!r} row") for e in elements]
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
 def read_ply(p: Path, need_faces: bool = True) -> RawMesh:
     header, body_start, fmt, elements = _ply_header(p)
     counts = {e.name: e.count for e in elements}
@@ -248,12 +292,18 @@ def read_ply(p: Path, need_faces: bool = True) -> RawMesh:
                         "Read it with lbo.load_points.")
     # Before reading: the rows the header announces must fit in the file (a face holds >= 3 indices).
     min_bytes = sum(e.count * (e.row_bytes + (3 * (1 if fmt != "ascii" else 2) if e.name == "face" else 0)) for e in elements)
-    check_counts(p, nv, nf, body_start + min_bytes)
+    size = p.stat().st_size
+    if body_start + min_bytes > size:
+        raise MeshError(
+            f"the header announces {_rows(elements)}, which need at least {body_start + min_bytes} bytes "
+            f"({'a line per row' if fmt == 'ascii' else 'their smallest binary size'}), but the file has {size}: "
+            "the header is corrupt or the file is truncated. Re-export or re-download it."
+        )
     if fmt == "ascii":
         fast = _ply_ascii_fast(*_ply_ascii_body(p, body_start, elements), elements)
         if fast is not None:
             return fast
-    vertex, face = _ply_elements(p, header, body_start, fmt)
+    vertex, face = _ply_elements(p, header, body_start, fmt, elements)
     names = vertex.dtype.names or ()
     if not all(c in names and vertex.dtype[c].shape == () and vertex.dtype[c] != object for c in "xyz"):
         raise MeshError("the PLY vertex element lacks scalar x, y, z properties; no positions to read.")

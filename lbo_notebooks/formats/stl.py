@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 
 from ..mesh import MeshError, unique_rows
 from .common import (
+    UTF8_BOM,
     RawMesh,
     parse_vertex_lines,
     read_text,
@@ -32,7 +33,7 @@ def read_stl(p: Path) -> RawMesh:
         record = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
         data = np.fromfile(p, dtype=record, count=n_binary, offset=84)
         corners = data["corners"].reshape(-1, 3).astype(np.float64)
-    elif head.lstrip().startswith(b"solid"):
+    elif head.removeprefix(UTF8_BOM).lstrip().startswith(b"solid"):
         corners = _stl_ascii_corners(p)
     else:
         announced = f"{n_binary} triangles = {84 + 50 * n_binary} bytes" if n_binary >= 0 else "nothing"
@@ -60,7 +61,8 @@ def _stl_ascii_corners(p: Path) -> NDArray[np.float64]:
     last_start = text.rfind("\n", 0, end)
     last = text[last_start + 1 : end].strip() if 0 <= first < last_start else ""
     body = text[first + 1 : last_start] if last else ""  # between the 'solid name' and 'endsolid name' lines
-    rows = re.findall(r"^[ \t]*vertex[ \t]+(.*)$", body, flags=re.MULTILINE)
+    vertex_line = re.compile(r"^[ \t]*vertex[ \t]+(.*)$", flags=re.MULTILINE)
+    rows = vertex_line.findall(body)
     if not last.startswith("endsolid"):
         raise MeshError(
             f"the ASCII STL file does not end with an 'endsolid' line (it ends with {last[-40:]!r}): it is "
@@ -79,7 +81,12 @@ def _stl_ascii_corners(p: Path) -> NDArray[np.float64]:
             "'outer loop', three 'vertex x y z', 'endloop', 'endfacet'): it is truncated or corrupt. "
             "Re-export or re-download it."
         )
-    return parse_vertex_lines(rows, 0)
+
+    def line_of(k: int) -> int:  # for an error message only
+        match = next(m for j, m in enumerate(vertex_line.finditer(body)) if j == k)
+        return text.count("\n", 0, first + 1 + match.start()) + 1
+
+    return parse_vertex_lines(rows, line_of, (3,), "x y z")
 
 
 def _weld_corners(corners: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
