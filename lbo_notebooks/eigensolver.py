@@ -32,6 +32,7 @@ from .blas_threads import one_blas_thread
 from .inner_product import cholesky_qr
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .slicing import Pencil, WindowPlan, centred_target, place_shift, plan_sets, plan_window
+from .solver_policy import default_shift
 from .sparse_factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, symmetric_lu
 
 __all__ = ["SLICE_SIZE", "TOL", "slice_eigsh"]
@@ -42,6 +43,11 @@ __all__ = ["SLICE_SIZE", "TOL", "slice_eigsh"]
 SLICE_SIZE = 100
 # Lanczos convergence tolerance (ARPACK's, relative to the shifted-inverted eigenvalue).
 TOL = 1e-10
+# A floor -shift more than this many default shifts below 0 is raised to -default_shift (when a
+# count proves no eigenvalue below it). The floor's count (0) and distance place the first shift
+# and plan its window: from -1600 on a 642-vertex icosphere of unit area (shift=100 in its own
+# units) the top window reached to 3800, held most of the spectrum, and its basis grew past n.
+FAR_FLOOR = 10.0
 
 
 @dataclass
@@ -121,7 +127,10 @@ def slice_eigsh(
     v0 : ndarray, shape (n,)
         Lanczos start vector (the same for every shift, so results are deterministic).
     shift : float > 0
-        ``stiffness + shift * mass`` is positive definite; the first shift is ``-shift``.
+        ``stiffness + shift * mass`` is positive definite; the floor of the slices (no eigenvalue
+        below it) is ``-shift``, or ``-default_shift(mass)`` when ``shift`` is more than
+        ``FAR_FLOOR`` times that and a count proves no eigenvalue below it (one more
+        factorisation): a floor far below the spectrum would mislead the placement of the shifts.
     slice_size : int
         Target number of eigenvalues per window.
     workers : int, optional
@@ -183,10 +192,18 @@ def slice_eigsh(
     if order is None and n >= NESTED_DISSECTION_MIN:
         order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern
     pencil = Pencil(W, A, order, v0, tol)
+    floor = float(shift)
+    nearer = default_shift(A)
+    if floor > FAR_FLOOR * nearer:
+        try:
+            if pencil.factor(-nearer).n_below == 0:
+                floor = nearer
+        except ValueError:  # -nearer is an eigenvalue: keep the caller's floor
+            pass
     # One BLAS thread per worker (unless the user chose the count): no oversubscription, and the
     # same round-off for any `workers`. The count is process-wide: blas_threads owns it.
     with one_blas_thread(), ThreadPoolExecutor(max_workers=int(workers)) as pool:
-        slices = _submit_sets(pool, int(workers), pencil, float(shift), k, n_sets, on_progress)
+        slices = _submit_sets(pool, int(workers), pencil, floor, k, n_sets, on_progress)
         return _stitch(pencil, k, slices)
 
 

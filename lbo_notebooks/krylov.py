@@ -40,6 +40,10 @@ DEPENDENT = 1e-10
 BASIS_PER_PAIR = 3.0
 # Thick restarts before giving up (each one refills the basis from the wanted Ritz vectors).
 MAX_RESTARTS = 50
+# A window may hold more pairs than expected (a cluster), and the basis grows to keep them, but to
+# at most this many times its first size and never to the whole space: a window that held most of
+# a 642-vertex spectrum once grew the basis past n at every restart (1.5 GB, no return in 240 s).
+MAX_GROWTH = 8
 
 
 def _project_out(Q: NDArray[np.float64], Y: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass) -> NDArray[np.float64]:
@@ -178,6 +182,7 @@ def nearest_eigenpairs(
     b = int(block_size)
     m_max = int(max_basis or max(int(BASIS_PER_PAIR * nev), nev + 4 * b))
     m_max = max(m_max - m_max % b, nev + 4 * b)  # room for three blocks after a thick restart
+    largest = min(MAX_GROWTH * m_max, n - 2 * b)  # the basis grows (for a full window) at most to this
     if m_max + b >= n:  # the Krylov space would be most of the space: solve densely
         values, vectors = scipy.linalg.eigh(stiffness.toarray(), mass.toarray())
         if deflate is not None:  # the eigenvectors outside span(deflate) (D^T A x ~ 0 for them)
@@ -233,6 +238,11 @@ def nearest_eigenpairs(
                 if wanted.size + 2 * b > m_max:  # more in the window than expected: make room
                     m_max = int(BASIS_PER_PAIR * wanted.size) + 2 * b
                     m_max -= m_max % b
+                    if m_max > largest:
+                        raise RuntimeError(
+                            f"block Lanczos at shift {shift:.6g}: the window ({window[0]:.6g}, {window[1]:.6g}) holds at "
+                            f"least {wanted.size} Ritz values, far more than the {nev} expected; use a narrower window."
+                        )
                     buffer = np.pad(buffer[:m], ((0, m_max + b - m), (0, 0)))
                     Q = buffer.T
                     H = np.pad(H[:m, :m], (0, m_max + b - m))

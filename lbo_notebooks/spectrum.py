@@ -30,7 +30,7 @@ from .inner_product import (
 from .laplacians import laplace_beltrami
 from .mesh import Mesh
 from .operators import MassKind
-from .solver_policy import default_shift, start_vector, use_dense
+from .solver_policy import SHIFT_LIMIT, default_shift, max_shift, start_vector, use_dense
 from .sparse_factor import mesh_order_where_it_pays
 from .units import unit_area_exponent
 
@@ -176,6 +176,13 @@ def eigenbasis(
         definite. The default scales with the surface area. Results do not depend on the units of
         the data: every path solves the problem scaled to about unit area
         (:mod:`lbo_notebooks.units`), so a shape scaled by ``s`` gets eigenvalues divided by ``s^2``.
+        Nor do they depend on the shift: it only tunes ARPACK (a small one, of the order of the
+        first nonzero eigenvalue or below, is fastest), and whatever ARPACK returns at it is
+        checked by an inertia count and completed by slicing, whose floor is ``-s`` or, when that
+        is far below the spectrum, a nearer point proved by a count. ``s`` must be finite and at
+        most :func:`~lbo_notebooks.solver_policy.max_shift` (``SHIFT_LIMIT = 10`` times a bound on
+        the largest eigenvalue: past the top of the spectrum shift-invert separates nothing);
+        otherwise a ``ValueError`` says so.
     curvature_floor : float > 0, optional
         Only used when ``alpha != 0``: the regularisation of ``|K|`` as a fraction of
         ``4 pi / area`` (``rho = max(one-ring mean |K|, curvature_floor * 4 pi / area)``, see
@@ -202,7 +209,9 @@ def eigenbasis(
         fast or faster: ``benchmarks/eigen.py``), and falls back to ARPACK with a
         ``RuntimeWarning`` in the unlikely case that slicing cannot certify its result. Below
         100, ARPACK's set is checked by one inertia count (it can miss copies of a repeated
-        eigenvalue) and completed by slicing when it is short.
+        eigenvalue) and completed by slicing when it is short (or when ARPACK fails). Under
+        ``"auto"`` every result is certified: when neither ARPACK's count nor slicing can certify
+        it, a ``RuntimeError``, never a short set. ``"arpack"`` is ARPACK's set unchecked.
     tol : float, optional
         Convergence tolerance of the Lanczos runs: each pair's residual in the shift-inverted
         problem, relative to its eigenvalue there. Default: slicing's ``1e-10``, ARPACK's machine
@@ -248,7 +257,16 @@ def eigenbasis(
     n = W.shape[0]
     check_integer(k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})")
     if shift is not None:
-        check_number(shift, "shift", 0, open_low=True, what="a positive number (sigma = -shift)")
+        check_number(shift, "shift", 0, open_low=True, what="a positive finite number (shift-invert runs at sigma = -shift)",
+                     hint="leave shift out for its default, 1e-2 * 4 pi / area")
+        limit = max_shift(W, A)
+        if shift > limit:
+            raise ValueError(
+                f"shift={shift:g} lies far above the whole spectrum: every eigenvalue is below about {limit / SHIFT_LIMIT:.3g} "
+                f"(so shift must be at most {limit:.3g}), and shift-invert at sigma = -shift would separate none of them. "
+                f"Leave shift out for its default (1e-2 * 4 pi / area = {default_shift(A):.3g}), or give one of the order of "
+                "the first nonzero eigenvalue or below."
+            )
     if solver not in ("auto", "slicing", "arpack"):
         raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
     if tol is not None:
@@ -311,7 +329,8 @@ def _solve_in_unit_area(
     else:
         from .eigensolver import SLICE_SIZE, TOL, slice_eigsh
 
-        def sliced() -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+        def sliced(fallback: bool) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+            # fallback: on a RuntimeError warn and return None (ARPACK's set is tried and counted next).
             try:
                 stage("ordering")
                 fill_order = order()
@@ -321,22 +340,38 @@ def _solve_in_unit_area(
                     on_progress=bar.update,
                 )[:2]
             except RuntimeError as error:
-                if solver == "slicing":
+                if not fallback:
                     raise
                 warn(f"{error} Falling back to one ARPACK run for k={k}.", RuntimeWarning)
                 bar.update(-bar.n)  # back to no pair found: ARPACK starts over
                 return None
 
-        pairs = sliced() if solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE) else None
+        slicing_first = solver == "slicing" or (solver == "auto" and k >= SLICE_SIZE)
+        pairs = sliced(fallback=solver == "auto") if slicing_first else None
         if pairs is None:
             stage("ARPACK (shift-invert Lanczos)")
-            values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n), tol=tol or 0.0)
-            ascending = np.argsort(values)
-            values, vectors = values[ascending], vectors[:, ascending]
-            if solver == "auto" and k < SLICE_SIZE:
+            try:
+                values, vectors = spla.eigsh(W, k=k, M=A, sigma=-shift, which="LM", v0=start_vector(n), tol=tol or 0.0)
+            except RuntimeError as error:  # ArpackError, ArpackNoConvergence, a singular W + shift A
+                if solver == "arpack":
+                    raise RuntimeError(
+                        f"ARPACK failed at sigma = -shift ({error}); solver='auto' completes and certifies its result."
+                    ) from error
+                if slicing_first:
+                    raise RuntimeError(f"neither spectrum slicing nor ARPACK ({error}) found the {k} eigenpairs.") from error
+                values = None
+            if values is not None:
+                ascending = np.argsort(values)
+                values, vectors = values[ascending], vectors[:, ascending]
+            if solver == "auto":
                 stage("inertia count (is ARPACK's set complete?)")
-                if not _arpack_is_complete(W, A, values, shift, order):
-                    pairs = sliced()  # certified by inertia counts
+                if values is None or not _arpack_is_complete(W, A, values, order):
+                    if slicing_first:  # slicing has already failed: nothing left can certify the set
+                        raise RuntimeError(
+                            f"neither spectrum slicing nor ARPACK's set (checked by an inertia count) could certify the {k} "
+                            "smallest eigenpairs; try another shift, or solver='arpack' for ARPACK's set unchecked."
+                        )
+                    pairs = sliced(fallback=False)  # certified by inertia counts, or a RuntimeError
         if pairs is not None:
             values, vectors = pairs
         # ARPACK and the slices return A-orthonormal vectors up to round-off; re-orthonormalising
@@ -353,7 +388,7 @@ def _solve_in_unit_area(
 
 
 def _arpack_is_complete(
-    W: sp.csr_matrix, A: sp.csr_matrix, values: NDArray[np.float64], shift: float, order: Callable[[], NDArray[np.intp] | None]
+    W: sp.csr_matrix, A: sp.csr_matrix, values: NDArray[np.float64], order: Callable[[], NDArray[np.intp] | None]
 ) -> bool:
     """True when no eigenvalue below the cluster of ``values[-1]`` is missing from ``values`` (an inertia count).
 
@@ -363,11 +398,16 @@ def _arpack_is_complete(
     (error 2e-3 at k = 20; 50% at k = 25 when it missed most of a cluster). Sylvester's law counts the
     eigenvalues below a point exactly, so a count just below the last value's cluster proves the
     set complete, or sends the problem to spectrum slicing, which completes it.
+
+    The point sits below the top by ``1e-9`` of it, or by ``1e-3`` of the default shift (a
+    unit-free floor for a top at 0), never by a fraction of the caller's shift: ``1e-3 shift``
+    put it below a whole missing copy of a 5-fold eigenvalue at ``shift=1e4`` (the count then
+    matched a set that was short).
     """
     from .sparse_factor import SliceFactor
 
     top = float(values[-1])
-    point = top - max(1e-9 * abs(top), 1e-3 * shift)
+    point = top - max(1e-9 * abs(top), 1e-3 * default_shift(A))
     # One factorisation (the METIS order only on large meshes: see eigenbasis).
     try:
         count = SliceFactor.of(W, A, point, order()).n_below

@@ -388,3 +388,45 @@ def test_the_first_factorisations_order_gives_the_same_fill_and_pencils_keep_it(
     assert np.array_equal(pencil.order, own.permutation)  # SuperLU's minimum degree depends on the pattern only
     second = pencil.factor(70.0)
     assert second.lu.order is pencil.order and second.n_below == count_below(W, A, 70.0)
+
+
+_FAR_FLOOR_SCRIPT = r"""
+import json, sys, time
+import numpy as np, scipy.linalg
+from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.eigensolver import slice_eigsh
+m = shapes.icosphere(3)
+W, A = stiffness_matrix(m), mass_matrix(m)
+exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+for k, shift in json.loads(sys.argv[1]):
+    start = time.perf_counter()
+    values, vectors, n_below = slice_eigsh(W, A, k, v0=np.ones(W.shape[0]), shift=shift)
+    print(json.dumps({"k": k, "shift": shift, "error": float(np.abs(values - exact[:k]).max() / exact[k - 1]),
+                      "gram": float(np.abs(vectors.T @ (A @ vectors) - np.eye(k)).max()),
+                      "n_below": n_below, "seconds": time.perf_counter() - start}), flush=True)
+"""
+
+
+def test_a_floor_far_below_the_spectrum_neither_hangs_nor_drops_a_copy():
+    # shift is only the floor of slicing (no eigenvalue below -shift). A floor 100 or 1e3 times the
+    # spectrum's scale below it once planned the first window from the floor's count, so that the
+    # window held most of the spectrum and its Krylov basis grew without bound (no return in 240 s,
+    # 1.5 GB). A subprocess with a deadline: a regression fails instead of hanging the suite.
+    import json
+    import os
+    import subprocess
+    import sys
+
+    cases = [[10, 100.0], [16, 100.0], [30, 1000.0], [60, 300.0]]
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    try:
+        done = subprocess.run([sys.executable, "-c", _FAR_FLOOR_SCRIPT, json.dumps(cases)], capture_output=True, text=True,
+                              timeout=90, env=env)
+    except subprocess.TimeoutExpired:
+        pytest.fail("slice_eigsh with a floor far below the spectrum did not return within 90 s")
+    assert done.returncode == 0, done.stderr[-2000:]
+    runs = [json.loads(line) for line in done.stdout.splitlines()]
+    assert len(runs) == len(cases)
+    for run in runs:
+        assert run["error"] <= 1e-9 and run["gram"] <= 1e-10 and run["n_below"] >= run["k"], run
+        assert run["seconds"] < 15, run

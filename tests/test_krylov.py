@@ -137,3 +137,41 @@ def test_deflation_needs_vectors_of_the_operators_size():
     W, A = operators(shapes.icosphere(2))
     with pytest.raises(ValueError, match="deflate"):
         nearest_eigenpairs(solver(W, A, 3.0), W, A, 3.0, 4, start=np.ones(W.shape[0]), deflate=np.ones((5, 2)))
+
+
+def test_a_window_holding_far_more_than_expected_stays_bounded():
+    # A window that holds most of the spectrum (the planning of a set from a far floor did that)
+    # once grew the basis past n, each restart larger (1.5 GB and no return in 240 s). Now the basis
+    # never outgrows the space: the run ends, with the pairs or a RuntimeError, in bounded time.
+    import json
+    import os
+    import subprocess
+    import sys
+
+    script = r"""
+import json, time
+import numpy as np
+from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.krylov import nearest_eigenpairs
+from lbo_notebooks.sparse_factor import SliceFactor
+m = shapes.icosphere(3)
+W, A = stiffness_matrix(m), mass_matrix(m) / 16.0
+factor = SliceFactor.of(W, A, 62.356)
+start = time.perf_counter()
+try:
+    values, _ = nearest_eigenpairs(factor.lu.solve, W, A, 62.356, 15, start=np.ones(W.shape[0]), window=(-1600.0, 3802.0))
+    outcome = f"{values.size} pairs"
+except RuntimeError as error:
+    outcome = f"RuntimeError: {error}"
+# VmHWM: this process's peak, not ru_maxrss (which keeps the forking pytest worker's across exec)
+peak_kb = next(int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM:"))
+print(json.dumps({"outcome": outcome, "seconds": time.perf_counter() - start, "peak_mb": peak_kb / 1024}))
+"""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    try:
+        done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60, env=env)
+    except subprocess.TimeoutExpired:
+        pytest.fail("nearest_eigenpairs with an over-full window did not return within 60 s")
+    assert done.returncode == 0, done.stderr[-2000:]
+    run = json.loads(done.stdout)
+    assert run["seconds"] < 20 and run["peak_mb"] < 600, run

@@ -1,6 +1,7 @@
 import numpy as np
 import pytest
 import scipy.sparse as sp
+import scipy.linalg
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
 from lbo_notebooks.inner_product import fix_signs
@@ -174,3 +175,154 @@ def test_bad_inputs():
         eigenbasis(np.eye(3), 2)
     with pytest.raises(ValueError, match="read-only"):
         spec.values[0] = 1.0
+
+
+# --- a caller's shift (issue 41, item 6) -----------------------------------------------------------
+# shift=100 on a 642-vertex icosphere did not return (the slicing set's window, planned from the
+# floor at -shift, held most of the spectrum and its Krylov basis grew past n); shift=1e4 returned
+# 4 of the 5 copies of lam = 5.97 unchecked (the inertia certificate sat 1e-3 shift below the top);
+# shift=1e300 leaked ARPACK's "starting vector is zero". The legitimate shifts run in a subprocess
+# with a deadline, so that a regression fails instead of hanging the suite.
+
+SHIFT_DEADLINE = 120  # seconds for every case together; about 5 s when nothing hangs
+
+# (label, k, shift, solver, operators): "mesh" is icosphere(3) itself, "minus2" the pencil
+# (W - 2 A, A), whose eigenvalues are the sphere's minus 2 (one negative): shift=2 puts -shift exactly
+# on its lowest eigenvalue.
+SHIFT_CASES = [
+    ("100", 10, 100.0, "auto", "mesh"),
+    ("100-k16", 16, 100.0, "auto", "mesh"),
+    ("100-k30", 30, 100.0, "auto", "mesh"),
+    ("100-slicing", 10, 100.0, "slicing", "mesh"),
+    ("100-k100", 100, 100.0, "auto", "mesh"),
+    ("1000", 10, 1000.0, "auto", "mesh"),
+    ("3000-k30", 30, 3000.0, "auto", "mesh"),
+    ("inside-the-spectrum", 20, 9.0, "auto", "mesh"),
+    ("on-an-eigenvalue", 10, "lam4", "auto", "mesh"),
+    ("tiny", 10, 1e-9, "auto", "mesh"),
+    ("on-an-eigenvalue-of-the-pencil", 10, 2.0, "auto", "minus2"),
+    ("below-a-negative-eigenvalue", 10, 3.0, "auto", "minus2"),
+]
+
+_SHIFT_SCRIPT = r"""
+import json, sys, time, warnings
+import numpy as np, scipy.linalg
+import lbo_notebooks as lbo
+W0, A0 = lbo.laplace_beltrami(lbo.shapes.icosphere(3))
+exact = {}
+for label, k, shift, solver, ops in json.loads(sys.argv[1]):
+    W, A = (W0, A0) if ops == "mesh" else (W0 - 2.0 * A0, A0)
+    if ops not in exact:
+        exact[ops] = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+    ref = exact[ops]
+    shift = float(ref[4]) if shift == "lam4" else shift
+    start = time.perf_counter()
+    out = {"label": label, "ref": ref[: k + 1].tolist()}
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            s = lbo.eigenbasis((W, A), k, shift=shift, solver=solver)
+        V = s.vectors
+        out.update(
+            values=s.values.tolist(),
+            gram=float(np.abs(V.T @ (A @ V) - np.eye(k)).max()),
+            residual=float(np.abs(W @ V - (A @ V) * s.values).max() / np.abs(A @ V).max()),
+            warnings=[str(w.message) for w in caught],
+        )
+    except Exception as error:
+        out["error"] = f"{type(error).__name__}: {error}"
+    out["seconds"] = time.perf_counter() - start
+    print(json.dumps(out), flush=True)
+"""
+
+
+@pytest.fixture(scope="module")
+def shift_runs():
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    cases = json.dumps([list(case) for case in SHIFT_CASES])
+    try:
+        done = subprocess.run(
+            [sys.executable, "-c", _SHIFT_SCRIPT, cases], capture_output=True, text=True, timeout=SHIFT_DEADLINE, env=env
+        )
+        stdout, note = done.stdout, done.stderr[-2000:]
+    except subprocess.TimeoutExpired as expired:
+        stdout = expired.stdout.decode() if isinstance(expired.stdout, bytes) else (expired.stdout or "")
+        note = f"did not return within {SHIFT_DEADLINE} s"
+    runs = {run["label"]: run for run in map(json.loads, stdout.splitlines())}
+    return runs, note
+
+
+@pytest.mark.parametrize("case", SHIFT_CASES, ids=[case[0] for case in SHIFT_CASES])
+def test_a_callers_shift_gives_the_k_smallest_pairs_or_a_clear_error(shift_runs, case):
+    label, k = case[0], case[1]
+    runs, note = shift_runs
+    assert label in runs, f"shift case {label!r}: {note}"
+    run = runs[label]
+    ref = np.array(run["ref"])
+    if "error" in run:
+        # Only -shift exactly on an eigenvalue of the pencil may be refused, by a ValueError that says so.
+        assert label == "on-an-eigenvalue-of-the-pencil" and run["error"].startswith("ValueError") and "eigenvalue" in run["error"], run
+        return
+    values = np.array(run["values"])
+    scale = abs(ref[k - 1]) + abs(ref[1] - ref[0])
+    # Every copy of every eigenvalue below lam_k, and lam_k's cluster up to k (icosphere: 2l + 1 copies).
+    np.testing.assert_allclose(values, ref[:k], rtol=0, atol=1e-9 * scale, err_msg=label)
+    assert run["gram"] <= 1e-10 and run["residual"] <= 1e-8 * scale, run
+    assert not [w for w in run["warnings"] if "ARPACK" in w or "slicing" in w], run["warnings"]
+    assert run["seconds"] < 20, run
+
+
+@pytest.mark.parametrize("shift", [np.nan, np.inf, -np.inf, 1e300, -1e300, 0.0, -1.0, 1 + 1j, "1", True, 1e4, 1e7])
+def test_a_nonsense_shift_is_refused_with_the_fix(shift):
+    m = shapes.icosphere(3)
+    with pytest.raises(ValueError, match="shift") as caught:
+        eigenbasis(m, 10, shift=shift)
+    if shift in (1e300, 1e4, 1e7):  # finite and positive, but above the whole spectrum
+        assert "spectrum" in str(caught.value) and "default" in str(caught.value), caught.value
+
+
+def test_a_shift_just_under_the_limit_is_taken_and_certified():
+    from lbo_notebooks.solver_policy import max_shift
+
+    m = shapes.icosphere(3)
+    W, A = stiffness_matrix(m), mass_matrix(m)
+    limit = max_shift(W, A)
+    exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+    assert 10 * exact[-1] <= limit <= 100 * exact[-1]
+    values = eigenbasis(m, 10, shift=0.99 * limit).values
+    np.testing.assert_allclose(values, exact[:10], rtol=0, atol=1e-9 * exact[9])
+    with pytest.raises(ValueError, match="spectrum"):
+        eigenbasis(m, 10, shift=1.01 * limit)
+
+
+def test_arpacks_certificate_does_not_depend_on_the_shift():
+    # ARPACK's set with one copy of the 5-fold lam = 5.97 missing (and one of 11.8 instead): the
+    # count just below the top cluster must say so whatever shift ARPACK ran at.
+    from lbo_notebooks.spectrum import _arpack_is_complete
+
+    m = shapes.icosphere(3)
+    W, A = stiffness_matrix(m), mass_matrix(m) / 16.0  # about unit area, as eigenbasis solves it
+    exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
+    short = np.concatenate((exact[:8], exact[9:11]))
+    # (It once sat 1e-3 shift below the top: at shift=1e4, 1.6e5 here, below the whole missing copy.)
+    assert not _arpack_is_complete(W, A, short, lambda: None)
+    assert _arpack_is_complete(W, A, exact[:10], lambda: None)
+
+
+def test_an_uncertified_arpack_set_is_never_returned(monkeypatch):
+    # ARPACK's set is short and slicing cannot complete it: a RuntimeError, not ARPACK's set with a warning.
+    import lbo_notebooks.eigensolver as eigensolver
+    import lbo_notebooks.spectrum as spectrum
+
+    def fails(*args, **kwargs):
+        raise RuntimeError("spectrum slicing could not certify (test).")
+
+    monkeypatch.setattr(spectrum, "_arpack_is_complete", lambda *args: False)
+    monkeypatch.setattr(eigensolver, "slice_eigsh", fails)
+    with pytest.raises(RuntimeError, match="certif"):
+        eigenbasis(shapes.icosphere(3), 10)
