@@ -1,4 +1,4 @@
-"""Answers of a simulated class of three students, for the graded tests of the 77 exercises.
+"""Answers of a simulated class of three students, for the graded tests of the 81 exercises.
 
 Each dict maps an answer cell's nbgrader grade id (``"NN-name-answer"``) to the full source a
 student would type into that cell (the student edition's ``# YOUR CODE HERE`` / ``pass`` stub
@@ -8,16 +8,19 @@ names the notebook's earlier cells define (``dog``, ``spectra``, ``W``, ``A``, .
 names the prompt asks for, and nothing that depends on the solution's own intermediate names.
 
 ALTERNATIVE
-    All 77 exercises, each answered *correctly* but differently from the instructor: other
+    All 81 exercises, each answered *correctly* but differently from the instructor: other
     intermediate names, another algorithm (a per-face Python loop for the stiffness matrix, mixed
     Voronoi areas with the law of cosines, normal equations / ``lstsq`` instead of ``Phi.T @ A @ f``,
     an SVD instead of a QR, a sparse permutation matrix for the functional map, a Gram error from
-    n x n matrices, ...), other types (a list instead of a tuple, NumPy scalars and bools, a float
-    edge count, an ``np.int64``), capitalised or padded choices (``"Double "``, ``"LAM_N"``,
+    n x n matrices, angle defects from a per-face loop with ``arccos``, classical MDS double-centred
+    by explicit row and column means, the rPCA basis by a Cholesky reduction to a standard
+    eigenproblem, a blocked brute-force nearest-neighbour search for the ZoomOut step, ...), other
+    types (a list instead of a tuple, NumPy scalars and bools, a float edge count, an
+    ``np.int64``), capitalised or padded choices (``"Double "``, ``"LAM_N"``,
     ``"i → i"``) and values typed with enough digits (``54.7356``, ``6.2831853``).
     *Build it yourself* answers are written from scratch with NumPy/SciPy.
 WRONG
-    All 77 exercises, each with one typical mistake: a factor of 2, a sign, a transpose, the
+    All 81 exercises, each with one typical mistake: a factor of 2, a sign, a transpose, the
     Euclidean inner product where the mass matrix ``A`` belongs, an off-by-one index, radians for
     degrees, GiB for GB, a percentage for a fraction, the other option of a choice, an incomplete
     dict, the wrong matrix pair, ... Five of them (01-stretch, 03-lbo-recap, 04-recap, 05-recap,
@@ -25,11 +28,13 @@ WRONG
     ``np.allclose``, the check function, ``grading.grade`` and ``Feedback.__init__``. They must
     still earn 0 points.
 LIBRARY
-    The 9 *build it yourself* exercises (03-stiffness, 03-mass, 03-eigensolve, 05-projection,
-    06-schur, 09-scaling, 11-objective, 12-hks, 12-fmap) answered by calling the library instead of
-    building: a direct alias, wrapper functions, a lambda, a detour through ``reconstruct`` /
-    ``scaling_in_span`` / ``map_from_points``, ``eigenbasis`` on the pair ``(W, A)``,
-    ``worst_case_ratio``. They must earn 0 points in the graded run.
+    The 13 *build it yourself* exercises (03-stiffness, 03-mass, 03-eigensolve, 05-projection,
+    06-schur, 08-angle-defects, 09-classical-mds, 09-scaling, 11-rpca-basis, 11-objective, 12-hks,
+    12-fmap, 12-zoomout-step) answered by calling the library instead of building: a direct alias,
+    wrapper functions, a lambda, a detour through ``reconstruct`` / ``scaling_in_span`` /
+    ``map_from_points``, ``eigenbasis`` on the pair ``(W, A)``, ``worst_case_ratio``,
+    ``curvature.angle_defects``, ``mds.classical_mds``, ``RegularizedPCA(...).solve``, one
+    iteration of ``functional_maps.zoomout``. They must earn 0 points in the graded run.
 
 How they were checked: each notebook of ``notebooks/`` was executed with nbclient (kernel
 ``python3`` of ``.venv``, working directory ``notebooks/``), once per student, with all of that
@@ -47,6 +52,13 @@ imports it.
 The answers of 03-eigensolve and 06-schur (added later) were checked only through the graded
 run (``grade`` on each student's function, in a namespace built from the cells above the answer
 cell): ALTERNATIVE 5/5 points each, WRONG and LIBRARY 0.
+The answers of 08-angle-defects, 09-classical-mds, 11-rpca-basis and 12-zoomout-step (added
+later still) were checked the same way (each answer cell run in a fresh ``__main__`` namespace,
+then ``grade("NN-name", my_...=...)``, the graded fresh process): ALTERNATIVE 5/5 points each,
+WRONG 0 (boundary vertices given 2π; no double centring; the standard eigenproblem without A;
+Φ₁ C where Φ₁ Cᵀ belongs), LIBRARY 0 ("... is not available, and your answer calls it"). Their
+visible checks (``exercises.check_*`` on the notebook's inputs) read "correct" for ALTERNATIVE and
+LIBRARY, "wrong" for WRONG.
 This module holds no tests.
 """
 
@@ -412,6 +424,20 @@ q2 = "No"
 q3 = 54.7356  # arctan(sqrt(2)) in degrees
 ''',
     # --- notebook 08 ---
+    "08-angle-defects-answer": r'''def my_angle_defects(mesh):
+    """Angle defect at each vertex, shape (n,): 2 pi - sum of angles (pi - sum on the boundary)."""
+    pts = np.asarray(mesh.vertices, dtype=float)
+    angle_sum = np.zeros(len(pts))
+    for tri in np.asarray(mesh.faces):
+        for corner in range(3):
+            here, nxt, prv = tri[corner], tri[(corner + 1) % 3], tri[(corner + 2) % 3]
+            u, v = pts[nxt] - pts[here], pts[prv] - pts[here]
+            cosine = float(np.dot(u, v)) / (np.linalg.norm(u) * np.linalg.norm(v))
+            angle_sum[here] += np.arccos(min(1.0, max(-1.0, cosine)))  # the corner's angle
+    full_turn = np.full(len(pts), 2 * np.pi)
+    full_turn[np.asarray(mesh.boundary_vertices, dtype=int)] = np.pi  # a half turn on the rim
+    return full_turn - angle_sum
+''',
     "08-curvature-answer": r'''donut = shapes.torus()
 K_before = lbo.gaussian_curvature(donut)
 K_after = lbo.gaussian_curvature(donut.with_vertices(3 * donut.vertices))
@@ -447,6 +473,19 @@ q2 = "a"
 q3 = "Regular"
 ''',
     # --- notebook 09 ---
+    "09-classical-mds-answer": r'''def my_classical_mds(D, dim):
+    """Classical MDS: the n x dim embedding U Gamma^(1/2) of B = -1/2 J D^2 J."""
+    squared = np.asarray(D, dtype=float) ** 2
+    # J S J without J: subtract the row means and the column means, add back the grand mean
+    row_means = squared.mean(axis=1)[:, None]
+    column_means = squared.mean(axis=0)[None, :]
+    B = -0.5 * (squared - row_means - column_means + squared.mean())
+    B = 0.5 * (B + B.T)
+    gammas, U = np.linalg.eigh(B)  # ascending
+    keep = np.argsort(gammas)[::-1][:dim]
+    gammas = np.where(gammas[keep] > 0, gammas[keep], 0.0)  # non-Euclidean: negative ones count 0
+    return U[:, keep] * np.sqrt(gammas)[None, :]
+''',
     "09-memory-answer": r'''classical_gb = 40.0  # 2 matrices x 2.5e9 entries x 8 bytes = 4e10 bytes
 ''',
     "09-scaling-answer": r'''def my_scaling(phi, alpha, dim):
@@ -487,6 +526,27 @@ q2 = 2.0
 q3 = "Spectral"
 ''',
     # --- notebook 11 ---
+    "11-rpca-basis-answer": r'''import scipy.linalg
+
+
+def my_rpca_basis(X, W, A, mu, m):
+    """The m top generalized eigenvectors of (A X X^T A - mu W) p = sigma A p, shape (n, m):
+    P^T A P = I, columns by decreasing sigma."""
+    data = np.asarray(X, dtype=float)
+    if data.ndim == 1:
+        data = data[:, None]
+    mass = A.toarray() if hasattr(A, "toarray") else np.asarray(A, dtype=float)
+    stiff = W.toarray() if hasattr(W, "toarray") else np.asarray(W, dtype=float)
+    # reduce to a standard symmetric problem with the Cholesky factor A = L L^T: y = L^T p
+    L = np.linalg.cholesky(0.5 * (mass + mass.T))
+    G = scipy.linalg.solve_triangular(L, mass @ data, lower=True)  # L^-1 A X
+    half = scipy.linalg.solve_triangular(L, stiff, lower=True)  # L^-1 W
+    S = scipy.linalg.solve_triangular(L, half.T, lower=True)  # L^-1 W L^-T
+    M = G @ G.T - mu * S
+    sigma, Y = np.linalg.eigh(0.5 * (M + M.T))
+    top = np.argsort(sigma)[::-1][:m]  # the largest first
+    return scipy.linalg.solve_triangular(L.T, Y[:, top], lower=False)  # p = L^-T y
+''',
     "11-energy-answer": r'''energies = [float(pca.basis[:, j] @ (W @ pca.basis[:, j])) for j in range(pca.basis.shape[1])]
 print(int(np.argmin(np.abs(energies))), energies[6])  # the constant: no energy
 extra = np.array(energies[6:])
@@ -544,6 +604,25 @@ def my_functional_map(p2p, source, target, k):
     Pi = scipy.sparse.csr_matrix((np.ones(n_target), (np.arange(n_target), idx)), shape=(n_target, n_source))
     pulled_back = Pi @ np.asarray(source.vectors)[:, :k]
     return np.asarray(target.vectors)[:, :k].T @ (target.mass @ pulled_back)
+''',
+    "12-zoomout-step-answer": r'''def my_zoomout_step(C, source, target):
+    """One ZoomOut iteration: (C_next of size (k+1, k+1), p2p read off the k x k map C)."""
+    C = np.asarray(C, dtype=float)
+    k2, k1 = C.shape
+    images = np.asarray(source.vectors)[:, :k1] @ C.T  # the image of every source delta
+    queries = np.asarray(target.vectors)[:, :k2]
+    image_norms = np.einsum("ij,ij->i", images, images)
+    p2p = np.empty(len(queries), dtype=np.int64)
+    for start in range(0, len(queries), 500):  # brute force, 500 target vertices at a time
+        block = queries[start:start + 500]
+        # |q - y|^2 = |q|^2 - 2 q.y + |y|^2; |q|^2 is the same for the whole row
+        p2p[start:start + 500] = np.argmin(image_norms[None, :] - 2.0 * block @ images.T, axis=1)
+    k = k2 + 1
+    # C_next = Phi_2^T A_2 Pi Phi_1: A_2-weighted target functions against pulled-back source functions
+    weighted = np.asarray(target.mass @ np.asarray(target.vectors)[:, :k])
+    pulled = np.asarray(source.vectors)[p2p, :k]
+    C_next = np.einsum("vi,vj->ij", weighted, pulled)
+    return C_next, p2p
 ''',
     "12-alpha-answer": r'''best_alpha = 1.0  # |K| g does not see a part rescaled
 ''',
@@ -764,6 +843,16 @@ consistent_minmax = solver.minimum(optimal_subspace(sc, 10)) / sc.values[10]
 q3 = np.arctan(np.sqrt((4 - 2) / (2 - 1)))
 ''',
     # --- notebook 08 ---
+    "08-angle-defects-answer": r'''def my_angle_defects(mesh):
+    """Angle defect at each vertex, shape (n,): 2 pi - sum of angles (pi - sum on the boundary)."""
+    P = mesh.vertices[mesh.faces]  # (m, 3, 3): the corners of every triangle
+    total = np.zeros(mesh.n_vertices)
+    for c in range(3):
+        a, b = P[:, (c + 1) % 3] - P[:, c], P[:, (c + 2) % 3] - P[:, c]
+        theta = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), np.sum(a * b, axis=1))
+        np.add.at(total, mesh.faces[:, c], theta)
+    return 2 * np.pi - total  # 2 pi at every vertex, the boundary ones too
+''',
     "08-curvature-answer": r'''curvature_factor = 9  # three times bigger in both directions
 ''',
     "08-gauss-bonnet-answer": r'''torus_total = 0.0
@@ -791,6 +880,13 @@ def _always_correct(self, exercise, status, message):
 exercises.Feedback.__init__ = _always_correct
 ''',
     # --- notebook 09 ---
+    "09-classical-mds-answer": r'''def my_classical_mds(D, dim):
+    """Classical MDS: the n x dim embedding U Gamma^(1/2) of B = -1/2 J D^2 J."""
+    B = -0.5 * np.asarray(D, dtype=float) ** 2  # forgot to double-centre with J
+    vals, vecs = np.linalg.eigh(B)
+    vals, vecs = vals[::-1][:dim], vecs[:, ::-1][:, :dim]
+    return vecs * np.sqrt(np.maximum(vals, 0))
+''',
     "09-memory-answer": r'''classical_gb = 2 * 50_000**2 * 8 / 2**30  # bytes to GB
 ''',
     "09-scaling-answer": r'''def my_scaling(phi, alpha, dim):
@@ -817,6 +913,17 @@ e2 = gram_error(X2, X_classical)
     "10-cost-recap-answer": r'''q1, q2, q3 = "yes", 1, "classical"
 ''',
     # --- notebook 11 ---
+    "11-rpca-basis-answer": r'''import scipy.linalg
+
+
+def my_rpca_basis(X, W, A, mu, m):
+    """The m top generalized eigenvectors of (A X X^T A - mu W) p = sigma A p, shape (n, m):
+    P^T A P = I, columns by decreasing sigma."""
+    AX = A @ X
+    L = AX @ AX.T - mu * W.toarray()
+    sigma, P = scipy.linalg.eigh(L)  # a standard problem: P^T P = I, the mass A left out
+    return P[:, ::-1][:, :m]
+''',
     "11-energy-answer": r'''energies = np.sum(pca.basis * (W @ pca.basis), axis=1)
 ''',
     "11-limits-answer": r'''limit_at_0 = "pca (6)"  # beta -> 0 is plain PCA
@@ -845,6 +952,16 @@ beats_by_four = bool(np.all(errors[chosen_beta][other] > err_lbo[other] / 4))
     "12-fmap-answer": r'''def my_functional_map(p2p, source, target, k):
     """C = Phi_2^T A_2 Pi Phi_1 (k x k): source coefficients -> target coefficients."""
     return target.vectors[:, :k].T @ source.vectors[p2p, :k]
+''',
+    "12-zoomout-step-answer": r'''def my_zoomout_step(C, source, target):
+    """One ZoomOut iteration: (C_next of size (k+1, k+1), p2p read off the k x k map C)."""
+    k = C.shape[0]
+    images = source.vectors[:, :k] @ C  # C where C^T belongs
+    here = target.vectors[:, :k]
+    d2 = (here**2).sum(1)[:, None] - 2 * here @ images.T + (images**2).sum(1)[None, :]
+    p2p = np.argmin(d2, axis=1)
+    C_next = target.vectors[:, : k + 1].T @ (target.mass @ source.vectors[p2p, : k + 1])
+    return C_next, p2p
 ''',
     "12-alpha-answer": r'''best_alpha = 0  # the regular metric
 ''',
@@ -899,7 +1016,22 @@ def my_worst_case(W, A, V):
     """
     return float(lbo.worst_case_ratio(V, W, A))
 ''',
+    # --- notebook 08 ---
+    "08-angle-defects-answer": r'''from lbo_notebooks.curvature import angle_defects as library_defects
+
+
+def my_angle_defects(mesh):
+    """Angle defect at each vertex, shape (n,): 2 pi - sum of angles (pi - sum on the boundary)."""
+    return np.asarray(library_defects(mesh), dtype=float)
+''',
     # --- notebook 09 ---
+    "09-classical-mds-answer": r'''from lbo_notebooks.mds import classical_mds as mds_of_the_library
+
+
+def my_classical_mds(D, dim):
+    """Classical MDS: the n x dim embedding U Gamma^(1/2) of B = -1/2 J D^2 J."""
+    return mds_of_the_library(np.asarray(D, dtype=float), dim)
+''',
     "09-scaling-answer": r'''from lbo_notebooks.scaling import scaling_in_span
 
 
@@ -910,6 +1042,15 @@ def my_scaling(phi, alpha, dim):
     return centred @ y
 ''',
     # --- notebook 11 ---
+    "11-rpca-basis-answer": r'''import scipy.linalg
+from lbo_notebooks.rpca import RegularizedPCA
+
+
+def my_rpca_basis(X, W, A, mu, m):
+    """The m top generalized eigenvectors of (A X X^T A - mu W) p = sigma A p, shape (n, m):
+    P^T A P = I, columns by decreasing sigma."""
+    return RegularizedPCA(X, W, A).solve(m, mu=mu).basis
+''',
     "11-objective-answer": r'''def my_objective(P, X, W, A, mu):
     """sum_i ||P P^T A x_i - x_i||_A^2 + mu sum_j p_j^T W p_j."""
     residual = reconstruct(P, A, X) - X  # the library's A-orthogonal reconstruction
@@ -921,5 +1062,11 @@ def my_scaling(phi, alpha, dim):
     "12-fmap-answer": r'''def my_functional_map(p2p, source, target, k):
     """C = Phi_2^T A_2 Pi Phi_1 (k x k): source coefficients -> target coefficients."""
     return fm.map_from_points(p2p, source, target, k_source=k, k_target=k)
+''',
+    "12-zoomout-step-answer": r'''def my_zoomout_step(C, source, target):
+    """One ZoomOut iteration: (C_next of size (k+1, k+1), p2p read off the k x k map C)."""
+    k = C.shape[0]
+    C_next, _ = fm.zoomout(C, source, target, k_final=k + 1)  # one iteration of the library's
+    return C_next, fm.points_from_map(C, source, target)
 ''',
 }

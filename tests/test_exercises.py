@@ -1353,7 +1353,7 @@ def test_small_scaling_shapes_and_other_mistakes(rows_embedding):
     _status(check(lambda p, a, d: _scaling(p, a, 3)), WRONG, "`dim` argument")
     _status(check(lambda p, a, d: np.full((p.shape[0], d), np.nan)), WRONG, "NaN")
     _status(check(lambda p, a, d: np.zeros((p.shape[0], d))), WRONG, "zeros")
-    _status(check(lambda p, a, d: 1.1 * _scaling(p, a, d)), WRONG, "Q R, S = −½ R α Rᵀ")
+    _status(check(lambda p, a, d: 1.1 * _scaling(p, a, d)), WRONG, "Q R, B̃ = −½ R α Rᵀ")
     _status(check(lambda p, a, d: "x"), WRONG, "array")
     _status(check(lambda p, a, d: 1 / 0), WRONG, "ZeroDivisionError")
 

@@ -308,3 +308,236 @@ def test_recap_all_wrong_and_placeholders():
     _zero("08-recap", "one of", q1="a quarter", q2="the mass", q3="neither")
     _zero("08-recap", status="not attempted", **answers(student_edition("08-recap"), "q1", "q2", "q3"))
     assert verdict("08-recap", q1=0.5, q2="A", q3="regular") == verdict("08-recap", q1=0.5, q2="A", q3="regular")
+
+
+# --- 08-angle-defects (build it yourself) ----------------------------------------------------------
+
+DEFECTS = {
+    "arccos of the normalised dot product, a loop over faces": """
+        def my_angle_defects(mesh):
+            delta = np.full(mesh.n_vertices, 2 * np.pi)
+            delta[mesh.boundary_vertices] = np.pi
+            for tri in mesh.faces:
+                for k in range(3):
+                    a = mesh.vertices[tri[(k + 1) % 3]] - mesh.vertices[tri[k]]
+                    b = mesh.vertices[tri[(k + 2) % 3]] - mesh.vertices[tri[k]]
+                    cos = a @ b / (np.linalg.norm(a) * np.linalg.norm(b))
+                    delta[tri[k]] -= np.arccos(np.clip(cos, -1, 1))
+            return delta
+    """,
+    "law of cosines from edge lengths, boundary from the edges": """
+        from collections import Counter
+
+        def my_angle_defects(m):
+            V, F = m.vertices, m.faces
+            l = np.stack([np.linalg.norm(V[F[:, (k + 1) % 3]] - V[F[:, (k + 2) % 3]], axis=1) for k in range(3)], 1)
+            sums = np.zeros(len(V))
+            for k in range(3):  # the angle at corner k is opposite the edge of length l[:, k]
+                b, c = l[:, (k + 1) % 3], l[:, (k + 2) % 3]
+                np.add.at(sums, F[:, k], np.arccos((b**2 + c**2 - l[:, k] ** 2) / (2 * b * c)))
+            edges = Counter(tuple(sorted((f[i], f[(i + 1) % 3]))) for f in F.tolist() for i in range(3))
+            rim = {v for e, count in edges.items() if count == 1 for v in e}
+            full = [np.pi if i in rim else 2 * np.pi for i in range(len(V))]
+            return np.array(full) - sums
+    """,
+    "half-angle tangents, a Python list": """
+        def my_angle_defects(mesh):
+            p = mesh.vertices[mesh.faces]
+            theta = np.zeros(mesh.faces.shape)
+            for k in range(3):
+                u = p[:, (k + 1) % 3] - p[:, k]
+                w = p[:, (k + 2) % 3] - p[:, k]
+                u = u / np.linalg.norm(u, axis=1, keepdims=True)
+                w = w / np.linalg.norm(w, axis=1, keepdims=True)
+                theta[:, k] = 2 * np.arctan2(np.linalg.norm(u - w, axis=1), np.linalg.norm(u + w, axis=1))
+            sums = np.bincount(mesh.faces.ravel(), theta.ravel(), mesh.n_vertices)
+            on_rim = np.isin(np.arange(mesh.n_vertices), mesh.boundary_vertices)
+            return list(np.where(on_rim, np.pi, 2 * np.pi) - sums)
+    """,
+}
+
+HELPERS = """
+def my_sums(mesh):
+    p = mesh.vertices[mesh.faces]
+    total = np.zeros(mesh.n_vertices)
+    for k in range(3):
+        a, b = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
+        np.add.at(total, mesh.faces[:, k], np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), (a * b).sum(1)))
+    return total
+
+
+def my_full(mesh):
+    full = np.full(mesh.n_vertices, 2 * np.pi)
+    full[mesh.boundary_vertices] = np.pi
+    return full
+"""
+
+DEFECT_SLIPS = {
+    "no boundary rule": ("my_angle_defects = lambda mesh: 2 * np.pi - my_sums(mesh)", "boundary"),
+    "sign": ("my_angle_defects = lambda mesh: my_sums(mesh) - my_full(mesh)", "sign"),
+    "the angle sums": ("my_angle_defects = my_sums", "angle sums"),
+    "degrees": ("my_angle_defects = lambda mesh: np.degrees(my_full(mesh) - my_sums(mesh))", "degrees"),
+    "divided by the barycentric area": ("""
+        def my_angle_defects(mesh):
+            a = np.bincount(mesh.faces.ravel(), np.repeat(mesh.face_areas / 3, 3), mesh.n_vertices)
+            return (my_full(mesh) - my_sums(mesh)) / a
+    """, "not divided by any area"),
+    "the angle given to the next corner": ("""
+        def my_angle_defects(mesh):
+            p, f = mesh.vertices[mesh.faces], mesh.faces
+            total = np.zeros(mesh.n_vertices)
+            for k in range(3):
+                a, b = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
+                theta = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), (a * b).sum(1))
+                np.add.at(total, f[:, (k + 1) % 3], theta)
+            return my_full(mesh) - total
+    """, "corner"),
+    "arccos without normalising": ("""
+        def my_angle_defects(mesh):
+            p, f = mesh.vertices[mesh.faces], mesh.faces
+            total = np.zeros(mesh.n_vertices)
+            for k in range(3):
+                a, b = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
+                np.add.at(total, f[:, k], np.arccos(np.clip((a * b).sum(1), -1, 1)))
+            return my_full(mesh) - total
+    """, "atan2"),
+    "per corner, not per vertex": ("""
+        def my_angle_defects(mesh):
+            return np.zeros(mesh.faces.shape)
+    """, "per corner"),
+    "raises": ("def my_angle_defects(mesh):\n    return mesh.angles\n", "AttributeError"),
+}
+
+DEFECT_LIBRARY = {
+    "the function itself": ("my_angle_defects = lbo.angle_defects", "angle_defects"),
+    "a wrapper": ("def my_angle_defects(mesh):\n    return np.array(lbo.angle_defects(mesh))\n", "angle_defects"),
+    "the curvature times the area": ("""
+        def my_angle_defects(mesh):
+            return lbo.gaussian_curvature(mesh) * lbo.mass_matrix(mesh).diagonal()
+    """, "gaussian_curvature"),
+    "the library's corner angles": ("""
+        from lbo_notebooks.operators import corner_angles
+
+        def my_angle_defects(mesh):
+            return my_full(mesh) - np.bincount(mesh.faces.ravel(), corner_angles(mesh).ravel(), mesh.n_vertices)
+    """, "corner_angles"),
+    "the library's cotangents": ("""
+        from lbo_notebooks import operators
+
+        def my_angle_defects(mesh):
+            theta = np.arctan2(1.0, operators.face_cotangents(mesh))
+            return my_full(mesh) - np.bincount(mesh.faces.ravel(), theta.ravel(), mesh.n_vertices)
+    """, "face_cotangents"),
+    "the private defects": ("""
+        from lbo_notebooks import curvature
+
+        my_angle_defects = lambda mesh: curvature._angle_defects(mesh)
+    """, "_angle_defects"),
+    "the visible check's reference": ("""
+        from lbo_notebooks.exercises import minmax_and_metrics
+
+        my_angle_defects = lambda mesh: minmax_and_metrics.defect_slips(mesh)[0]
+    """, "defect_slips"),
+    "gpytoolbox": ("""
+        from gpytoolbox import angle_defect
+
+        def my_angle_defects(mesh):
+            return angle_defect(mesh.vertices, mesh.faces)
+    """, "angle_defect"),
+    "igl": ("""
+        import igl
+
+        def my_angle_defects(mesh):
+            return my_full(mesh) - np.bincount(mesh.faces.ravel(), igl.internal_angles(mesh.vertices, mesh.faces).ravel(),
+                                               mesh.n_vertices)
+    """, "internal_angles"),
+}
+
+
+def _defects(code):
+    import textwrap
+
+    return answers(HELPERS + textwrap.dedent(code), "my_angle_defects")
+
+
+def test_angle_defects_points():
+    assert full_points("08-angle-defects") == 5
+
+
+def test_angle_defects_solution():
+    assert "Right on four meshes" in _full("08-angle-defects", **answers(solution("08-angle-defects"), "my_angle_defects"))
+
+
+@pytest.mark.parametrize("name", list(DEFECTS))
+def test_angle_defects_written_differently(name):
+    _full("08-angle-defects", **_defects(DEFECTS[name]))
+
+
+@pytest.mark.parametrize("name", list(DEFECT_SLIPS))
+def test_angle_defects_slips(name):
+    code, hint = DEFECT_SLIPS[name]
+    message = _zero("08-angle-defects", hint, **_defects(code))
+    assert "does not show" in message or name in ("raises", "per corner, not per vertex")  # the form, on any mesh
+
+
+@pytest.mark.parametrize("name", list(DEFECT_LIBRARY))
+def test_angle_defects_library_calls(name):
+    code, where = DEFECT_LIBRARY[name]
+    _zero("08-angle-defects", "build it yourself", "not available", where, **_defects(code))
+
+
+def test_angle_defects_placeholders():
+    _zero("08-angle-defects", status="not attempted", **answers(student_edition("08-angle-defects"), "my_angle_defects"))
+    _zero("08-angle-defects", status="not attempted", my_angle_defects=...)
+
+
+def test_angle_defects_graded_run_and_determinism():
+    given = _defects(DEFECTS["half-angle tangents, a Python list"])
+    assert verdict("08-angle-defects", **given) == verdict("08-angle-defects", **given)
+    assert graded("08-angle-defects", **given) == 5.0
+    import lbo_notebooks as lbo
+
+    assert graded("08-angle-defects", my_angle_defects=lbo.angle_defects) == 0.0
+
+
+def test_angle_defects_unseen_meshes():
+    """The grader's meshes: the four kinds the prompt's grading promises (χ = 2, 0, 1 with boundary,
+    obtuse triangles), none of them a mesh of the notebook, and every blocked function resolves."""
+    from lbo_notebooks.exercises.grading import _registry, load_graders, nb08
+    from lbo_notebooks.operators import corner_angles
+
+    meshes = [mesh for mesh, _ in nb08._unseen_meshes()]
+    assert [m.euler_characteristic for m in meshes] == [2, 0, 1, 2]
+    assert len(meshes[2].boundary_vertices) > 0 and (corner_angles(meshes[3]) > np.pi / 2).sum() > 50
+    for target in load_graders("08-angle-defects")["08-angle-defects"].replaces:
+        module = target.partition(":")[0]
+        import importlib.util
+
+        installed = importlib.util.find_spec(module.split(".")[0]) is not None
+        assert (_registry._resolve(target) is not None) == installed, target
+
+
+def test_angle_defects_visible_check():
+    from lbo_notebooks import curvature
+    from lbo_notebooks.exercises import minmax_and_metrics as mm
+
+    assert mm.check_angle_defects(curvature.angle_defects, show=False).correct
+    own = _defects(DEFECTS["arccos of the normalised dot product, a loop over faces"])["my_angle_defects"]
+    assert mm.check_angle_defects(own, show=False).correct
+    slip = _defects(DEFECT_SLIPS["no boundary rule"][0])["my_angle_defects"]
+    feedback = mm.check_angle_defects(slip, show=False)
+    assert feedback.status == "wrong" and "boundary" in feedback.message
+    assert mm.check_angle_defects(..., show=False).status == "not attempted"
+    assert mm.check_angle_defects(lambda mesh: 1 / 0, show=False).status == "wrong"
+    assert mm.check_angle_defects("not a function", show=False).status == "wrong"
+
+
+def test_gauss_bonnet_on_the_grader_meshes():
+    """Σ δ = 2πχ, with the boundary's turning on the open patch: the identity the notebook's cell
+    checks on the student's defects."""
+    from lbo_notebooks import curvature
+    from lbo_notebooks.exercises.grading import nb08
+
+    for mesh, _ in nb08._unseen_meshes():
+        delta = curvature.angle_defects(mesh)
+        assert abs(delta.sum() - 2 * np.pi * mesh.euler_characteristic) < 1e-12 * np.abs(delta).sum()

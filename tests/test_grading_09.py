@@ -29,8 +29,9 @@ zero = assert_zero
 
 
 def test_points_follow_the_kinds():
-    assert {e: full_points(e) for e in ("09-memory", "09-landmarks", "09-scaling", "09-fmm", "09-recap")} == {
-        "09-memory": 2, "09-landmarks": 1, "09-scaling": 5, "09-fmm": 1, "09-recap": 3}
+    exercises = ("09-memory", "09-classical-mds", "09-landmarks", "09-scaling", "09-fmm", "09-recap")
+    assert {e: full_points(e) for e in exercises} == {
+        "09-memory": 2, "09-classical-mds": 5, "09-landmarks": 1, "09-scaling": 5, "09-fmm": 1, "09-recap": 3}
 
 
 # --- 09-memory -----------------------------------------------------------------------------------
@@ -91,6 +92,258 @@ def test_predictions(exercise, name, right, wrong):
         zero(exercise, hint, **{name: answer})
     zero(exercise, **{name: ...}, status="not attempted")
     zero(exercise, **{name: None}, status="not attempted")
+
+
+# --- 09-classical-mds: build it yourself ---------------------------------------------------------
+
+MDS_RIGHT = {
+    "scipy eigh with subset_by_index, J as a matrix": """
+import scipy.linalg
+
+def my_classical_mds(D, dim):
+    n = D.shape[0]
+    J = np.eye(n) - 1.0 / n
+    B = -0.5 * J @ np.square(D) @ J
+    w, U = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
+    w, U = w[::-1], U[:, ::-1]
+    return U * np.sqrt(np.clip(w, 0, None))
+""",
+    "centring by means, argsort, a loop over columns": """
+def my_classical_mds(D, dim):
+    D2 = D * D
+    B = -(D2 - D2.mean(0)[None, :] - D2.mean(1)[:, None] + D2.mean()) / 2
+    w, V = np.linalg.eigh(B)
+    order = np.argsort(w)[::-1][:dim]
+    X = np.zeros((len(D), dim))
+    for j, i in enumerate(order):
+        X[:, j] = V[:, i] * max(w[i], 0.0) ** 0.5
+    return X
+""",
+    "Lanczos (eigsh, which='LA'), a list of lists, another sign of each column": """
+import scipy.sparse.linalg as sla
+
+def my_classical_mds(D, dim):
+    n = len(D)
+    J = np.identity(n) - np.full((n, n), 1 / n)
+    B = -0.5 * (J @ (D ** 2) @ J)
+    w, U = sla.eigsh(B, k=dim, which="LA", v0=np.ones(n))
+    idx = np.argsort(-w)
+    X = -U[:, idx] * np.sqrt(np.maximum(w[idx], 0))
+    return X.tolist()
+""",
+    "an SVD of the double-centred matrix, then signs from B": """
+def my_classical_mds(D, dim):
+    n = len(D)
+    J = np.eye(n) - np.ones((n, n)) / n
+    B = -0.5 * J @ D**2 @ J
+    w, U = np.linalg.eigh(B)
+    w, U = w[::-1][:dim], U[:, ::-1][:, :dim]
+    return U @ np.diag(np.sqrt(np.where(w > 0, w, 0.0))) + 7.0  # a translation is the same embedding
+""",
+}
+
+_MDS_BASE = """
+def my_top(B, dim):
+    w, U = np.linalg.eigh(B)
+    return w[::-1][:dim], U[:, ::-1][:, :dim]
+
+def my_centre(M):
+    n = len(M)
+    J = np.eye(n) - 1 / n
+    return J @ M @ J
+"""
+
+MDS_SLIPS = {
+    "distances not squared": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D), dim)
+    return U * np.sqrt(np.maximum(w, 0))
+""", "squared"),
+    "no ½": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-my_centre(D**2), dim)
+    return U * np.sqrt(np.maximum(w, 0))
+""", "√2"),
+    "smallest eigenpairs": ("""
+def my_classical_mds(D, dim):
+    w, U = np.linalg.eigh(-0.5 * my_centre(D**2))
+    return U[:, :dim] * np.sqrt(np.abs(w[:dim]))
+""", "smallest"),
+    "no double centring": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * D**2, dim)
+    return U * np.sqrt(np.maximum(w, 0))
+""", "double-centred"),
+    "no square root": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D**2), dim)
+    return U * np.maximum(w, 0)
+""", "square-rooted"),
+    "eigenvectors only": ("""
+def my_classical_mds(D, dim):
+    return my_top(-0.5 * my_centre(D**2), dim)[1]
+""", "scaled by the square root"),
+    "absolute values, not clipped": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D**2), dim)
+    return U * np.sqrt(np.abs(w))
+""", "absolute value"),
+    "largest in magnitude": ("""
+def my_classical_mds(D, dim):
+    w, U = np.linalg.eigh(-0.5 * my_centre(D**2))
+    idx = np.argsort(-np.abs(w))[:dim]
+    return U[:, idx] * np.sqrt(np.maximum(w[idx], 0))
+""", "magnitude"),
+    "not clipped": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D**2), dim)
+    return U * np.sqrt(w)
+""", "clip"),
+    "transposed": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D**2), dim)
+    return (U * np.sqrt(np.maximum(w, 0))).T
+""", "transposed"),
+    "a fixed 3": ("""
+def my_classical_mds(D, dim):
+    w, U = my_top(-0.5 * my_centre(D**2), 3)
+    return U * np.sqrt(np.maximum(w, 0))
+""", "`dim` argument"),
+}
+
+MDS_LIBRARY = {
+    "classical_mds itself": ("my_classical_mds = lbo.classical_mds", "classical_mds"),
+    "a wrapper": ("""
+from lbo_notebooks.mds import classical_mds
+
+def my_classical_mds(D, dim):
+    return np.array(classical_mds(D, dim=dim))
+""", "classical_mds"),
+    "landmark MDS with every point a landmark": ("""
+def my_classical_mds(D, dim):
+    return lbo.mds.landmark_mds(D, dim, landmarks=np.arange(len(D)))
+""", "landmark_mds"),
+    "the library's top eigenpairs": ("""
+from lbo_notebooks.scaling import top_eigenpairs
+
+def my_classical_mds(D, dim):
+    n = len(D)
+    J = np.eye(n) - 1 / n
+    w, U = top_eigenpairs(-0.5 * J @ D**2 @ J, dim)
+    return U * np.sqrt(np.maximum(w, 0))
+""", "top_eigenpairs"),
+    "scaling in a span": ("""
+from lbo_notebooks import scaling
+
+def my_classical_mds(D, dim):
+    n = len(D)
+    J = np.eye(n) - 1 / n
+    y, _ = scaling.scaling_in_span(J.T @ J, -0.5 * D**2, dim)
+    return J @ y
+""", "scaling_in_span"),
+    "the visible check's reference": ("""
+from lbo_notebooks.exercises import canonical_forms
+
+my_classical_mds = lambda D, dim: canonical_forms.mds_slips(D, dim)[0]
+""", "mds_slips"),
+    "scikit-learn ClassicalMDS": ("""
+from sklearn.manifold import ClassicalMDS
+
+def my_classical_mds(D, dim):
+    return ClassicalMDS(n_components=dim, metric="precomputed").fit_transform(D)
+""", "ClassicalMDS"),
+    "scikit-learn KernelPCA": ("""
+from sklearn.decomposition import KernelPCA
+
+def my_classical_mds(D, dim):
+    n = len(D)
+    J = np.eye(n) - 1 / n
+    return KernelPCA(n_components=dim, kernel="precomputed").fit_transform(-0.5 * J @ D**2 @ J)
+""", "KernelPCA"),
+}
+
+
+def test_classical_mds_solution():
+    message = full("09-classical-mds", **answers(solution("09-classical-mds"), "my_classical_mds"))
+    assert "does not show" in message
+
+
+@pytest.mark.parametrize("name", list(MDS_RIGHT))
+def test_classical_mds_written_differently(name):
+    full("09-classical-mds", **answers(MDS_RIGHT[name], "my_classical_mds"))
+
+
+@pytest.mark.parametrize("name", list(MDS_SLIPS))
+def test_classical_mds_slips(name):
+    code, hint = MDS_SLIPS[name]
+    message = zero("09-classical-mds", hint, **answers(_MDS_BASE + code, "my_classical_mds"))
+    assert "does not show" in message or name in ("transposed", "a fixed 3", "not clipped")
+
+
+@pytest.mark.parametrize("name", list(MDS_LIBRARY))
+def test_classical_mds_library_calls(name):
+    code, where = MDS_LIBRARY[name]
+    zero("09-classical-mds", "build it yourself", "not available", where, **answers(code, "my_classical_mds"))
+
+
+def test_classical_mds_placeholders_and_odd_answers():
+    stub = re.sub(r"(?ms)^([ \t]*)### BEGIN SOLUTION.*?### END SOLUTION[^\n]*", r"\1# YOUR CODE HERE\n\1pass",
+                  "".join(json.loads(NOTEBOOK.read_text())["cells"][[
+                      i for i, c in enumerate(json.loads(NOTEBOOK.read_text())["cells"])
+                      if c["metadata"].get("nbgrader", {}).get("grade_id") == "09-classical-mds-answer"][0]]["source"]))
+    zero("09-classical-mds", status="not attempted", **answers(stub, "my_classical_mds"))
+    zero("09-classical-mds", status="not attempted", my_classical_mds=...)
+    zero("09-classical-mds", "zeros", **answers("def my_classical_mds(D, dim):\n    return np.zeros((len(D), dim))",
+                                                "my_classical_mds"))
+    zero("09-classical-mds", "ZeroDivisionError", **answers("def my_classical_mds(D, dim):\n    return 1 / 0",
+                                                            "my_classical_mds"))
+
+
+def test_classical_mds_cases_are_determined_and_the_librarys():
+    """Every graded case ends each dim below a gap (or among clipped eigenvalues), has the promised
+    kinds (exactly embeddable, negative eigenvalues, repeated eigenvalues), and the reference is the
+    library's classical MDS; every blocked function resolves."""
+    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.exercises import canonical_forms
+    from lbo_notebooks.exercises.grading import _registry, load_graders, nb09
+    from lbo_notebooks.mds import classical_mds
+
+    negative = repeated = 0
+    for D, dims, _ in nb09._mds_cases():
+        G = np.linalg.eigvalsh(canonical_forms._double_centred(D**2))[::-1]
+        negative += G[-1] < -1e-6 * G[0]
+        repeated += np.any(np.abs(np.diff(G[:max(dims)])) < 1e-9 * G[0])
+        for dim in dims:
+            assert G[dim - 1] <= 1e-9 * G[0] or G[dim - 1] > 1.2 * G[dim], (dims, G[:dim + 1])
+            ref, slips = canonical_forms.mds_slips(D, dim)
+            assert gram_error(classical_mds(D, dim), ref) < 1e-10
+            assert slips
+    assert negative >= 3 and repeated >= 2
+    for target in load_graders("09-classical-mds")["09-classical-mds"].replaces:
+        assert _registry._resolve(target) is not None, target
+
+
+def test_classical_mds_graded_run():
+    given = answers(MDS_RIGHT["centring by means, argsort, a loop over columns"], "my_classical_mds")
+    assert verdict("09-classical-mds", **given) == verdict("09-classical-mds", **given)
+    assert graded("09-classical-mds", **given) == 5.0
+    import lbo_notebooks as lbo
+
+    assert graded("09-classical-mds", my_classical_mds=lbo.classical_mds) == 0.0
+
+
+def test_classical_mds_visible_check():
+    from lbo_notebooks.exercises import canonical_forms
+    from lbo_notebooks.mds import classical_mds
+
+    right = answers(solution("09-classical-mds"), "my_classical_mds")["my_classical_mds"]
+    assert canonical_forms.check_classical_mds(right, show=False).correct
+    assert canonical_forms.check_classical_mds(lambda D, dim: classical_mds(D, dim), show=False).correct
+    slip = answers(_MDS_BASE + MDS_SLIPS["no ½"][0], "my_classical_mds")["my_classical_mds"]
+    feedback = canonical_forms.check_classical_mds(slip, show=False)
+    assert feedback.status == "wrong" and "√2" in feedback.message
+    assert canonical_forms.check_classical_mds(..., show=False).status == "not attempted"
+    assert canonical_forms.check_classical_mds(42, show=False).status == "wrong"
 
 
 # --- 09-scaling: build it yourself ---------------------------------------------------------------
@@ -211,7 +464,7 @@ def test_scaling_other_wrong_answers():
     zero("09-scaling", "coefficients", **answers(A + "return np.ones((phi.shape[1], dim))", "my_scaling"))
     zero("09-scaling", "nan", **answers(A + "return np.full((len(phi), dim), np.nan)", "my_scaling"))
     zero("09-scaling", "zeros", **answers(A + "return np.zeros((len(phi), dim))", "my_scaling"))
-    zero("09-scaling", "Q R, S", **answers(A + f"return 1.1 * ({_slip_expr()})", "my_scaling"))
+    zero("09-scaling", "Q R, B̃", **answers(A + f"return 1.1 * ({_slip_expr()})", "my_scaling"))
     zero("09-scaling", "array", **answers(A + "return 'x'", "my_scaling"))
     zero("09-scaling", "ZeroDivisionError", **answers(A + "return 1 / 0", "my_scaling"))
     zero("09-scaling", "Pass the function", my_scaling=np.zeros((3, 3)))

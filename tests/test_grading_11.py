@@ -17,7 +17,7 @@ from .grading_support import answers, assert_full, assert_zero, cell, full_point
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "11_regularized_pca.ipynb"
 EXERCISES = {"11-energy": "compute", "11-limits": "predict", "11-validation": "compute", "11-scale": "predict",
-             "11-objective": "build", "11-recap": "recap"}
+             "11-objective": "build", "11-rpca-basis": "build", "11-recap": "recap"}
 
 
 def _cells() -> list[dict]:
@@ -95,7 +95,7 @@ def test_check_cells_grade_by_the_prompts_names():
 def test_the_student_edition_is_not_attempted(exercise, kernel):
     names = {"11-energy": ["energies"], "11-limits": ["limit_at_0", "limit_at_1", "best_beta"],
              "11-validation": ["chosen_beta", "beats_by_four"], "11-scale": ["mu_factor"],
-             "11-objective": ["my_objective"], "11-recap": ["q1", "q2", "q3"]}[exercise]
+             "11-objective": ["my_objective"], "11-rpca-basis": ["my_rpca_basis"], "11-recap": ["q1", "q2", "q3"]}[exercise]
     given = answers(student_edition(exercise), *names, **kernel)
     _zero(exercise, "not attempted", status="not attempted", **given)
 
@@ -303,6 +303,125 @@ def test_objective_stubs_are_not_attempted():
                  "def my_objective(P, X, W, A, mu):\n    raise NotImplementedError"):
         _zero("11-objective", status="not attempted", **answers(code, "my_objective"))
     _zero("11-objective", "raised", **answers("def my_objective(P, X, W, A, mu):\n    return P @ X", "my_objective"))
+
+
+# --- 11-rpca-basis (build) ----------------------------------------------------------------------------------
+
+RIGHT_BASES = {
+    "sparse shift-invert Lanczos with the mass on the right (eigsh, M=A)": """
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as sla
+        def my_rpca_basis(X, W, A, mu, m):
+            U = A @ X
+            L = U @ U.T - mu * W.toarray()
+            sigma, P = sla.eigsh(L, k=m, M=A.tocsc(), which="LA", tol=1e-13, v0=np.ones(L.shape[0]))
+            order = np.argsort(sigma)[::-1]
+            return P[:, order]
+    """,
+    "Cholesky reduction to a standard problem, numpy only": """
+        def my_rpca_basis(X, W, A, mu, m):
+            Ad = A.toarray()
+            C = np.linalg.cholesky(Ad)                      # A = C Cᵀ
+            Ci = np.linalg.inv(C)
+            M = Ci @ ((Ad @ X) @ (Ad @ X).T - mu * W.toarray()) @ Ci.T
+            sigma, Y = np.linalg.eigh((M + M.T) / 2)
+            top = np.argsort(sigma)[::-1][:m]
+            return Ci.T @ Y[:, top]                         # p = C⁻ᵀ y, so Pᵀ A P = I
+    """,
+    "scipy.linalg.eigh on the whole pencil, then the last m columns reversed": """
+        import scipy.linalg
+        def my_rpca_basis(X, W, A, mu, m):
+            data = (A @ X) @ (A @ X).T
+            _, vectors = scipy.linalg.eigh(data - mu * W.todense(), A.todense())
+            return np.asarray(vectors)[:, ::-1][:, :m]
+    """,
+}
+
+
+def test_rpca_basis_solution_and_alternatives():
+    message = _full("11-rpca-basis", **answers(solution("11-rpca-basis"), "my_rpca_basis"))
+    assert "does not show" in message
+    for name, code in RIGHT_BASES.items():
+        _full("11-rpca-basis", **answers(code, "my_rpca_basis"))
+
+
+_DENSE = "    U = A @ X\n    L = U @ U.T - mu * W.toarray()\n"
+WRONG_BASES = {
+    "the standard problem (no A on the right)": (_DENSE + "    s, P = np.linalg.eigh(L)\n    return P[:, ::-1][:, :m]",
+                                                 "standard problem"),
+    "ascending order": (_DENSE + "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, -m:]", "ascending"),
+    "the m smallest": (_DENSE + "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, :m]", "smallest"),
+    "plus mu W": ("    U = A @ X\n    L = U @ U.T + mu * W.toarray()\n"
+                  "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, ::-1][:, :m]", "wrong sign"),
+    "X Xᵀ without the mass": ("    L = X @ X.T - mu * W.toarray()\n"
+                              "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, ::-1][:, :m]", "lacks the mass"),
+    "the data centred": ("    Xc = X - (A @ X).sum(axis=0) / A.sum()\n    U = A @ Xc\n    L = U @ U.T - mu * W.toarray()\n"
+                         "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, ::-1][:, :m]", "centred"),
+    "Euclidean normalisation": (_DENSE + "    s, P = scipy.linalg.eigh(L, A.toarray())\n    P = P[:, ::-1][:, :m]\n"
+                                "    return P / np.linalg.norm(P, axis=0)", "not normalised in the A inner product"),
+    "eigenvalues and basis": (_DENSE + "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return s[::-1][:m], P[:, ::-1][:, :m]",
+                              "basis P alone"),
+    "transposed": (_DENSE + "    s, P = scipy.linalg.eigh(L, A.toarray())\n    return P[:, ::-1][:, :m].T", "Transposed"),
+}
+
+
+@pytest.mark.parametrize("name", list(WRONG_BASES))
+def test_rpca_basis_wrong_answers(name):
+    body, hint = WRONG_BASES[name]
+    code = f"import scipy.linalg\ndef my_rpca_basis(X, W, A, mu, m):\n{body}\n"
+    message = _zero("11-rpca-basis", hint, **answers(code, "my_rpca_basis"))
+    assert "notebook does not show" in message
+
+
+@pytest.mark.parametrize("code, used", [
+    ("""
+        def my_rpca_basis(X, W, A, mu, m):
+            return lbo.RegularizedPCA(X, W, A).solve(m, mu=mu).basis
+     """, "RegularizedPCA.solve"),
+    ("""
+        def my_rpca_basis(X, W, A, mu, m):   # the pencil handed to the package's eigensolver
+            U = A @ X
+            return lbo.eigenbasis((mu * W - sp.csr_matrix(U @ U.T), A), m).vectors
+     """, "eigenbasis"),
+])
+def test_rpca_basis_library_calls_earn_nothing(code, used):
+    _zero("11-rpca-basis", "not available", used, **answers(code, "my_rpca_basis"))
+
+
+def test_rpca_basis_stubs_are_not_attempted():
+    for code in ("my_rpca_basis = ...", "def my_rpca_basis(X, W, A, mu, m):\n    pass",
+                 "def my_rpca_basis(X, W, A, mu, m):\n    raise NotImplementedError"):
+        _zero("11-rpca-basis", status="not attempted", **answers(code, "my_rpca_basis"))
+
+
+def test_rpca_basis_is_judged_on_unseen_problems(kernel):
+    """None of the graded problems is the notebook's (the dog, or the bumpy sphere of the visible
+    check); one has data that are not centred, one repeated eigenvalues that m cuts."""
+    from lbo_notebooks.exercises.grading import nb11
+
+    problems = nb11._unseen_rpca_problems()
+    sizes = {X.shape[0] for _, X, _, _, _, _ in problems}
+    assert kernel["pca"].basis.shape[0] not in sizes and 642 not in sizes
+    assert any(np.abs((A @ X).sum(axis=0)).max() > 1e-3 * np.abs(A @ X).sum() for _, X, _, A, _, _ in problems)
+    assert verdict("11-rpca-basis", **answers(solution("11-rpca-basis"), "my_rpca_basis")) == \
+        verdict("11-rpca-basis", **answers(solution("11-rpca-basis"), "my_rpca_basis"))
+
+
+def test_the_visible_rpca_basis_check_says_right_and_wrong():
+    import lbo_notebooks as lbo
+    from lbo_notebooks import exercises
+    from lbo_notebooks.rpca import RegularizedPCA
+
+    small = lbo.shapes.bumpy_sphere(3)
+    Ws, As = lbo.stiffness_matrix(small), lbo.mass_matrix(small)
+    bent = small.vertices * [1.0, 1.2, 1.0]
+    data = RegularizedPCA(np.hstack([small.vertices, bent]), Ws, As, center=True).data
+    right = answers(solution("11-rpca-basis"), "my_rpca_basis")["my_rpca_basis"]
+    assert exercises.check_rpca_basis(right, data, Ws, As, show=False).correct
+    wrong = answers("import scipy.linalg\ndef my_rpca_basis(X, W, A, mu, m):\n" + WRONG_BASES["ascending order"][0],
+                    "my_rpca_basis")["my_rpca_basis"]
+    feedback = exercises.check_rpca_basis(wrong, data, Ws, As, show=False)
+    assert feedback.status == "wrong" and "ascending" in feedback.message
 
 
 # --- 11-recap ------------------------------------------------------------------------------------------------

@@ -15,9 +15,10 @@ import pytest
 from .grading_support import answers, assert_full, assert_zero, full_points, graded, solution_of, stub_of, verdict
 
 NOTEBOOK = Path(__file__).resolve().parent.parent / "notebooks" / "12_spectral_toolbox.ipynb"
-EXERCISES = {"12-hks": "build", "12-fmap": "build", "12-alpha": "predict", "12-bound": "compute",
-             "12-mirror": "predict", "12-zoomout": "predict", "12-recap": "recap"}
-NAMES = {"12-hks": ["my_hks"], "12-fmap": ["my_functional_map"], "12-alpha": ["best_alpha"], "12-bound": ["bound_z"],
+EXERCISES = {"12-hks": "build", "12-fmap": "build", "12-zoomout-step": "build", "12-alpha": "predict",
+             "12-bound": "compute", "12-mirror": "predict", "12-zoomout": "predict", "12-recap": "recap"}
+NAMES = {"12-hks": ["my_hks"], "12-fmap": ["my_functional_map"], "12-zoomout-step": ["my_zoomout_step"],
+         "12-alpha": ["best_alpha"], "12-bound": ["bound_z"],
          "12-mirror": ["with_orientation", "without_orientation"], "12-zoomout": ["without_zoomout"],
          "12-recap": ["q1", "q2", "q3"]}
 
@@ -241,6 +242,200 @@ def test_fmap_is_judged_on_unseen_pairs():
     assert all(3000 not in pair for pair in sizes)  # not the dog
 
 
+# --- 12-zoomout-step (build it yourself) -------------------------------------------------------------------
+
+RIGHT_ZOOMOUT_STEPS = {
+    "brute force, one target vertex at a time": """
+        def my_zoomout_step(C, source, target):
+            k = len(C)
+            images = source.vectors[:, :k] @ C.T
+            p2p = np.array([np.argmin(((images - row) ** 2).sum(axis=1)) for row in target.vectors[:, :k]])
+            phi2 = target.vectors[:, : k + 1]
+            return phi2.T @ target.mass @ source.vectors[p2p][:, : k + 1], p2p
+    """,
+    "cKDTree, a sparse permutation matrix": """
+        from scipy.spatial import cKDTree
+
+        def my_zoomout_step(C, source, target):
+            k = C.shape[1]
+            _, p2p = cKDTree(source.vectors[:, :k] @ C.T).query(target.vectors[:, :k], k=1)
+            n2, n1 = target.n_vertices, source.n_vertices
+            Pi = sp.csr_matrix((np.ones(n2), (np.arange(n2), p2p)), shape=(n2, n1))
+            C_next = target.vectors[:, : k + 1].T @ (target.mass @ (Pi @ source.vectors[:, : k + 1]))
+            return C_next, p2p
+    """,
+    "sklearn NearestNeighbors, the A-weighted normal equations": """
+        from sklearn.neighbors import NearestNeighbors
+
+        def my_zoomout_step(C, source, target):
+            k = C.shape[0]
+            nn = NearestNeighbors(n_neighbors=1).fit(source.vectors[:, :k] @ C.T)
+            p2p = nn.kneighbors(target.vectors[:, :k], return_distance=False)[:, 0]
+            phi2 = target.vectors[:, : k + 1]
+            gram = phi2.T @ (target.mass @ phi2)
+            return np.linalg.solve(gram, phi2.T @ (target.mass @ source.vectors[p2p, : k + 1])), list(p2p)
+    """,
+    "single-precision scores, as the library's search": """
+        def my_zoomout_step(C, source, target):
+            k = len(C)
+            images = (source.vectors[:, :k] @ C.T).astype(np.float32)
+            rows = target.vectors[:, :k].astype(np.float32)
+            score = rows @ images.T - 0.5 * (images**2).sum(axis=1)
+            p2p = score.argmax(axis=1).astype(np.int32)
+            a = target.mass.diagonal()
+            return target.vectors[:, : k + 1].T @ (a[:, None] * source.vectors[p2p, : k + 1]), p2p
+    """,
+}
+
+
+def test_zoomout_step_solution_and_alternatives():
+    pytest.importorskip("sklearn")
+    message = _full("12-zoomout-step", **answers(solution("12-zoomout-step"), "my_zoomout_step"))
+    assert "does not show" in message
+    for name, code in RIGHT_ZOOMOUT_STEPS.items():
+        _full("12-zoomout-step", **answers(code, "my_zoomout_step"))
+
+
+# The typical slips, each in a right answer's frame: ``nearest(queries, points)`` is a right brute force.
+_STEP = """
+from scipy.spatial import cKDTree
+
+def nearest(queries, points):
+    return cKDTree(points).query(queries)[1]
+
+def pull(p2p, s, t, k):
+    return t.vectors[:, :k].T @ (t.mass @ s.vectors[p2p, :k])
+
+def my_zoomout_step(C, s, t):
+    k = len(C)
+    {body}
+"""
+
+
+@pytest.mark.parametrize("body, hint", [
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C)\n    return pull(p, s, t, k + 1), p", "transposed c"),
+    ("p = nearest(t.vectors[:, :k] @ C, s.vectors[:, :k])\n    return pull(p, s, t, k + 1), p", "Φ₂ C with Φ₁"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k])\n    return pull(p, s, t, k + 1), p", "C is not used"),
+    ("p = nearest(s.vectors[:, :k] @ C.T, t.vectors[:, :k])\n    return pull(p, s, t, k + 1), p", "wrong way"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, k), p", "not grown"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, None), p", "every computed"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n"
+     "    return t.vectors[:, : k + 1].T @ s.vectors[p, : k + 1], p", "euclidean inner product"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n"
+     "    return np.linalg.lstsq(t.vectors[:, : k + 1], s.vectors[p, : k + 1], rcond=None)[0], p", "least-squares"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, k + 1).T, p", "transposed"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return p, pull(p, s, t, k + 1)", "swapped"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, k + 1)", "the pair"),
+    ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, k + 1), (p + 1) % s.n_vertices",
+     "not the nearest"),
+])
+def test_zoomout_step_wrong_answers(body, hint):
+    code = _STEP.replace("{body}", body)
+    message = _zero("12-zoomout-step", hint, **answers(code, "my_zoomout_step"))
+    assert "notebook does not show" in message
+
+
+@pytest.mark.parametrize("code, used", [
+    ("from lbo_notebooks import functional_maps as fm\n"
+     "def my_zoomout_step(C, source, target):\n"
+     "    k = len(C)\n"
+     "    p2p = fm.points_from_map(C, source, target)\n"
+     "    return fm.map_from_points(p2p, source, target, k_source=k + 1, k_target=k + 1), p2p", "points_from_map"),
+    ("def my_zoomout_step(C, source, target):\n"
+     "    C_next, _ = lbo.functional_maps.zoomout(C, source, target, k_final=len(C) + 1)\n"
+     "    return C_next, lbo.points_from_map(C, source, target)", "zoomout"),
+    ("from lbo_notebooks.functional_maps import _nearest_rows\n"
+     "def my_zoomout_step(C, source, target):\n"
+     "    k = len(C)\n"
+     "    p2p = _nearest_rows(target.vectors[:, :k], source.vectors[:, :k] @ C.T)\n"
+     "    return target.project(source.vectors[p2p, : k + 1], k + 1), p2p", "_nearest_rows"),
+    ("import pyFM.spectral\n"
+     "def my_zoomout_step(C, source, target):\n"
+     "    k = len(C)\n"
+     "    p2p = pyFM.spectral.FM_to_p2p(C, source.vectors[:, :k], target.vectors[:, :k])\n"
+     "    return pyFM.spectral.p2p_to_FM(p2p, source.vectors[:, :k + 1], target.vectors[:, :k + 1], A2=target.mass), p2p",
+     "FM_to_p2p"),
+    ("from pyFM.refine.zoomout import zoomout_iteration\n"
+     "from scipy.spatial import cKDTree\n"
+     "def my_zoomout_step(C, source, target):\n"
+     "    k = len(C)\n"
+     "    p2p = cKDTree(source.vectors[:, :k] @ C.T).query(target.vectors[:, :k])[1]\n"
+     "    return zoomout_iteration(C, source.vectors, target.vectors, A2=target.mass), p2p", "zoomout_iteration"),
+])
+def test_zoomout_step_library_calls_earn_nothing(code, used):
+    pytest.importorskip("pyFM") if "pyFM" in code else None
+    _zero("12-zoomout-step", "not available", used, **answers(code, "my_zoomout_step"))
+
+
+def test_zoomout_step_stubs_are_not_attempted():
+    for code in ("my_zoomout_step = ...", "def my_zoomout_step(C, source, target):\n    pass",
+                 "def my_zoomout_step(C, source, target):\n    raise NotImplementedError()"):
+        _zero("12-zoomout-step", status="not attempted", **answers(code, "my_zoomout_step"))
+
+
+def test_zoomout_step_is_judged_on_unseen_maps():
+    from lbo_notebooks.exercises.grading import nb12
+
+    steps = nb12._unseen_steps()
+    sizes = [(s.n_vertices, t.n_vertices) for _, _, s, t in steps]
+    assert sizes[0][0] == sizes[0][1] and any(a > b for a, b in sizes) and any(a < b for a, b in sizes)
+    assert all(3000 not in pair for pair in sizes)  # not the dog
+    for _, C, source, target in steps:
+        assert C.shape[0] < min(source.k, target.k)  # room for k + 1
+        assert np.abs(C @ C.T - np.eye(len(C))).max() > 0.1  # not orthogonal: C^T is not C^-1
+
+
+def test_zoomout_step_ties_accept_any_nearest_source_vertex():
+    """With C = e_0 e_0^T every source vertex has the same image (φ_0 is constant): any point map is a
+    nearest one, and C_next is judged as the map of the student's own point map."""
+    from lbo_notebooks.exercises.grading import nb12
+    from lbo_notebooks.exercises.toolbox import zoomout_step_hint
+
+    _, _, source, target, _ = nb12._unseen_pairs()[1]
+    k = 6
+    C = np.zeros((k, k))
+    C[0, 0] = 1.0
+    for seed in (0, 1):
+        p2p = np.random.default_rng(seed).integers(0, source.n_vertices, target.n_vertices)
+        C_next = target.vectors[:, : k + 1].T @ (target.mass @ source.vectors[p2p, : k + 1])
+        assert zoomout_step_hint((C_next, p2p), C, source, target) is None
+        other = np.roll(p2p, 1)
+        assert zoomout_step_hint((C_next, other), C, source, target) is not None  # another map's C_next
+
+
+def test_zoomout_step_visible_check():
+    """The visible check (exported from exercises as check_zoomout_step) on a small pair: the solution
+    and the alternatives pass, the slips get their hints, a stub is not attempted."""
+    from lbo_notebooks import shapes
+    from lbo_notebooks.exercises.toolbox import check_zoomout_step
+    from lbo_notebooks.spectrum import eigenbasis
+
+    mesh = shapes.bumpy_sphere(2, seed=3)
+    one, two = eigenbasis(mesh, 14), eigenbasis(mesh.with_vertices(mesh.vertices * [1.0, 1.2, 0.9]), 14)
+    pytest.importorskip("sklearn")
+    for code in [solution("12-zoomout-step"), *RIGHT_ZOOMOUT_STEPS.values()]:
+        assert check_zoomout_step(answers(code, "my_zoomout_step")["my_zoomout_step"], one, two, 10, show=False).correct
+    for body, hint in [("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C)\n    return pull(p, s, t, k + 1), p",
+                        "transposed c"),
+                       ("p = nearest(s.vectors[:, :k] @ C.T, t.vectors[:, :k])\n    return pull(p, s, t, k + 1), p",
+                        "wrong way"),
+                       ("p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C.T)\n    return pull(p, s, t, k), p",
+                        "not grown")]:
+        step = answers(_STEP.replace("{body}", body), "my_zoomout_step")["my_zoomout_step"]
+        feedback = check_zoomout_step(step, one, two, 10, show=False)
+        assert feedback.status == "wrong" and hint in feedback.message.lower(), feedback.message
+    stub = answers(student_edition("12-zoomout-step"), "my_zoomout_step")["my_zoomout_step"]
+    assert check_zoomout_step(stub, one, two, 10, show=False).status == "not attempted"
+
+
+def test_zoomout_step_same_answer_same_verdict():
+    right = answers(solution("12-zoomout-step"), "my_zoomout_step")
+    assert verdict("12-zoomout-step", **right) == verdict("12-zoomout-step", **right)
+    wrong = answers(_STEP.replace("{body}", "p = nearest(t.vectors[:, :k], s.vectors[:, :k] @ C)\n"
+                                            "    return pull(p, s, t, k + 1), p"), "my_zoomout_step")
+    assert verdict("12-zoomout-step", **wrong) == verdict("12-zoomout-step", **wrong)
+
+
 # --- 12-bound (compute) ------------------------------------------------------------------------------------------
 
 def test_bound_solution_and_alternatives(kernel):
@@ -347,6 +542,7 @@ def test_the_real_graded_run():
     """Through the real fresh process, as nbgrader runs it: the solution earns the points, a wrapper
     of the library none."""
     assert graded("12-fmap", **answers(solution("12-fmap"), "my_functional_map")) == 5.0
+    assert graded("12-zoomout-step", **answers(solution("12-zoomout-step"), "my_zoomout_step")) == 5.0
     assert graded("12-hks", my_hks=lambda s, t: __import__("lbo_notebooks").hks(s, t)) == 0.0
 
 

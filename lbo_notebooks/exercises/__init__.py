@@ -36,11 +36,11 @@ from .laplace_beltrami import check_stiffness, check_mass, check_convergence_fac
 from .warm_up import check_edge_energy, check_cycle_multiplicity, check_step_decay, check_recap_graph
 from .your_data import check_repair_counts, check_operator_choice, check_cloud_eigenvalue, check_largest_component, check_neighbors_effect, check_cloud_pieces, check_recap_your_data
 from .theory import check_projection, check_energy_bound, check_shifted_basis, check_consistent_optimality, check_extra_function, check_worst_ratio, check_recap_optimality, check_stationary_frame, check_recap_ties, check_worst_case
-from .minmax_and_metrics import check_plane_minimum, check_plane_range, check_lowest_family, check_dual_value, check_interlacing, check_consistent_minmax, check_recap_min_max, check_gauss_bonnet, check_curvature_scaling, check_metric_scaling, check_best_alpha, check_floor_fraction, check_sphere_alpha, check_consistent_invariance, check_recap_scale_invariant
-from .canonical_forms import check_classical_memory, check_small_scaling, check_fmm_gap, check_gram_2d, check_landmark_samples, check_recap_canonical_forms, check_mu_range, check_equal_size, check_recap_mds_at_scale
+from .minmax_and_metrics import check_plane_minimum, check_plane_range, check_lowest_family, check_dual_value, check_interlacing, check_consistent_minmax, check_recap_min_max, check_gauss_bonnet, check_curvature_scaling, check_metric_scaling, check_best_alpha, check_floor_fraction, check_sphere_alpha, check_consistent_invariance, check_recap_scale_invariant, check_angle_defects
+from .canonical_forms import check_classical_memory, check_small_scaling, check_fmm_gap, check_gram_2d, check_landmark_samples, check_recap_canonical_forms, check_mu_range, check_equal_size, check_recap_mds_at_scale, check_classical_mds
 from .start_here import check_sphere_eigenvalues, check_mesh_size, check_eigenfunction, check_load_error
-from .regularized_pca import check_rpca_limits, check_dirichlet_energies, check_validation_choice, check_mu_scaling, check_rpca_objective, check_recap_rpca
-from .toolbox import check_hks, check_functional_map, check_truncation_bound, check_alpha_choice, check_mirror_maps, check_zoomout, check_recap_toolbox
+from .regularized_pca import check_rpca_limits, check_dirichlet_energies, check_validation_choice, check_mu_scaling, check_rpca_objective, check_recap_rpca, check_rpca_basis
+from .toolbox import check_hks, check_functional_map, check_truncation_bound, check_alpha_choice, check_mirror_maps, check_zoomout, check_recap_toolbox, check_zoomout_step
 
 
 
@@ -88,4 +88,5 @@ __all__ = [
     "check_mirror_maps", "check_zoomout", "check_recap_toolbox", "check_classical_memory",
     "check_small_scaling", "check_fmm_gap", "check_gram_2d", "check_landmark_samples", "check_recap_canonical_forms",
     "check_mu_range", "check_equal_size", "check_recap_mds_at_scale", "check_eigensolve", "check_worst_case",
+    "check_angle_defects", "check_classical_mds", "check_rpca_basis", "check_zoomout_step",
 ]

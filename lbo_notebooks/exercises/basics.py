@@ -14,7 +14,7 @@ import numpy as np
 
 from .feedback import (
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to,
-    choose, pick, number_judge, recap,
+    choose, pick, number_judge, recap, right,
 )
 
 __all__ = [
@@ -108,25 +108,43 @@ def _entry(numbered: dict[float, Any], wanted: float) -> tuple[bool, Any]:
     return False, None
 
 
+class WrappedReasons(dict):  # type: ignore[type-arg]
+    """The reasons of a wrapped choice judge (``pick(...).reasons``), looked up the way the wrapper
+    reads an answer, so that :func:`~lbo_notebooks.exercises.feedback.recap` finds the reason of a
+    right answer written another way (``"Joint_Bands"``)."""
+
+    def __init__(self, judge: Any, read: Any) -> None:
+        super().__init__(getattr(judge, "reasons", {}))
+        self._read = read
+
+    def get(self, key: Any, default: Any = None) -> Any:
+        read = self._read(key)
+        return super().get(read.strip().lower() if isinstance(read, str) else key, default)
+
+
 def loose(judge: Any) -> Any:
     """A choice judge that also takes ``"Joint  Bands"`` or ``"joint_bands"`` (case, spaces, underscores)."""
+    def read(answer: Any) -> Any:
+        return " ".join(answer.replace("_", " ").split()) if isinstance(answer, str) else answer
+
     def tidy(answer: Any) -> str | None:
-        if isinstance(answer, str):
-            answer = " ".join(answer.replace("_", " ").split())
-        return judge(answer)
+        return judge(read(answer))
+    tidy.reasons = WrappedReasons(judge, read)  # type: ignore[attr-defined]
     return tidy
 
 
 # --- 01 · the shape collection -------------------------------------------------------------------
 
 RECAP_SHAPES = [
-    loose(pick({"faces": None,
+    loose(pick({"faces": right("a pose moves only the vertex positions: the faces are the very same array in every pose, "
+                               "one triangulation."),
                  "vertices": "a pose moves the vertices; what is the very same array in every pose?",
                  "both": "a pose moves the vertices; only one of the two arrays is shared."})),
     number_judge(2.0, [(0.0, "that is a torus (genus 1); the creatures are genus 0."),
                        (1.0, "that is a disc; the creatures are closed surfaces of genus 0.")],
                  "V − E + F of a closed genus-0 surface."),
-    loose(pick({"joint bands": None,
+    loose(pick({"joint bands": right("a vertex whose whole one-ring lies outside the joint bands moves rigidly with its "
+                                     "bone, so its edges keep their length."),
                  "everywhere": "a vertex whose whole one-ring is outside the bands moves rigidly with its bone: its "
                                "edges keep their length.",
                  "tips": "the stretch goes where a joint's weight blends from 0 to 1; is that at the tips of the "
@@ -205,7 +223,8 @@ def check_stretch_growth(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 01-stretch: what happens to the worst edge stretch when a bend's angle doubles?"""
     return choose("01-stretch", answer, {
         "same": "The stretch rθ/L depends on the angle θ: a larger bend over the same band stretches more.",
-        "double": None,
+        "double": right("The outer side stretches by about rθ/L, linear in the angle θ for a fixed radius r and band "
+                        "length L: twice the bend, about twice the stretch."),
         "quadruple": "rθ/L is linear in θ, not quadratic: you may be thinking of an area.",
         "half": "A larger bend stretches the outer side more, not less.",
     }, show)

@@ -2,10 +2,10 @@
 cost and resolution (10_spectral_mds_at_scale).
 
 The checks take the student's answer and return a :class:`~lbo_notebooks.exercises.feedback.Feedback`;
-see :mod:`lbo_notebooks.exercises` for how an exercise works. The one the student builds is the
-small step of spectral MDS: from the eigenbasis ``Phi`` and the k x k coefficients ``alpha`` of
-``D2 ~ Phi alpha Phi.T`` to the embedding, through a k x k eigenproblem (the canonical-forms
-notebook, section 2).
+see :mod:`lbo_notebooks.exercises` for how an exercise works. The canonical-forms notebook has two
+builds: classical MDS of an n x n distance matrix (section 2), and the small step of spectral MDS:
+from the eigenbasis ``Phi`` and the k x k coefficients ``alpha`` of ``D2 ~ Phi alpha Phi.T`` to the
+embedding, through a k x k eigenproblem (section 2, later).
 """
 
 from __future__ import annotations
@@ -15,11 +15,11 @@ from typing import Any
 
 import numpy as np
 
-from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose, pick,
-                       number_judge, recap)
+from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_number, as_array, call_attempt, close_to,
+                       choose, pick, number_judge, recap, right)
 
 __all__ = [
-    "check_classical_memory", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
+    "check_classical_memory", "check_classical_mds", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
     "check_landmark_samples", "check_recap_canonical_forms", "check_mu_range", "check_equal_size", "check_recap_mds_at_scale",
 ]
 
@@ -84,6 +84,147 @@ def check_classical_memory(gigabytes: Any, n: int, *, show: bool = True) -> Feed
             raise Stop(WRONG, _MORE_DIGITS)
         raise Stop(WRONG, "Count the entries of two n × n matrices, times 8 bytes, and divide by 10⁹.")
     return run_check("09-memory", show, body)
+
+
+# --- 09-classical-mds: build it yourself ----------------------------------------------------------
+
+MDS_GRAM_TOL = 1e-7
+"""How closely a built classical MDS must agree: the Gram error (``gram_error``: relative Frobenius
+error of the centred Gram matrices, blind to rotations, reflections and translations) at most this.
+Dense ``eigh`` and Lanczos at its default tolerance come within about 1e-12."""
+
+
+def _double_centred(D2: np.ndarray) -> np.ndarray:
+    row = D2.mean(axis=1)
+    return -0.5 * (D2 - row[:, None] - row[None, :] + row.mean())
+
+
+def mds_slips(D: np.ndarray, dim: int) -> tuple[np.ndarray, list[tuple[np.ndarray, str]]]:
+    """Classical MDS of the distances ``D`` (computed here with dense ``eigh``), and the typical
+    slips as (embedding, hint); a slip with the same Gram matrix as the answer on ``D`` is left out."""
+    from ..embedding_error import gram_error
+
+    D = 0.5 * (D + D.T)
+    B = _double_centred(D**2)
+    G, U = _top(B, dim)
+    ref = U * np.sqrt(np.maximum(G, 0.0))
+
+    def embed(matrix: np.ndarray, power: Callable[[np.ndarray], np.ndarray] = lambda g: np.sqrt(np.maximum(g, 0.0))) -> np.ndarray:
+        g, u = _top(matrix, dim)
+        return u * power(g)
+
+    w, V = np.linalg.eigh(B)
+    by_size = np.argsort(-np.abs(w))[:dim]
+    n = len(D)
+    slips = [
+        (embed(_double_centred(D)), "The distances are not squared: B = −½ J D² J double-centres the *squared* distances "
+                                    "(`D**2`, entry by entry)."),
+        (U * np.sqrt(np.maximum(2 * G, 0.0)), "Off by a factor √2 (your Gram matrix is twice the right one): "
+                                              "B = −½ J D² J, mind the ½."),
+        (embed(-B), "Those are the directions of B's most negative eigenvalues: a wrong sign (B = −½ J D² J), or "
+                    "the smallest eigenpairs (`np.linalg.eigh` sorts ascending); keep the largest."),
+        (embed(-0.5 * D**2), "Not double-centred: B = −½ J D² J with J = I − 𝟏𝟏ᵀ/n centres the rows *and* the columns."),
+        (embed(B, lambda g: np.maximum(g, 0.0)), "The eigenvalues are not square-rooted: X = U Γ^½ (so that X Xᵀ = U Γ Uᵀ)."),
+        (embed(B, lambda g: np.ones_like(g)), "Each eigenvector must be scaled by the square root of its eigenvalue: "
+                                              "X = U Γ^½, not U."),
+        (embed(B, lambda g: 1 / np.sqrt(np.maximum(g, 1e-12 * g.max()))), "Γ^(−½) where Γ^½ belongs: X = U Γ^½."),
+        (embed(B, lambda g: np.sqrt(np.abs(g))), "A negative eigenvalue is clipped to zero (its direction contributes "
+                                                 "nothing), not replaced by its absolute value."),
+        (V[:, by_size] * np.sqrt(np.maximum(w[by_size], 0.0)),
+         "Those are the eigenvalues largest in *magnitude* (`eigsh`'s default `which=\"LM\"`); keep the largest "
+         "(`which=\"LA\"`): a negative eigenvalue can be large."),
+        (embed(-0.5 * (np.eye(n) - 1 / n) @ D**2), "Centred on one side only: B = −½ J D² J, with J on both sides."),
+    ]
+    kept = []
+    with np.errstate(all="ignore"):
+        for X, hint in slips:
+            if np.all(np.isfinite(X)) and np.any(X) and gram_error(X, ref) > 1e3 * MDS_GRAM_TOL:
+                kept.append((X, hint))
+    return ref, kept
+
+
+def _mds_embedding(value: Any, n: int, dim: int) -> np.ndarray:
+    """The returned embedding as an (n, dim) float array, or Stop with what is wrong with its form."""
+    X = as_array(value, "a NumPy array of shape (n, dim), one row per point", finite=False)
+    if dim == 1 and X.shape == (n,):
+        X = X[:, None]
+    if X.shape == (dim, n) and dim != n:
+        raise Stop(WRONG, f"Transposed: return one row per point, shape ({n}, {dim}), not ({dim}, {n}).")
+    if X.ndim == 2 and X.shape[0] == n and X.shape[1] != dim:
+        raise Stop(WRONG, f"Asked for dim = {dim}, you returned {X.shape[1]} columns: use the `dim` argument.")
+    if X.shape != (n, dim):
+        raise Stop(WRONG, f"Return one row per point and one column per dimension, shape ({n}, {dim}); got {X.shape}.")
+    if not np.all(np.isfinite(X)):
+        raise Stop(WRONG, "NaN or infinity in your embedding: the square root of a negative eigenvalue? B has negative "
+                          "eigenvalues when the distances are not Euclidean (and round-off ones when they are): clip "
+                          "them to zero first, `np.sqrt(np.maximum(values, 0))`.")
+    if not np.any(X):
+        raise Stop(WRONG, "Your embedding is all zeros: keep B's *largest* eigenvalues (`np.linalg.eigh` sorts ascending).")
+    return X
+
+
+def judge_classical_mds(function: Any, cases: Any, call: Any = call_attempt) -> str:
+    """The message of a correct ``function(D, dim)`` on every ``(D, dims, where)`` of ``cases``
+    (``call(function, D, dim)`` runs it on a copy), else Stop with the hint of the first miss."""
+    from ..embedding_error import gram_error
+
+    for D, dims, where in cases:
+        n = len(D)
+        for dim in dims:
+            X = _mds_embedding(call(function, D.copy(), dim), n, dim)
+            ref, slips = mds_slips(D, dim)
+            with np.errstate(all="ignore"):
+                if gram_error(X, ref) <= MDS_GRAM_TOL:
+                    continue
+                seen = f" (seen on {where}, dim = {dim}.)"
+                for slip, hint in slips:
+                    if gram_error(X, slip) <= 1e-6:
+                        raise Stop(WRONG, hint + seen)
+                if np.linalg.norm(X - X.mean(axis=0)) <= 1e-6 * np.linalg.norm(ref):
+                    raise Stop(WRONG, "Your embedding is (nearly) a single point: those are B's *smallest* eigenvalues, "
+                                      "about 0 for Euclidean distances (`np.linalg.eigh` sorts ascending); keep the "
+                                      "dim largest." + seen)
+            raise Stop(WRONG, "Not classical MDS (Gram error above 1e-7). The steps: B = −½ J D² J with D² the squared "
+                              "distances, the dim largest eigenpairs B = U Γ Uᵀ, negative eigenvalues clipped to 0, "
+                              "then X = U Γ^½." + seen)
+    return ("Right: classical MDS, up to a rotation or reflection (judged by the Gram matrix X Xᵀ), with the negative "
+            "eigenvalues of non-Euclidean distances clipped.")
+
+
+def _visible_mds_cases() -> list[tuple[np.ndarray, tuple[int, ...], str]]:
+    """What the visible check of 09-classical-mds runs on: 25 points in ℝ³ (dim 3 and 2) and the
+    graph distances of a 7-cycle (not Euclidean: B has negative eigenvalues; dim 2)."""
+    from scipy.spatial.distance import cdist
+
+    P = np.random.default_rng(909).normal(size=(25, 3)) * [2.0, 1.0, 0.5]
+    k = np.arange(7)
+    ring = np.minimum(np.abs(k[:, None] - k[None, :]), 7 - np.abs(k[:, None] - k[None, :])).astype(float)
+    return [(cdist(P, P), (3, 2), "25 points in ℝ³"), (ring, (2,), "the graph distances of a 7-cycle")]
+
+
+def check_classical_mds(classical_mds: Any, *, show: bool = True) -> Feedback:
+    """Exercise 09-classical-mds: the student's ``classical_mds(D, dim)`` against classical MDS.
+
+    Judged by the Gram error (any rotation, reflection or translation is right) on 25 points in ℝ³
+    and on the graph distances of a 7-cycle (negative eigenvalues); a wrong one is matched against
+    the typical slips (distances not squared, the ½, the order of the eigenpairs, the square roots,
+    the centring, negative eigenvalues not clipped).
+
+    Examples
+    --------
+    >>> def mine(D, dim):
+    ...     n = len(D)
+    ...     J = np.eye(n) - 1 / n
+    ...     w, U = np.linalg.eigh(-0.5 * J @ (D * D) @ J)
+    ...     return U[:, ::-1][:, :dim] * np.sqrt(np.maximum(w[::-1][:dim], 0))
+    >>> check_classical_mds(mine, show=False).correct
+    True
+    >>> "squared" in check_classical_mds(lambda D, dim: mine(np.sqrt(D), dim), show=False).message
+    True
+    """
+    def body() -> str:
+        return judge_classical_mds(classical_mds, _visible_mds_cases())
+    return run_check("09-classical-mds", show, body)
 
 
 # --- 09-scaling: build it yourself ------------------------------------------------------------------
@@ -187,9 +328,9 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
                     raise Stop(WRONG, hint + ("" if dim != 2 else " (seen with dim = 2)"))
             if dim == 2:
                 raise Stop(WRONG, "Right for dim = 3 but not for dim = 2: use the `dim` argument, not a fixed 3.")
-            raise Stop(WRONG, "Not the library's embedding (Gram error above 1e-6). The steps: J Φ = Q R, S = −½ R α Rᵀ, "
-                              "the top eigenpairs S = U G Uᵀ, then X = Q U_m G_m^½.")
-        return ("Right: the library's embedding, from a k × k eigenproblem. B = −½ J Φ α Φᵀ J = Q S Qᵀ with S = −½ R α Rᵀ, "
+            raise Stop(WRONG, "Not the library's embedding (Gram error above 1e-6). The steps: J Φ = Q R, B̃ = −½ R α Rᵀ, "
+                              "the top eigenpairs B̃ = U G Uᵀ, then X = Q U_m G_m^½.")
+        return ("Right: the library's embedding, from a k × k eigenproblem. B = −½ J Φ α Φᵀ J = Q B̃ Qᵀ with B̃ = −½ R α Rᵀ, "
                 "and nothing n × n was formed.")
     return run_check("09-scaling", show, body)
 
@@ -202,7 +343,8 @@ def check_fmm_gap(answer: Any, *, show: bool = True) -> Feedback:
         "closer": "What is the reference computed from? Changing the sampled distances to another method changes "
                   "what is being approximated, not only how well.",
         "same": "The sampled distances enter D² directly: another geodesic method gives other numbers.",
-        "farther": None,
+        "farther": right("The reference is built from heat-method distances; fast marching has its own errors, so the "
+                         "Gram error also measures the two methods' disagreement."),
     }, show)
 
 
@@ -244,7 +386,8 @@ def check_landmark_samples(answer: Any, *, show: bool = True) -> Feedback:
         "more": "Landmark MDS uses only the samples' distances to place each vertex, by triangulation; it interpolates "
                 "nothing. Does doubling the samples make up for that?",
         "as": "Twice as many samples is a lot, but landmark MDS uses them differently: it interpolates nothing.",
-        "less": None,
+        "less": right("Landmark MDS places each vertex from its distances to the samples alone, while SMDS "
+                      "interpolates the whole squared-distance matrix: twice the samples do not make up for that."),
     }, show)
 
 
@@ -273,12 +416,14 @@ def recap_canonical_forms_judges(k: int = 200, q: int = 300) -> list[Callable[[A
     the visible check and the graded test (which gives a point per question)."""
     return [
         _size(int(k), int(q)),
-        pick({"orthogonal map": None,
+        pick({"orthogonal map": right("equal geodesic distances give equal double-centred Gram matrices, so the "
+                                      "embeddings agree up to an orthogonal map, reflections included."),
                "rigid motion": "almost: classical MDS cannot tell a shape from its mirror image, so reflections "
                                "are allowed too.",
                "scaling": "geodesic distances do not change when a pose bends, so neither does their scale.",
                "nothing": "classical MDS of equal distances gives equal Gram matrices."}),
-        pick({"canonical forms": None,
+        pick({"canonical forms": right("in section 3's control the farthest same-species pair of canonical forms is "
+                                       "closer than the nearest pair across species; for raw poses it is not."),
                "raw poses": "a raw pose mixes the pose into the shape: section 3's control shows a pose farther from "
                             "its own species than the two species are apart.",
                "both": "look at section 3's control: one of the two fails."}),
@@ -298,7 +443,8 @@ def check_mu_range(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 10-mu: how much the Gram error of the paper's form (biharmonic energy) changes when
     the smoothness weight grows 500-fold: "less than half", "about double" or "more than tenfold"."""
     return choose("10-mu", answer, {
-        "less than half": None,
+        "less than half": right("The biharmonic penalty on coefficient i grows like λᵢ²: it falls on the rough "
+                                "eigenfunctions, hardly on the smooth ones that carry a distance field."),
         "about double": "The biharmonic penalty on coefficient i grows like λᵢ²: it weighs the rough eigenfunctions far "
                         "more than the smooth ones that carry most of a distance field.",
         "more than tenfold": "μ trades fitting the samples against smoothness, but the distance fields are smooth "
@@ -346,12 +492,14 @@ def recap_mds_at_scale_judges() -> list[Callable[[Any], str | None]]:
     return [
         pick({"yes": "with rows the embedding lives in the span of the eigenfunctions; see the dashed floor in the plot of "
                        "eigenfunctions and samples.",
-               "no": None}),
+               "no": right("with rows the embedding lies in the span of the 25 eigenfunctions: no number of samples "
+                           "takes it below that span's floor, the dashed line.")}),
         number_judge(2.0, [(1.0, "that is how spectral MDS's memory grows (n × (k + q) arrays); classical MDS keeps "
                                  "n × n matrices."),
                            (3.0, "count the entries of an n × n matrix.")],
                      "count the entries of an n × n matrix."),
-        pick({"spectral": None,
+        pick({"spectral": right("at equal array size classical MDS must run on a much coarser mesh, whose errors its "
+                                "canonical form carries, while spectral MDS keeps the full mesh."),
                "classical": "at equal array size classical MDS must run on a much coarser mesh, and a canonical form "
                             "carries the errors of the mesh it was computed on."}),
     ]

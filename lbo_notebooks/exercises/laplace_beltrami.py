@@ -15,7 +15,7 @@ import numpy as np
 from .basics import loose, more_digits, rounding_of
 from .feedback import (
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, as_array, call_attempt, close_to,
-    same_values, choose, pick, number_judge, recap, plain,
+    same_values, choose, pick, number_judge, recap, plain, right,
 )
 
 __all__ = [
@@ -499,7 +499,8 @@ def check_coefficients(coefficients: Any, spectrum: Any, f: Any, *, show: bool =
 def check_consistent_mass(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 03-consistent: do the consistent-mass eigenvalues of the sphere lie above or below ℓ(ℓ+1)?"""
     return choose("03-consistent", answer, {
-        "above": None,
+        "above": right("The consistent-mass eigenvalues for ℓ = 2 … 5 all lie above ℓ(ℓ+1), the lumped ones below; "
+                       "now explain why, below the check."),
         "below": "Look at the computed values again: the lumped ones are below, the consistent ones are not.",
         "equal": "Neither discretisation is exact on a sphere made of flat triangles.",
     }, show)
@@ -563,7 +564,8 @@ RECAP_LBO = [
                  "W_ij = −½ (cot a + cot b) depends on the angles only: what does scaling do to an angle?"),
     loose(pick({"a": "`Phi.T @ f` is the Euclidean inner product, the classic bug: the eigenvectors are "
                       "A-orthonormal.",
-                 "b": None,
+                 "b": right("the eigenvectors are A-orthonormal, so the coefficient of f on φ_k is the A inner "
+                            "product φ_kᵀ A f."),
                  "c": "the A inner product multiplies by A, it does not divide by it."})),
 ]
 """The judges of the recap's three questions; the graded test reuses them."""

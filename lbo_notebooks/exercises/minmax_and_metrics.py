@@ -16,8 +16,9 @@ from .feedback import (
     ratio_one,
     pick, recap,
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, choose,
-    unanswered,
+    unanswered, as_array, call_attempt, right,
 )
+from .basics import WrappedReasons
 
 __all__ = [
     "check_plane_minimum",
@@ -27,6 +28,7 @@ __all__ = [
     "check_interlacing",
     "check_consistent_minmax",
     "check_recap_min_max",
+    "check_angle_defects",
     "check_gauss_bonnet",
     "check_curvature_scaling",
     "check_metric_scaling",
@@ -132,7 +134,11 @@ def _number_question(target: float, near: list[tuple[float, str]], otherwise: st
 def _choice_question(options: Mapping[str, str | None]) -> Any:
     """A recap's choice question, the choice written any way (see :func:`_canonical`)."""
     judge = pick(options)
-    return lambda answer: judge(_canonical(answer, options))
+
+    def choice_judge(answer: Any) -> str | None:
+        return judge(_canonical(answer, options))
+    choice_judge.reasons = WrappedReasons(judge, lambda key: _canonical(key, options))  # type: ignore[attr-defined]
+    return choice_judge
 
 
 def check_plane_minimum(value: Any, M: Any, normal: Any, *, show: bool = True) -> Feedback:
@@ -194,7 +200,8 @@ def check_plane_range(answer: Any, M: Any, *, show: bool = True) -> Feedback:
 def check_lowest_family(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 07-family: which family of random constraints leaves the lowest minima."""
     options = {
-        "white": None,
+        "white": right("Noise is nearly A-orthogonal to every smooth function, so white-noise constraints remove "
+                       "almost none of the low-energy functions: the minimum stays low."),
         "smooth": "Smooth constraints remove smooth, low-energy functions. What do rough constraints remove?",
         "near-optimal": "Constraints near φ_0 .. φ_(n-1) are nearly the optimal ones of Courant–Fischer: they come closest to λ_n.",
     }
@@ -222,7 +229,8 @@ def check_dual_value(value: Any, M: Any, *, show: bool = True) -> Feedback:
 def check_interlacing(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 07-interlacing: the lower bound of the minimum over a codimension-2 subspace."""
     options = {
-        "lam_0": None,
+        "lam_0": right("R ≥ λ_0 holds for every f, but nothing forces more: some codimension-2 subspaces reach λ_0 "
+                       "(explain which, below the check)."),
         "lam_1": "Find a codimension-2 subspace that contains the constant function: what is its minimum?",
     }
     return choose("07-interlacing", _canonical(answer, options), options, show)
@@ -257,9 +265,12 @@ def recap_min_max_judges() -> list[Any]:
     t_star = float(np.degrees(np.arctan(np.sqrt(2.0))))
     return [
         _choice_question({"lam_n-1": "the bound is the eigenvalue whose index is the codimension.",
-                          "lam_n": None,
+                          "lam_n": right("Courant–Fischer: n constraints cannot exclude every function of "
+                                         "span(φ_0 … φ_n), and there R(f) ≤ λ_n."),
                           "lam_n+1": "the bound is the eigenvalue whose index is the codimension."}),
-        _choice_question({"yes": "section 2 tilted an optimal plane and found a whole arc of maximisers.", "no": None}),
+        _choice_question({"yes": "section 2 tilted an optimal plane and found a whole arc of maximisers.",
+                          "no": right("an optimal plane tilted up to the critical angle t* keeps the optimal minimum: "
+                                      "section 2 found a whole arc of maximisers.")}),
         _number_question(t_star, [(np.degrees(np.arctan(2.0)), "tan² t* is the ratio, not tan t*."),
                                   (np.degrees(np.arctan(np.sqrt(0.5))), "the ratio is (λ_2 − λ_1)/(λ_1 − λ_0), upside down?"),
                                   (np.arctan(np.sqrt(2.0)), "give degrees, not radians.")],
@@ -273,6 +284,140 @@ def check_recap_min_max(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feed
 
 
 # --- 08 · scale-invariant metrics -----------------------------------------------------------------
+
+# --- 08-angle-defects: build it yourself ------------------------------------------------------------
+
+DEFECT_TOL = 1e-8
+"""How closely a built angle defect must agree, as a fraction of the full angle 2π at every vertex
+(the defects' own scale: they are angles, and near zero on flat parts). ``atan2`` and ``arccos``
+of well-shaped triangles agree with the library to about 1e-15."""
+
+
+def _angles_by_hand(mesh: Any) -> np.ndarray:
+    """The corner angles (m, 3), column k at ``faces[:, k]``, computed here (not the library's)."""
+    p = mesh.vertices[mesh.faces]
+    angles = np.empty(mesh.faces.shape)
+    for k in range(3):
+        a, b = p[:, (k + 1) % 3] - p[:, k], p[:, (k + 2) % 3] - p[:, k]
+        angles[:, k] = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), np.einsum("ij,ij->i", a, b))
+    return angles
+
+
+def defect_slips(mesh: Any) -> tuple[np.ndarray, list[tuple[np.ndarray, str]]]:
+    """The angle defects of ``mesh`` (2π − Σθ inside, π − Σθ on the boundary) and the typical
+    slips, as (values, hint); a slip equal to the defects on ``mesh`` (no boundary, say) is left out."""
+    from ..operators import mass_matrix
+
+    n, f = mesh.n_vertices, mesh.faces
+    angles = _angles_by_hand(mesh)
+    total = np.bincount(f.ravel(), weights=angles.ravel(), minlength=n)
+    on_boundary = np.zeros(n, dtype=bool)
+    on_boundary[mesh.boundary_vertices] = True
+    full = np.where(on_boundary, np.pi, 2 * np.pi)
+    ref = full - total
+    # the angle at corner k given to the next corner's vertex instead of its own
+    shifted = np.bincount(f[:, [1, 2, 0]].ravel(), weights=angles.ravel(), minlength=n)
+    slips = [
+        (-ref, "Wrong sign: the defect is what is *missing* from the full angle, 2π − Σθ (π − Σθ on the boundary); "
+               "positive on a convex vertex."),
+        (total, "Those are the angle sums Σθ: the defect is the full angle minus them, 2π − Σθ (π − Σθ on the boundary)."),
+        (2 * np.pi - total, "Right inside, wrong on the boundary: a boundary vertex's full angle is π, not 2π, so its "
+                            "defect is π − Σθ (a flat sheet then has defects only along its edge)."),
+        (np.pi - total, "Right on the boundary, wrong inside: an interior vertex's full angle is 2π, so its defect is "
+                        "2π − Σθ."),
+        (np.degrees(ref), "Those are degrees: give the angles in radians (360° is 2π)."),
+        (full - shifted, "Each angle belongs to the vertex at its corner: the angle at corner k of a face is the one "
+                         "between the two edges leaving `faces[:, k]`."),
+        (full - total / 2, "Half the angle sums: add every angle once, the whole angle at its corner."),
+    ]
+    for kind in ("voronoi", "barycentric"):
+        slips.append((ref / mass_matrix(mesh, kind).diagonal(),
+                      "That is the curvature δ_i / a_i: the exercise asks for the defect itself, not divided by any area."))
+    scale = 2 * np.pi * DEFECT_TOL
+    return ref, [(v, hint) for v, hint in slips if np.abs(v - ref).max() > scale]
+
+
+def _defect_values(value: Any, n: int, n_faces: int) -> np.ndarray:
+    """The returned defects as a float array of shape (n,), or Stop with what is wrong with its form."""
+    values = as_array(value, "a NumPy array of n angle defects, one per vertex", finite=False)
+    if values.shape in ((n, 1), (1, n)):
+        values = values.ravel()
+    if values.shape == (n_faces, 3) and n_faces != n:
+        raise Stop(WRONG, "One value per corner of each face (m × 3): sum each vertex's corner angles into one "
+                          "value per vertex (`np.bincount` or `np.add.at` with `mesh.faces.ravel()`).")
+    if values.shape == (n, n):
+        raise Stop(WRONG, f"Return a 1-D array of n = {n} values, not an n × n matrix.")
+    if values.shape != (n,):
+        raise Stop(WRONG, f"Return one value per vertex, a NumPy array of shape ({n},); got shape {values.shape}.")
+    if not np.all(np.isfinite(values)):
+        raise Stop(WRONG, "NaN or infinity in your defects: `np.arccos` of a cosine a hair above 1? Clip it to [−1, 1], "
+                          "or take θ = atan2(‖a × b‖, a · b).")
+    return values
+
+
+def judge_angle_defects(function: Any, meshes: Any, call: Any = call_attempt) -> str:
+    """The message of a correct ``function(mesh)`` on every ``(mesh, where)`` of ``meshes``
+    (``call(function, mesh)`` runs it), else Stop with the hint of the first mesh where it is wrong."""
+    for mesh, where in meshes:
+        got = _defect_values(call(function, mesh), mesh.n_vertices, mesh.n_faces)
+        ref, slips = defect_slips(mesh)
+        scale = 2 * np.pi * DEFECT_TOL
+        error = np.abs(got - ref)
+        if error.max() <= scale:
+            continue
+        for slip, hint in slips:
+            if np.abs(got - slip).max() <= scale:
+                raise Stop(WRONG, f"{hint} (seen on {where}.)")
+        total = 2 * np.pi * mesh.euler_characteristic
+        if abs(got.sum() - total) <= scale * mesh.n_vertices:
+            raise Stop(WRONG, f"The total is right (Gauss–Bonnet: 2πχ) but not every vertex is (seen on {where}): take "
+                              "θ = atan2(‖a × b‖, a · b) with a, b the two edges leaving the corner.")
+        on_boundary = np.zeros(mesh.n_vertices, dtype=bool)
+        on_boundary[mesh.boundary_vertices] = True
+        if on_boundary.any() and error[~on_boundary].max() <= scale:
+            raise Stop(WRONG, f"Right inside, wrong on the boundary (seen on {where}): there the defect is π − Σθ.")
+        raise Stop(WRONG, f"Not the angle defects (seen on {where}): at each corner θ = atan2(‖a × b‖, a · b), a and b "
+                          "the two edges leaving it; sum each vertex's angles, and subtract the sum from 2π (π on the "
+                          "boundary).")
+    return ("Right: the angle defects, 2π − Σθ inside and π − Σθ on the boundary, on closed and open meshes alike.")
+
+
+def _visible_defect_meshes() -> list[tuple[Any, str]]:
+    """What the visible check of 08-angle-defects runs on: a right triangle, an irregular closed
+    surface and a curved open sheet."""
+    from .. import shapes
+    from ..mesh import Mesh
+
+    rng = np.random.default_rng(808)
+    triangle = Mesh([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [[0, 1, 2]])
+    ball = shapes.icosphere(1)
+    blob = ball.with_vertices(ball.vertices * rng.uniform(0.85, 1.2, size=(ball.n_vertices, 1)))
+    sheet = shapes.rectangle(2.0, 1.0, 5, 3)
+    v = sheet.vertices.copy()
+    v[:, :2] += rng.uniform(-0.1, 0.1, size=(len(v), 2))
+    v[:, 2] = 0.3 * np.sin(2 * v[:, 0]) * v[:, 1]
+    return [(triangle, "a right triangle"), (blob, f"an irregular closed surface of {blob.n_vertices} vertices"),
+            (sheet.with_vertices(v), f"a curved open sheet of {sheet.n_vertices} vertices")]
+
+
+def check_angle_defects(angle_defects: Any, *, show: bool = True) -> Feedback:
+    """Exercise 08-angle-defects: the student's ``angle_defects(mesh)``, one angle defect per vertex.
+
+    Run on a right triangle, an irregular closed surface and a curved open sheet; the hint names the
+    first thing that differs (a sign, the boundary rule, degrees, a division by the vertex area, ...).
+
+    Examples
+    --------
+    >>> from lbo_notebooks import curvature
+    >>> check_angle_defects(curvature.angle_defects, show=False).correct
+    True
+    >>> print(check_angle_defects(lambda mesh: -curvature.angle_defects(mesh), show=False).message.split(":")[0])
+    Wrong sign
+    """
+    def body() -> str:
+        return judge_angle_defects(angle_defects, _visible_defect_meshes())
+    return run_check("08-angle-defects", show, body)
+
 
 def check_gauss_bonnet(torus: Any, disk: Any, *, show: bool = True) -> Feedback:
     """Exercise 08-gauss-bonnet: Σ K_i a_i for a torus and a disk (2πχ)."""
@@ -362,7 +507,7 @@ def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 08-best: which α rebuilds the most curved 10% of the horse best (0, 0.4 or 1)."""
     options = {"0": "The regular basis spreads its functions evenly by area; the curved 10% has little area.",
                "0.4": "A compromise is rarely the best at one extreme: which metric gives the curved tips the most area?",
-               "1": None}
+               "1": right("|K| g gives the curved tips most of its area, so its eigenbasis spends its functions there.")}
 
     def body() -> str:
         require_attempt(answer)
@@ -372,9 +517,9 @@ def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
             key = str(answer).strip()
         if key not in options:
             raise Stop(WRONG, "Answer with one of: 0, 0.4, 1.")
-        if options[key] is not None:
+        if not isinstance(options[key], right):
             raise Stop(WRONG, options[key])
-        return "Right: |K| g gives the curved tips most of its area, so its eigenbasis spends its functions there."
+        return f"Right: {options[key]}"
     return run_check("08-best", show, body)
 
 
@@ -412,7 +557,8 @@ def check_floor_fraction(fraction: Any, mesh: Any, floor: float = 1.0, *, show: 
 def check_sphere_alpha(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 08-sphere: how the α = 1 eigenvalues of the unit sphere compare with the regular ones."""
     options = {
-        "equal": None,
+        "equal": right("On the unit sphere |K|^α = 1, so g_α = |K|^α g is the regular metric itself, up to the mesh's "
+                       "estimate of K."),
         "scaled": "What is |K|^α on the unit sphere, and so what does g_α = |K|^α g become?",
         "unrelated": "What is |K|^α on the unit sphere, and so what does g_α = |K|^α g become?",
     }
@@ -422,7 +568,8 @@ def check_sphere_alpha(answer: Any, *, show: bool = True) -> Feedback:
 def check_consistent_invariance(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 08-consistent: is the consistent (per-triangle) α = 1 metric scale-invariant too?"""
     options = {
-        "yes": None,
+        "yes": right("Scaling by s multiplies a triangle's area by s² and its ρ_t by s^(−2), so ρ_t × area is "
+                     "unchanged, and W is unchanged too."),
         "no": "Scaling by s: what happens to a triangle's area, to its ρ_t, and so to ρ_t × area?",
     }
     return choose("08-consistent", _canonical(answer, options), options, show)
@@ -439,8 +586,10 @@ def recap_scale_invariant_judges() -> list[Any]:
         _number_question(0.25, [(0.5, "K is 1/R², not 1/R."), (4.0, "upside down: a bigger sphere is flatter.")],
                          "K = 1/R² on a sphere of radius R.", digits=2),
         _choice_question({"w": "the Dirichlet energy is conformally invariant in 2-D: the cotangent weights do not change.",
-                          "a": None,
+                          "a": right("the Dirichlet energy is conformally invariant in 2-D, so W_α = W and only the "
+                                     "mass A_α changes."),
                           "both": "the Dirichlet energy is conformally invariant in 2-D: one of the two does not change."}),
-        _choice_question({"regular": None,
+        _choice_question({"regular": right("the poses stretch the joints a little and |K|, a second derivative, "
+                                           "amplifies it: the scale-invariant spectrum moved about three to thirty times more."),
                           "scale-invariant": "section 6 measured it: the poses stretch the joints a little and |K| amplifies it."}),
     ]

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from .feedback import (
-    pick, recap, as_array, named_option,
+    pick, recap, as_array, named_option, right,
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
 )
 
@@ -22,6 +22,7 @@ __all__ = [
     "check_validation_choice",
     "check_mu_scaling",
     "check_rpca_objective",
+    "check_rpca_basis",
     "check_recap_rpca",
 ]
 
@@ -219,19 +220,197 @@ def check_rpca_objective(objective: Any, X: Any, W: Any, A: Any, P: Any, mu: flo
     return run_check("11-objective", show, body)
 
 
+# --- 11-rpca-basis: the regularized PCA basis as a generalized symmetric eigenproblem ----------------
+
+BASIS_TOL = 1e-6
+"""How far (A-norm, per A-unit column) a column of 11-rpca-basis may lie outside the eigenspace it
+belongs to, and how far ``Pᵀ A P`` may be from ``I``: far above a dense or Lanczos solver's
+round-off on the small meshes used, far below any slip."""
+
+
+def _dense(M: Any) -> np.ndarray:
+    import scipy.sparse as sp
+
+    M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=np.float64)
+    return (M + M.T) / 2
+
+
+def _pencil_eigenpairs(X: Any, W: Any, A: Any, mu: float, *, data: str = "AXXA", sign: float = -1.0,
+                       generalized: bool = True, center: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Every eigenpair of ``(A X Xᵀ A − μ W) p = σ A p``, σ descending, ``Pᵀ A P = I`` (dense; small
+    meshes). The keywords build the usual slips instead: ``data="XX"`` (no A in the data term),
+    ``sign=+1`` (``+ μ W``), ``generalized=False`` (the standard problem ``L p = σ p``),
+    ``center=True`` (the data centred first)."""
+    import scipy.linalg
+
+    Xd = np.asarray(X, dtype=np.float64)
+    Xd = Xd[:, None] if Xd.ndim == 1 else Xd
+    Ad = _dense(A)
+    if center:
+        a = Ad.sum(axis=1)
+        Xd = Xd - (a @ Xd) / a.sum()
+    U = Ad @ Xd if data == "AXXA" else Xd
+    L = _dense(U @ U.T + sign * float(mu) * _dense(W))
+    values, vectors = scipy.linalg.eigh(L, Ad) if generalized else np.linalg.eigh(L)
+    return values[::-1], vectors[:, ::-1]
+
+
+def _pencil_matrix(X: Any, W: Any, A: Any, mu: float) -> np.ndarray:
+    Xd = np.asarray(X, dtype=np.float64)
+    U = _dense(A) @ (Xd[:, None] if Xd.ndim == 1 else Xd)
+    return _dense(U @ U.T - float(mu) * _dense(W))
+
+
+def _cluster_end(values: np.ndarray, j: int) -> tuple[int, int]:
+    """Indices ``[start, stop)`` of the eigenvalues equal to ``values[j]`` (to round-off): one
+    eigenspace, in which any A-orthonormal basis is as good as any other."""
+    tol = 1e-8 * abs(values[j]) + 1e-11 * np.abs(values).max()
+    same = np.flatnonzero(np.abs(values - values[j]) <= tol)
+    return int(same.min()), int(same.max()) + 1
+
+
+def _outside(P: np.ndarray, V: np.ndarray, Ad: np.ndarray) -> np.ndarray:
+    """A-norm of the part of each column of ``P`` outside span ``V`` (``V`` any full-rank basis)."""
+    G = V.T @ Ad @ V
+    try:
+        R = np.linalg.cholesky((G + G.T) / 2)
+    except np.linalg.LinAlgError:
+        return np.full(P.shape[1], np.inf)
+    Q = np.linalg.solve(R, V.T).T  # A-orthonormal basis of span V
+    residual = P - Q @ (Q.T @ (Ad @ P))
+    return np.sqrt(np.maximum(np.einsum("ij,ij->j", residual, Ad @ residual), 0.0))
+
+
+def _columns_in_place(P: np.ndarray, values: np.ndarray, vectors: np.ndarray, Ad: np.ndarray) -> bool:
+    """Column j of ``P`` lies in the eigenspace of the j-th largest σ, for every j: the right basis
+    up to the sign of each column and the choice of basis inside repeated eigenvalues."""
+    for j in range(P.shape[1]):
+        start, stop = _cluster_end(values, j)
+        if _outside(P[:, [j]], vectors[:, start:stop], Ad)[0] > BASIS_TOL:
+            return False
+    return True
+
+
+def _spans_top(P: np.ndarray, values: np.ndarray, vectors: np.ndarray, Ad: np.ndarray) -> bool:
+    """The columns of ``P`` lie in the span of the top ``m`` eigenvectors (with the whole eigenspace
+    the m-th belongs to), in any order."""
+    m = P.shape[1]
+    stop = _cluster_end(values, m - 1)[1]
+    return bool(np.all(_outside(P, vectors[:, :stop], Ad) <= BASIS_TOL))
+
+
+def rpca_basis_hint(value: Any, X: Any, W: Any, A: Any, mu: float, m: int) -> str | None:
+    """None when ``value`` is a right answer of 11-rpca-basis for ``(X, W, A, mu, m)``, else the hint.
+
+    Right: an (n, m) array, ``Pᵀ A P = I``, column j an eigenvector of the j-th largest σ of
+    ``(A X Xᵀ A − μ W) p = σ A p``; any sign per column and any A-orthonormal basis of a repeated
+    eigenvalue's eigenspace (also one cut by m) are right.
+    """
+    if isinstance(value, (tuple, list)) and len(value) == 2 and all(np.ndim(v) >= 1 for v in value):
+        return "Return the basis P alone (an (n, m) array), not a pair such as (eigenvalues, basis)."
+    P = as_array(value, "an (n, m) array: one basis function per column")
+    n = np.shape(X)[0]
+    if P.shape == (m, n) and m != n:
+        return f"Transposed: one basis function per *column*, shape ({n}, {m})."
+    if P.shape != (n, m):
+        return f"Expected shape ({n}, {m}) (one row per vertex, m = {m} columns), got {P.shape}."
+    Ad = _dense(A)
+    values, vectors = _pencil_eigenpairs(X, W, A, mu)
+    gram = P.T @ Ad @ P
+    norms = np.sqrt(np.maximum(np.diag(gram), 0.0))
+    if np.any(norms <= 1e-300):
+        return "A column of your basis is zero."
+    if np.abs(gram - np.eye(m)).max() > BASIS_TOL:
+        unit = P / norms
+        if _spans_top(unit, values, vectors, Ad) and _columns_in_place(unit, values, vectors, Ad):
+            euclid = np.abs(P.T @ P - np.eye(m)).max() <= BASIS_TOL
+            return ("The directions are right but not normalised in the A inner product: the basis must satisfy "
+                    "Pᵀ A P = I" + (" (yours has Pᵀ P = I, the Euclidean one)" if euclid else "") +
+                    ". `scipy.linalg.eigh(L, A)` returns vectors normalised that way.")
+        P = unit  # judge the directions, to name the slip
+    elif _columns_in_place(P, values, vectors, Ad):
+        L = _pencil_matrix(X, W, A, mu)
+        got, best = float(np.trace(P.T @ L @ P)), float(values[:m].sum())
+        if abs(got - best) <= 1e-8 * float(np.abs(values[:m]).sum()):
+            return None
+        return "Not optimal: trace(Pᵀ (A X Xᵀ A − μ W) P) is below the sum of the m largest σ."  # pragma: no cover
+    if _spans_top(P, values, vectors, Ad):
+        if _columns_in_place(P[:, ::-1], values, vectors, Ad):
+            return "The right functions in ascending order: order the columns by *decreasing* σ (`eigh` returns them ascending)."
+        return "The right functions in the wrong order: column j must belong to the j-th largest σ (decreasing σ)."
+    bottom = (values[::-1], vectors[:, ::-1])
+    if _spans_top(P, *bottom, Ad):
+        return ("Those are the eigenvectors of the m *smallest* σ; the minimiser takes the m largest of "
+                "(A X Xᵀ A − μ W) p = σ A p (the objective is a constant minus trace(Pᵀ (A X Xᵀ A − μ W) P)).")
+    slips = (
+        (dict(sign=+1.0), "The smoothness term has the wrong sign: the matrix is A X Xᵀ A − μ W (roughness is penalised)."),
+        (dict(data="XX"), "The data term lacks the mass matrix: it is A X Xᵀ A (the A inner products Aᵀx), not X Xᵀ."),
+        (dict(generalized=False), "That solves the standard problem L p = σ p; the constraint Pᵀ A P = I makes it the "
+                                  "*generalized* one, L p = σ A p (`scipy.linalg.eigh(L, A)`)."),
+        (dict(center=True), "Your data were centred first; the exercise takes X as given (the notebook's solver centres only "
+                            "when asked to)."),
+    )
+    for keywords, hint in slips:
+        if _spans_top(P, *_pencil_eigenpairs(X, W, A, mu, **keywords), Ad):
+            return hint
+    if float(mu) != 1.0 and _spans_top(P, *_pencil_eigenpairs(X, W, A, 1.0), Ad):
+        return "μ is missing: the matrix is A X Xᵀ A − μ W."
+    return ("Not the top m generalized eigenvectors of (A X Xᵀ A − μ W) p = σ A p: build the matrix from `A @ X` and "
+            "`W`, solve with A on the right-hand side, keep the m largest σ.")
+
+
+def check_rpca_basis(basis_function: Any, X: Any, W: Any, A: Any, *, show: bool = True) -> Feedback:
+    """Exercise 11-rpca-basis: the student's ``basis_function(X, W, A, mu, m)`` against the dense
+    generalized eigendecomposition of ``(A X Xᵀ A − μ W, A)``.
+
+    Run for two weights and sizes (``μ`` from ``β = 10⁻²`` with m = 12, and ten times that with
+    m = 8); any sign per column and any basis inside a repeated eigenvalue are right.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> mesh = shapes.icosphere(2)
+    >>> W, A = stiffness_matrix(mesh), mass_matrix(mesh)
+    >>> X = np.hstack([mesh.vertices, mesh.vertices ** 2])
+    >>> def solver(X, W, A, mu, m):
+    ...     return _pencil_eigenpairs(X, W, A, mu)[1][:, :m]
+    >>> check_rpca_basis(solver, X, W, A, show=False).correct
+    True
+    >>> ascending = lambda X, W, A, mu, m: solver(X, W, A, mu, m)[:, ::-1]
+    >>> "ascending order" in check_rpca_basis(ascending, X, W, A, show=False).message
+    True
+    """
+    from ..rpca import mu_from_beta
+
+    def body() -> str:
+        Xd = np.asarray(X, dtype=np.float64)
+        for beta_scale, m in ((1.0, 12), (10.0, 8)):
+            mu = beta_scale * mu_from_beta(1e-2, Xd, A, m)
+            value = call_attempt(basis_function, Xd.copy(), W.copy(), A.copy(), float(mu), m)
+            hint = rpca_basis_hint(value, Xd, W, A, mu, m)
+            if hint is not None:
+                raise Stop(WRONG, f"{hint} (m = {m}, μ = {mu:.3g}.)")
+        return ("Right: the top generalized eigenvectors of (A X Xᵀ A − μ W, A), A-orthonormal, by decreasing σ, "
+                "for two weights.")
+    return run_check("11-rpca-basis", show, body)
+
+
 def check_recap_rpca(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Exercise 11-recap: three multiple-choice questions on notebook 11, each answered with a letter."""
     return recap("11-recap", [q1, q2, q3], [pick(q) for q in RECAP_RPCA], show)
 
 
-RECAP_RPCA: list[Mapping[str, str | None]] = [  # 11-recap: {choice: hint, None for the right one}
+RECAP_RPCA: list[Mapping[str, str | None]] = [  # 11-recap: {choice: hint, or the right one's reason}
     {"a": "PCA on the coordinates then smoothed is not optimal for the combined objective; section 1 derives a closed form.",
-     "b": None,
+     "b": right("with PᵀAP = I the objective is trace(XᵀAX) − trace(Pᵀ(A X Xᵀ A − μW)P): Ky Fan keeps the top "
+                "generalized eigenvectors."),
      "c": "Which term is maximised and which penalised? The eigenvalue problem keeps the *top* eigenvectors of a difference."},
-    {"a": None,
+    {"a": right("two poses give six coordinate functions, so A X Xᵀ A has rank at most 6: any basis of its zero "
+                "eigenspace is equally optimal for the data term."),
      "b": "Centring removes only the constant direction; count the independent functions two poses give.",
      "c": "Smoothness plays no part in plain PCA; the trouble is in the data term alone."},
     {"a": "A dimensionless weight is not faster to compute: the solver factorises once either way.",
      "b": "μ is never negative here; what changes about μ when the shape is scaled?",
-     "c": None},
+     "c": right("the raw μ carries units (data² × area / energy), while β names one basis whatever the shape's size "
+                "and units.")},
 ]

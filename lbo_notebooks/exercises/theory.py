@@ -17,8 +17,9 @@ import numpy as np
 from .feedback import (
     ratio_one,
     pick, number_judge, recap,
-    Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose,
+    Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to, choose, right,
 )
+from .basics import WrappedReasons
 
 __all__ = [
     "check_projection",
@@ -197,7 +198,8 @@ def check_shifted_basis(answer: Any, *, show: bool = True) -> Feedback:
         "below": "Nothing is below 1: the theorem holds for every n-dimensional V.",
         "one": "Equality needs the *right* n functions. Which function of zero energy is missing from V, and what is its error?",
         "above": "Think of the worst function: one of zero energy that V cannot represent at all. What is error / energy for it?",
-        "infinite": None,
+        "infinite": right("The constant has zero energy and is A-orthogonal to V, so V misses all of it: a nonzero "
+                          "error over zero energy."),
     }, show)
 
 
@@ -214,7 +216,8 @@ def check_extra_function(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 05-extra: where V = span(Φ_n, g) sits, between Φ_n and Φ_(n+1)."""
     return choose("05-extra", answer, {
         "beats": "V has n + 1 functions: the theorem for n + 1 says no (n + 1)-dimensional space beats Φ_(n+1).",
-        "between": None,
+        "between": right("V contains span Φ_n, so C(V) ≤ 1/λ_n, and no (n + 1)-dimensional space beats Φ_(n+1), so "
+                         "C(V) ≥ 1/λ_(n+1)."),
         "worse": "V contains span Φ_n: projecting onto a larger space never increases the error.",
     }, show)
 
@@ -401,6 +404,9 @@ def _words(answer: Any, synonyms: Mapping[str, Any] | None = None) -> Any:
 def _lenient(judge: Any, synonyms: Mapping[str, Any] | None = None) -> Any:
     def lenient_judge(answer: Any) -> str | None:
         return judge(_words(answer, synonyms))
+    # recap looks a reason up by the answer as text: "true"/"false" are the booleans' yes/no.
+    lenient_judge.reasons = WrappedReasons(  # type: ignore[attr-defined]
+        judge, lambda key: _words({"true": True, "false": False}.get(key, key), synonyms))
     return lenient_judge
 
 
@@ -409,11 +415,13 @@ RECAP_OPTIMALITY = (
                       (11, "indices start at 0: count again which eigenvalue is the first one left out.")],
                  "the first eigenvalue whose eigenfunction is left out, in 0-based indexing."),
     _lenient(pick({"tight": "noise has a huge Dirichlet energy; compare the bound with ‖f‖²_A itself.",
-                   "vacuous": None,
+                   "vacuous": right("white noise has a huge Dirichlet energy: fᵀWf / λ_n exceeds ‖f‖²_A, which bounds "
+                                    "the error anyway."),
                    "violated": "the bound holds for every function, smooth or not."})),
     _lenient(pick({"yes": "the direct argument only counts conditions: n of them cannot kill an (n + 1)-dimensional span, "
                           "orthonormal basis or not (section 7 checks a non-orthonormal one).",
-                   "no": None})),
+                   "no": right("the witness only needs n conditions on an (n + 1)-dimensional span, whatever the n "
+                               "functions; section 7 checks a non-orthonormal expansion.")})),
 )
 """The judges of the three questions of 05-recap (each: None when right, else the hint)."""
 
@@ -429,7 +437,8 @@ def check_stationary_frame(answer: Any, *, show: bool = True) -> Feedback:
     return choose("06-stationary", answer, {
         "same": "The excess is zero without noise and positive with it, so it must grow with ε: how fast, near a minimum?",
         "double": "That would be first order in ε; at a minimum the first-order change of the energy vanishes.",
-        "quadruple": None,
+        "quadruple": right("The eigenframe minimises the total energy, so the first-order change vanishes and the "
+                           "excess grows like ε²: twice the noise, about four times the excess."),
         "eightfold": "Near a minimum the leading change is the second-order term, not a third-order one.",
     }, show)
 
@@ -439,9 +448,11 @@ _POWERS = {"linear": 1, "first": 1, "first order": 1, "linearly": 1, "quadratic"
 
 RECAP_TIES = (
     _lenient(pick({"yes": "section 3 found an interval of tilted eigenbases that tie, none of them an eigenspace.",
-                   "no": None})),
+                   "no": right("the tilted eigenbases of section 3, span(φ_0 … φ_{n−2}, φ_{n−1} + ε φ_m), tie for an "
+                               "interval of ε, and none of them is an eigenspace.")})),
     _lenient(pick({"exactly": "it ignores the part of f inside V, which can cancel energy: exact only in special cases.",
-                   "lower": None,
+                   "lower": right("using W instead of the Schur complement ignores the part of f inside V, which can "
+                                  "cancel energy: the ratio it maximises never exceeds C(V)."),
                    "upper": "ignoring the part of f inside V can only overestimate the energy of the worst function."}),
              {"exact": "exactly"}),
     _lenient(number_judge(2, [(1, "a first-order tilt does not change the error of the worst functions (they are A-orthogonal to V)."),

@@ -12,14 +12,15 @@ from typing import Any
 import numpy as np
 
 from .feedback import (
-    pick, recap, as_array, named_option,
+    pick, plain, recap, as_array, named_option,
     Feedback, WRONG, Stop, run_check, require_attempt, as_number, call_attempt, close_to,
-    same_values, choose,
+    same_values, choose, right,
 )
 
 __all__ = [
     "check_hks",
     "check_functional_map",
+    "check_zoomout_step",
     "check_truncation_bound",
     "check_alpha_choice",
     "check_mirror_maps",
@@ -143,6 +144,134 @@ def fmap_hint(value: Any, p2p: np.ndarray, source: Any, target: Any, ref: np.nda
             "products with the first k target eigenfunctions.")
 
 
+def check_zoomout_step(zoomout_step: Any, source: Any, target: Any, k: int = 20, *, show: bool = True) -> Feedback:
+    """Exercise 12-zoomout-step: the student's ``zoomout_step(C, source, target) -> (C_next, p2p)``, one
+    ZoomOut iteration, against ``functional_maps.points_from_map`` then ``map_from_points`` at ``k + 1``.
+
+    Tried on a ``k × k`` map near the true one from ``source`` to ``target`` with the target's vertices
+    shuffled (so that a point map read the wrong way round shows) and perturbed (so that ``C`` is
+    not orthogonal and ``Cᵀ`` differs from ``C⁻¹``). The point map is judged by its distances (any
+    nearest neighbour counts, a tie either way), ``C_next`` as the map of the student's own point map.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, eigenbasis, functional_maps as fm
+    >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
+    >>> def step(C, source, target):
+    ...     k = len(C)
+    ...     p2p = fm.points_from_map(C, source, target)
+    ...     return fm.map_from_points(p2p, source, target, k_source=k + 1, k_target=k + 1), p2p
+    >>> check_zoomout_step(step, s, s, 8, show=False).correct
+    True
+    >>> not_grown = lambda C, s1, s2: (np.eye(len(C)), fm.points_from_map(C, s1, s2))
+    >>> check_zoomout_step(not_grown, s, s, 8, show=False).message
+    'Not grown: the next map has one more function on each side, (9, 9) here.'
+    """
+    from ..functional_maps import map_from_points
+    from ..spectrum import Spectrum
+
+    def body() -> str:
+        k_ = min(int(k), source.k - 1, target.k - 1)
+        n2 = target.n_vertices
+        rng = np.random.default_rng(12)
+        perm = rng.permutation(n2)  # vertex i of the shuffled target is vertex perm[i] of `target`
+        mass, stiffness = target.mass.tocsr(), target.stiffness.tocsr()
+        shuffled = Spectrum(target.values.copy(), target.vectors[perm].copy(), stiffness[perm][:, perm].tocsr(),
+                            mass[perm][:, perm].tocsr())
+        truth = perm if source.n_vertices == n2 else rng.integers(0, source.n_vertices, n2)
+        C = map_from_points(truth, source, shuffled, k_source=k_, k_target=k_)
+        C = C + 0.1 * rng.standard_normal(C.shape)
+        value = call_attempt(zoomout_step, C.copy(), source, shuffled)
+        hint = zoomout_step_hint(value, C, source, shuffled)
+        if hint is not None:
+            raise Stop(WRONG, hint)
+        return ("Right: p2p[i] is the source vertex whose row of Φ₁Cᵀ is nearest to row i of Φ₂, and C_next = "
+                "Φ₂ᵀ A₂ Π Φ₁ with k + 1 functions on each side.")
+    return run_check("12-zoomout-step", show, body)
+
+
+ZOOMOUT_NN_RTOL = 1e-5
+"""A target vertex counts as matched to a nearest image when its squared distance exceeds the least
+one by at most this fraction of the embedding's mean squared norm: ties and single precision pass."""
+
+
+def _nearest_everywhere(p2p: np.ndarray, queries: np.ndarray, points: np.ndarray) -> int:
+    """How many rows of ``queries`` are *not* matched by ``p2p`` to a nearest row of ``points``
+    (exhaustive search in double precision, a tie either way counts as nearest)."""
+    squared = np.einsum("ij,ij->i", points, points)
+    best = np.empty(len(queries))
+    for start in range(0, len(queries), 512):  # blocks of queries: |q - p|^2 = |q|^2 - 2 q.p + |p|^2
+        q = queries[start:start + 512]
+        best[start:start + 512] = np.maximum(
+            (np.einsum("ij,ij->i", q, q)[:, None] - 2 * q @ points.T + squared).min(axis=1), 0.0)
+    got = np.einsum("ij,ij->i", queries - points[p2p], queries - points[p2p])
+    scale = float(np.mean(np.einsum("ij,ij->i", queries, queries)) + np.mean(np.einsum("ij,ij->i", points, points)))
+    return int(np.count_nonzero(got > best + ZOOMOUT_NN_RTOL * scale))
+
+
+def zoomout_step_hint(value: Any, C: np.ndarray, source: Any, target: Any) -> str | None:
+    """None when ``value`` is ``(C_next, p2p)``, one ZoomOut iteration from ``C`` (k × k), else what is off.
+
+    ``p2p`` must match every target vertex to a source vertex whose row of ``Φ₁[:, :k] Cᵀ`` is
+    nearest to its row of ``Φ₂[:, :k]``; ``C_next`` must be ``map_from_points`` of that ``p2p`` at
+    ``k + 1`` (the student's own point map: with ties, another nearest neighbour is as right).
+    """
+    k_ = C.shape[0]
+    n1, n2 = source.n_vertices, target.n_vertices
+    value = plain(value)
+    if not isinstance(value, (tuple, list)) or len(value) != 2:
+        if isinstance(value, np.ndarray) and value.ndim == 2:
+            return "Return the pair `(C_next, p2p)`: the point map read off C as well as the new map."
+        return f"Expected the pair `(C_next, p2p)`, got {type(value).__name__}."
+    first, second = (np.asarray(v) if isinstance(v, (np.ndarray, list, tuple)) else v for v in value)
+    if getattr(first, "ndim", None) == 1 and getattr(second, "ndim", None) == 2:
+        return "Swapped: return `(C_next, p2p)`, the map first (as `fm.zoomout` returns `(C, p2p)`)."
+    C_next = as_array(first, "C_next, a (k+1) × (k+1) matrix")
+    p = as_array(second, "p2p, an integer array with one source vertex per target vertex")
+    # --- the point map
+    if p.shape == (n1,) and n1 != n2:
+        return ("`p2p` has one entry per source vertex: it gives, for every target vertex i (row i of Φ₂[:, :k]), "
+                "its source vertex p2p[i].")
+    if p.shape != (n2,):
+        return f"Expected `p2p` of shape ({n2},), one source vertex per target vertex, got shape {p.shape}."
+    if not np.all(p == np.round(p)) or p.min() < 0 or p.max() >= n1:
+        return f"`p2p` must hold source vertex indices, integers from 0 to {n1 - 1}."
+    p = p.astype(np.int64)
+    P1, P2 = source.vectors[:, :k_], target.vectors[:, :k_]
+    images = P1 @ C.T  # row j: the coefficients C gives the delta at source vertex j
+    bad = _nearest_everywhere(p, P2, images)
+    if bad:
+        candidates = [
+            (P2, P1 @ C, ("Transposed C: the delta at source vertex j has coefficients Φ₁[j], and C sends them to "
+                          "C Φ₁[j]; as rows, Φ₁[:, :k] Cᵀ, not Φ₁ C.")),
+            (P2 @ C, P1, ("That compares Φ₂ C with Φ₁, the target rows carried back by Cᵀ; carry the source rows "
+                          "forward instead: rows of Φ₁[:, :k] Cᵀ against rows of Φ₂[:, :k].")),
+            (P2, P1, "C is not used: compare the target rows Φ₂[:, :k] with the source rows carried by C, Φ₁[:, :k] Cᵀ."),
+        ]
+        for queries, points, hint in candidates:
+            if _nearest_everywhere(p, queries, points) == 0:
+                return hint
+        if n1 == n2 and _nearest_everywhere(p, images, P2) == 0:
+            return ("The point map goes the wrong way: that is the nearest target vertex of each source vertex. "
+                    "p2p[i] is the source vertex of target vertex i: search the source images for each target row.")
+        return (f"Not the nearest neighbours: {bad} of {n2} target vertices are not matched to a source vertex whose "
+                "row of Φ₁[:, :k] Cᵀ is nearest to their row of Φ₂[:, :k] (k = the size of C).")
+    # --- the next map
+    if C_next.shape == (k_, k_):
+        return f"Not grown: the next map has one more function on each side, ({k_ + 1}, {k_ + 1}) here."
+    if C_next.shape in ((target.k, source.k), (min(target.k, source.k),) * 2) and C_next.shape != (k_ + 1, k_ + 1):
+        return (f"That uses every computed eigenfunction ({C_next.shape}); the next map takes the first k + 1 on each "
+                f"side, ({k_ + 1}, {k_ + 1}) here.")
+    if C_next.shape != (k_ + 1, k_ + 1):
+        return f"Expected `C_next` of shape ({k_ + 1}, {k_ + 1}), one more function on each side, got {C_next.shape}."
+    k1 = k_ + 1
+    ref = target.vectors[:, :k1].T @ (target.mass @ source.vectors[p, :k1])
+    hint = fmap_hint(C_next, p, source, target, ref)
+    if hint is not None:
+        return f"`C_next`, the map of your `p2p` with k + 1 functions: {hint}"
+    return None
+
+
 BOUND_RTOL = 1e-4
 """Relative tolerance of 12-bound: a value rounded to five significant digits passes."""
 
@@ -234,7 +363,7 @@ def check_mirror_maps(with_orientation: Any, without_orientation: Any, *, show: 
 def check_zoomout(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 12-zoomout: without ZoomOut (``k_final=30``), is the mean error larger, the same or smaller?"""
     return choose("12-zoomout", answer, {
-        "larger": None,
+        "larger": right("ZoomOut reads the point map off 80 frequencies instead of 30, refining it step by step: the next cell measures the smaller error it gives."),
         "same": "ZoomOut adds 50 more frequencies to the map, and the point map is read off them: does that change nothing?",
         "smaller": "Refinement with more (smooth, well-captured) functions sharpens the point map; why would it make it worse?",
     }, show)
@@ -245,14 +374,14 @@ def check_recap_toolbox(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feed
     return recap("12-recap", [q1, q2, q3], [pick(q) for q in RECAP_TOOLBOX], show)
 
 
-RECAP_TOOLBOX: list[Mapping[str, str | None]] = [  # 12-recap: {choice: hint, None for the right one}
+RECAP_TOOLBOX: list[Mapping[str, str | None]] = [  # 12-recap: {choice: hint, or the right one's reason}
     {"a": "Each eigenfunction is defined up to sign, and inside a cluster only up to rotation: compare φ_8 in section 1.",
-     "b": None,
+     "b": right("the HKS uses only the eigenvalues and the squared eigenfunctions summed over each eigenspace, and a change of pose barely moves either."),
      "c": "The eigenfunctions change with the pose (signs, mixing); the HKS uses only squares and eigenvalues."},
-    {"a": None,
+    {"a": right("the coefficients on shape 2's A₂-orthonormal basis are Φ₂ᵀ A₂ g, here for the pulled-back functions g = Π Φ₁."),
      "b": "Which basis is A₂-orthonormal, and so needs A₂ to take coefficients?",
      "c": "Π pulls functions from shape 1 back to shape 2, so it acts on Φ₁, between A₂ and Φ₁."},
     {"a": "A functional map of size k sees only k coefficients; what bounds the rest?",
      "b": "Eigenfunctions are not invariant (signs, mixing: section 1); the reason is a bound on what lies beyond φ_(k−1).",
-     "c": None},
+     "c": right("the part of f beyond its first k coefficients has squared norm at most ‖∇f‖²/λ_k (notebook 05): small for a smooth f.")},
 ]

@@ -18,7 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, pick, number_judge, recap
+from .basics import WrappedReasons
+from .feedback import Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, pick, number_judge, recap, right
 
 __all__ = ["check_edge_energy", "check_cycle_multiplicity", "check_step_decay", "check_recap_graph"]
 
@@ -141,8 +142,12 @@ def check_recap_graph(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedba
 
 def _spaceless(judge: Callable[[Any], str | None]) -> Callable[[Any], str | None]:
     """The same choice judge, blind to spaces inside the answer ("lam_n - 1" is "lam_n-1")."""
+    def read(answer: Any) -> Any:
+        return "".join(answer.split()) if isinstance(answer, str) else answer
+
     def spaceless(answer: Any) -> str | None:
-        return judge("".join(answer.split()) if isinstance(answer, str) else answer)
+        return judge(read(answer))
+    spaceless.reasons = WrappedReasons(judge, read)  # type: ignore[attr-defined]
     return spaceless
 
 
@@ -155,7 +160,8 @@ GRAPH_RECAP: list[Callable[[Any], str | None]] = [
                        (0.0, "that is the smallest one, at k = 0 (the constant).")],
                  "2 − 2cos(2πk/n) is largest where the cosine is most negative; for even n that value is reached."),
     _spaceless(pick({"lam_n-1": "φ_0 … φ_{n−1} are kept; the bound divides by the eigenvalue of the first one left out.",
-                     "lam_n": None,
+                     "lam_n": right("φ_0 … φ_{n−1} are kept (0-based), and ‖f − P_n f‖² ≤ fᵀLf / λ_n divides by "
+                                    "the eigenvalue of φ_n, the first one left out."),
                      "lam_n+1": "φ_0 … φ_{n−1} are kept (0-based); the bound divides by the eigenvalue of the first one "
                                 "left out."})),
 ]

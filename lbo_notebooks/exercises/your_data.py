@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_number, close_to, choose, number_judge,
-                       pick, recap)
+                       pick, recap, right)
 
 __all__ = [
     "check_repair_counts", "check_operator_choice", "check_cloud_eigenvalue",
@@ -261,7 +261,8 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
 def check_neighbors_effect(answer: Any, *, show: bool = True) -> Feedback:
     """Exercise 04-neighbors: with ``n_neighbors=10``, do the cloud's eigenvalues get "closer" to ℓ(ℓ+1) or "further"?"""
     return choose("04-neighbors", answer, {
-        "further": None,
+        "further": right("With 10 neighbours each point's local patch is built from fewer points, a cruder operator "
+                         "here: the next cell measures a larger worst error than with 30."),
         "closer": "Run the cell after the check and compare the worst relative errors for 10 and 30 neighbours.",
         "same": "The neighbourhoods change, and so does the operator: run it and compare the errors.",
     }, show)
@@ -359,9 +360,11 @@ def recap_judges() -> list[Callable[[Any], str | None]]:
                            (0.0, "a constant function has zero energy on every piece."),
                            (3.0, "the shape's own constant counts too: one zero per connected component.")],
                      "one zero eigenvalue per connected component."),
-        pick({"robust": None,
+        pick({"robust": right("an edge with three faces is non-manifold, where the cotangent weight ½ (cot α + cot β) "
+                              "is not defined, so `eigenbasis` falls back to the tufted Laplacian."),
                "cotan": "the cotangent weight ½ (cot α + cot β) is written for an edge between two triangles."}),
-        pick({"fused": None,
+        pick({"fused": right("the point-cloud operator sees only Euclidean distances: neighbourhoods that reach across "
+                             "the gap connect the local patches of both sheets."),
                "separate": "a neighbourhood is the nearest points, whatever sheet they lie on: the local patches "
                            "join the sheets."}),
     ]

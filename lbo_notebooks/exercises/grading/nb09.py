@@ -1,4 +1,10 @@
-"""Graded tests of notebook 09 (spectral MDS, canonical forms): see :mod:`lbo_notebooks.exercises.grading`."""
+"""Graded tests of notebook 09 (spectral MDS, canonical forms): see :mod:`lbo_notebooks.exercises.grading`.
+
+Two builds: classical MDS (09-classical-mds), judged by the Gram matrix (any rotation or
+reflection is right) on distance matrices the notebook does not show, and the k x k step of
+spectral MDS (09-scaling), each with the library's scaling routines (and scikit-learn's) made
+unavailable.
+"""
 
 from __future__ import annotations
 
@@ -31,6 +37,71 @@ def _landmarks(landmark_verdict: Any) -> Verdict:
 @grader("09-fmm", kind="predict")
 def _fmm(fmm_verdict: Any) -> Verdict:
     return from_feedback(canonical_forms.check_fmm_gap(choice(fmm_verdict), show=False))
+
+
+# --- 09-classical-mds: build it yourself --------------------------------------------------------
+
+# What a build of classical MDS must not call: the package's MDS (public, and the routines behind
+# it: the top eigenpairs, scaling in a span, the fields' variant; landmark MDS with every point a
+# landmark is classical MDS, and so are spectral MDS and fast classical scaling in their limits),
+# the visible check's own reference, and scikit-learn's routes to the same embedding (ClassicalMDS;
+# KernelPCA of a precomputed B; Isomap, classical MDS of shortest paths; MDS and smacof, which
+# minimise the stress and reach the same points on Euclidean distances). NumPy's and SciPy's
+# eigensolvers are what the exercise asks for, and stay.
+_CLASSICAL = (
+    "lbo_notebooks.mds:classical_mds", "lbo_notebooks.mds:landmark_mds", "lbo_notebooks.mds:spectral_mds",
+    "lbo_notebooks.mds:_scaling_with_fields", "lbo_notebooks.scaling:top_eigenpairs",
+    "lbo_notebooks.scaling:scaling_in_span", "lbo_notebooks.fast_scaling:fast_classical_scaling",
+    "lbo_notebooks.exercises.canonical_forms:mds_slips", "lbo_notebooks.exercises.canonical_forms:_double_centred",
+    "lbo_notebooks.exercises.canonical_forms:scaling_slips", "lbo_notebooks.exercises.canonical_forms:_top",
+    "sklearn.manifold:ClassicalMDS.fit", "sklearn.manifold:ClassicalMDS.fit_transform",
+    "sklearn.manifold:MDS.fit", "sklearn.manifold:MDS.fit_transform", "sklearn.manifold:smacof",
+    "sklearn.manifold:Isomap.fit", "sklearn.manifold:Isomap.fit_transform",
+    "sklearn.decomposition:KernelPCA.fit", "sklearn.decomposition:KernelPCA.fit_transform",
+    "sklearn.decomposition:KernelPCA._fit_transform_in_place",
+)
+
+
+def _graph_distances(edges: list[tuple[int, int]], n: int) -> np.ndarray:
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import shortest_path
+
+    i, j = np.array(edges).T
+    return shortest_path(sp.coo_matrix((np.ones(len(i)), (i, j)), shape=(n, n)), directed=False, unweighted=True)
+
+
+@functools.lru_cache(maxsize=1)
+def _mds_cases() -> tuple[tuple[np.ndarray, tuple[int, ...], str], ...]:
+    """(D, dims, where) that neither the notebook nor the visible check shows: points in ℝ³ (exactly
+    embeddable), points on a tilted plane asked for dim 3 (a zero eigenvalue, negative at round-off),
+    and three graph distances that are not Euclidean (negative eigenvalues): a 10-cycle (every
+    eigenvalue twofold), a 4 × 3 grid graph asked for dim 7 (past its five positive eigenvalues) and
+    a star of six leaves (a fivefold eigenvalue). Each dim ends below a gap or among the clipped
+    eigenvalues, so the Gram matrix X Xᵀ is determined."""
+    from scipy.spatial.distance import cdist
+
+    rng = np.random.default_rng(9091)
+    cloud = rng.normal(size=(40, 3)) * [3.0, 1.5, 0.5] + [1.0, -2.0, 4.0]
+    tilt = np.linalg.qr(rng.normal(size=(3, 3)))[0]
+    plane = np.column_stack([rng.uniform(-1, 1, size=(30, 2)) * [2.0, 1.0], np.zeros(30)]) @ tilt.T
+    cycle = _graph_distances([(i, (i + 1) % 10) for i in range(10)], 10)
+    grid = _graph_distances([(3 * r + c, 3 * r + c + 1) for r in range(4) for c in range(2)]
+                            + [(3 * r + c, 3 * r + c + 3) for r in range(3) for c in range(3)], 12)
+    star = _graph_distances([(0, leaf) for leaf in range(1, 7)], 7)
+    return ((cdist(cloud, cloud), (3, 2), "40 points in ℝ³"),
+            (cdist(plane, plane), (3,), "30 points on a tilted plane in ℝ³"),
+            (cycle, (2, 4), "the graph distances of a 10-cycle"),
+            (grid, (2, 7), "the graph distances of a 4 × 3 grid"),
+            (star, (5,), "the graph distances of a star with six leaves"))
+
+
+@grader("09-classical-mds", kind="build", replaces=_CLASSICAL)
+def _classical_mds(my_classical_mds: Any) -> Verdict:
+    cases = [(D, dims, f"{where}, which the notebook does not show") for D, dims, where in _mds_cases()]
+    message = canonical_forms.judge_classical_mds(my_classical_mds, cases,
+                                                  call=lambda f, D, dim: student_call(f, D, dim))
+    return Verdict(1.0, message.replace("Right:", "Right on five distance matrices the notebook does not show (points in "
+                                        "ℝ³ and on a plane, three graph distances):", 1))
 
 
 # --- 09-scaling: build it yourself ---------------------------------------------------------------
@@ -116,7 +187,7 @@ def _scaling(my_scaling: Any) -> Verdict:
                 if gram_error(got, slip) <= 1e-6:
                     raise Stop(WRONG, hint + where)
             raise Stop(WRONG, "Not the embedding of the k × k route (Gram error above 1e-6). The steps: J Φ = Q R, "
-                              "S = −½ R α Rᵀ, the top eigenpairs S = U G Uᵀ, then X = Q U_m G_m^½." + where)
+                              "B̃ = −½ R α Rᵀ, the top eigenpairs B̃ = U G Uᵀ, then X = Q U_m G_m^½." + where)
     return Verdict(1.0, "Right on inputs the notebook does not show (an ellipsoid, a torus, a random basis; "
                         "dim = 1 to 4), without the library's scaling.")
 

@@ -3,9 +3,9 @@
 The value exercises (11-energy, 11-validation) are judged against the notebook's own context,
 rebuilt here from its definitions (the dog of 3,000 vertices, training on *standing* and
 *walking*, the sweep over ``betas``), never from the student's kernel: about 3 s for the poses,
-0.5 s for the PCA limit and 4 s for the sweep on one core. The build (11-objective) is judged on
-shapes, data, bases and weights the notebook never shows, with the library's routes to the
-objective unavailable.
+0.5 s for the PCA limit and 4 s for the sweep on one core. The builds (11-objective, 11-rpca-basis) are
+judged on shapes, data, bases and weights the notebook never shows, with the library's routes to
+the objective and to the basis unavailable.
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from ..feedback import WRONG, Stop, as_number, pick
 from ..regularized_pca import (
     RECAP_RPCA,
     objective_hint,
+    rpca_basis_hint,
     check_dirichlet_energies,
     check_mu_scaling,
     check_rpca_limits,
@@ -158,6 +159,92 @@ def _objective(my_objective: Any) -> Verdict:
             raise Stop(WRONG, f"{hint} (Graded on {what}, inputs the notebook does not show.)")
     return Verdict(1.0, "Right on three problems the notebook does not show (a torus, an ellipsoid with a rotated "
                         "basis, an open sheet with μ = 0).")
+
+
+# What a build of the regularized PCA basis must not call: every route of the library to the basis
+# (the public solver and function, the private dense, sparse and limit paths behind them, the
+# pencil's Ritz pairs, inverse iteration and complement Lanczos), the visible check's own dense
+# eigendecomposition, and the library's eigensolvers, which solve any symmetric pencil handed to
+# them (the detour eigenbasis((mu W - U Uᵀ, A), m)), as well as other installed libraries' ones.
+# SciPy's eigh / eigsh are what the exercise asks for, and stay.
+_RPCA_BASIS = (
+    "lbo_notebooks.rpca:regularized_pca",
+    "lbo_notebooks.rpca:RegularizedPCA.solve",
+    "lbo_notebooks.rpca:RegularizedPCA.sweep",
+    "lbo_notebooks.rpca:RegularizedPCA._solve_dense",
+    "lbo_notebooks.rpca:RegularizedPCA._solve_sparse",
+    "lbo_notebooks.rpca:RegularizedPCA._solve_pca_limit",
+    "lbo_notebooks.rpca:RegularizedPCA._solve_infinite",
+    "lbo_notebooks.rpca_pencil:rayleigh_ritz",
+    "lbo_notebooks.rpca_pencil:data_eigenpairs",
+    "lbo_notebooks.rpca_pencil:complement_lanczos",
+    "lbo_notebooks.exercises.regularized_pca:_pencil_eigenpairs",
+    "lbo_notebooks.spectrum:eigenbasis",
+    "lbo_notebooks.spectrum:_solve_in_unit_area",
+    "lbo_notebooks.eigensolver:slice_eigsh",
+    "lbo_notebooks.eigensolver:_window_set",
+    "lbo_notebooks.eigensolver:_stitch",
+    "lbo_notebooks.krylov:nearest_eigenpairs",
+    "lbo_notebooks.bases:lbo_basis",
+    "lbo_notebooks.bases:_smallest_eigenvectors",
+    "lbo_notebooks.minmax:min_rayleigh_quotient",
+    "lbo_notebooks.minmax:_min_dense",
+    "lbo_notebooks.minmax:ConstrainedRayleigh.minimum",
+    "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",
+    "pyFM.mesh.laplacian:laplacian_spectrum",
+    "lapy.solver:Solver.eigs",
+)
+
+
+@functools.lru_cache(maxsize=1)
+def _unseen_rpca_problems() -> tuple[tuple[str, np.ndarray, Any, Any, float, int], ...]:
+    """(what, X, W, A, mu, m) on shapes and data the notebook and the visible check never use (the
+    notebook shows the dog and a bumpy sphere, always with centred data):
+
+    - a torus and a bent, stretched copy as two poses, *not* centred;
+    - an open, wavy sheet with four smooth functions as data (not poses);
+    - the icosphere of 162 vertices with the constant function as the only data: σ = area for the
+      constant, then ``−μ λ`` with the sphere's repeated eigenvalues (a 3-dimensional eigenspace
+      and a 5-dimensional one that ``m = 7`` cuts), where any basis of an eigenspace is right.
+    """
+    from ... import operators, shapes
+    from ...rpca import mu_from_beta
+
+    problems = []
+    ring = shapes.torus(n_major=20, n_minor=10)
+    v = ring.vertices
+    bent = v * [1.1, 0.9, 1.2] + 0.25 * np.sin(1.5 * v[:, [1]]) * [1.0, 0.0, 0.0]
+    X = np.hstack([v + [0.4, -0.3, 0.2], bent + [-0.2, 0.5, 0.3]])  # off the origin: not centred
+    W, A = operators.stiffness_matrix(ring), operators.mass_matrix(ring)
+    problems.append(("a torus and a bent copy, data not centred", X, W, A, mu_from_beta(3e-3, X, A, 15), 15))
+    sheet = shapes.rectangle(1.4, 1.0, 12, 9)
+    w = sheet.vertices.copy()
+    w[:, 2] = 0.15 * np.sin(2.5 * w[:, 0]) * np.cos(2.0 * w[:, 1])
+    sheet = sheet.with_vertices(w)
+    x, y = w[:, 0], w[:, 1]
+    F = np.column_stack([np.cos(3 * x), x * y, np.exp(y), np.sin(5 * x + 2 * y)])
+    Ws, As = operators.stiffness_matrix(sheet), operators.mass_matrix(sheet)
+    problems.append(("an open sheet with four functions as data", F, Ws, As, 0.8 * mu_from_beta(0.05, F, As, 10), 10))
+    ball = shapes.icosphere(2)
+    Wb, Ab = operators.stiffness_matrix(ball), operators.mass_matrix(ball)
+    problems.append(("a sphere with the constant as data (repeated eigenvalues)", np.ones((ball.n_vertices, 1)), Wb, Ab,
+                     0.3, 7))
+    return tuple(problems)
+
+
+_RPCA_UNSEEN = ("three problems the notebook does not show (a torus with data not centred, an open sheet with four "
+                "functions, a sphere whose eigenspaces repeat)")
+
+
+@grader("11-rpca-basis", kind="build", replaces=_RPCA_BASIS)
+def _rpca_basis(my_rpca_basis: Any) -> Verdict:
+    for what, X, W, A, mu, m in _unseen_rpca_problems():
+        value = student_call(my_rpca_basis, X.copy(), W.copy(), A.copy(), float(mu), m)
+        hint = rpca_basis_hint(value, X, W, A, mu, m)
+        if hint is not None:
+            raise Stop(WRONG, f"{hint} (Graded on {what}: {X.shape[0]} vertices, m = {m}, μ = {mu:.3g}; inputs the "
+                              "notebook does not show.)")
+    return Verdict(1.0, f"Right on {_RPCA_UNSEEN}.")
 
 
 @grader("11-recap", kind="recap")

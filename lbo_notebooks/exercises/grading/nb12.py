@@ -1,10 +1,11 @@
 """Graded tests of notebook 12 (the spectral toolbox): see :mod:`lbo_notebooks.exercises.grading`.
 
-The builds (12-hks, 12-fmap) are judged on spectra, times, point maps and sizes the notebook never
-shows (no dog: small spheres, tori, an ellipsoid, a disk; shapes of different vertex counts for the
-maps), with the library's HKS and functional map (and pyFM's) unavailable. 12-bound is judged
-against the standing dog's eigenbasis rebuilt from the notebook's definitions (3,000 vertices,
-60 eigenpairs: about 3 s on one core), not the student's ``ref``.
+The builds (12-hks, 12-fmap, 12-zoomout-step) are judged on spectra, times, point maps, maps and
+sizes the notebook never shows (no dog: small spheres, tori, an ellipsoid, a disk; shapes of
+different vertex counts for the maps), with the library's HKS, functional map and ZoomOut (and
+pyFM's) unavailable. 12-bound is judged against the standing dog's eigenbasis rebuilt from the
+notebook's definitions (3,000 vertices, 60 eigenpairs: about 3 s on one core), not the student's
+``ref``.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from ..toolbox import (
     RECAP_TOOLBOX,
     fmap_hint,
     hks_hint,
+    zoomout_step_hint,
     check_alpha_choice,
     check_mirror_maps,
     check_truncation_bound,
@@ -52,6 +54,30 @@ _FMAP = (
     "pyFM.spectral.convert:mesh_p2p_to_FM",
     "pyFM.spectral:p2p_to_FM",
     "pyFM.spectral:mesh_p2p_to_FM",
+)
+
+# What a build of one ZoomOut iteration must not call: the library's ZoomOut and both its conversions
+# (and the nearest-row search they share, the A-projection of a Spectrum), pyFM's.
+_ZOOMOUT_STEP = (
+    "lbo_notebooks.functional_maps:zoomout",
+    "lbo_notebooks.functional_maps:points_from_map",
+    "lbo_notebooks.functional_maps:map_from_points",
+    "lbo_notebooks.functional_maps:_nearest_rows",
+    "lbo_notebooks.spectrum:Spectrum.project",
+    "lbo_notebooks.spectrum:Spectrum.reconstruct",
+    "pyFM.spectral.convert:FM_to_p2p",
+    "pyFM.spectral.convert:mesh_FM_to_p2p",
+    "pyFM.spectral.convert:mesh_FM_to_p2p_precise",
+    "pyFM.spectral.convert:p2p_to_FM",
+    "pyFM.spectral.convert:mesh_p2p_to_FM",
+    "pyFM.spectral:FM_to_p2p",
+    "pyFM.spectral:p2p_to_FM",
+    "pyFM.refine.zoomout:zoomout_iteration",
+    "pyFM.refine.zoomout:zoomout_refine",
+    "pyFM.refine.zoomout:mesh_zoomout_refine",
+    "pyFM.refine.zoomout:mesh_zoomout_refine_p2p",
+    "pyFM.refine:zoomout_refine",
+    "pyFM.refine:mesh_zoomout_refine",
 )
 
 
@@ -128,6 +154,30 @@ def _fmap(my_functional_map: Any) -> Verdict:
             raise Stop(WRONG, f"{hint} (Graded on {what}, k = {k}: {source.n_vertices} source and "
                               f"{target.n_vertices} target vertices, inputs the notebook does not show.)")
     return Verdict(1.0, "Right on three point maps the notebook does not show (a shuffled permutation, onto a "
+                        "smaller shape, onto a larger shape).")
+
+
+@functools.lru_cache(maxsize=1)
+def _unseen_steps() -> tuple[tuple[str, np.ndarray, Any, Any], ...]:
+    """(what, C, source, target): the shape pairs of 12-fmap, each with a seeded k x k map, a signed
+    identity plus noise (not orthogonal, so that C^T and C^-1 differ and a transposed C shows)."""
+    rng = np.random.default_rng(2019)  # Melzi et al.
+    steps = []
+    for what, _, source, target, k in _unseen_pairs():
+        C = np.diag(rng.choice([-1.0, 1.0], k)) + 0.15 * rng.standard_normal((k, k))
+        steps.append((what.replace(", vertices shuffled", ""), C, source, target))
+    return tuple(steps)
+
+
+@grader("12-zoomout-step", kind="build", replaces=_ZOOMOUT_STEP)
+def _zoomout_step(my_zoomout_step: Any) -> Verdict:
+    for what, C, source, target in _unseen_steps():
+        value = student_call(my_zoomout_step, C.copy(), _fresh(source), _fresh(target))
+        hint = zoomout_step_hint(value, C, source, target)
+        if hint is not None:
+            raise Stop(WRONG, f"{hint} (Graded on {what}, k = {C.shape[0]}: {source.n_vertices} source and "
+                              f"{target.n_vertices} target vertices, inputs the notebook does not show.)")
+    return Verdict(1.0, "Right on three maps the notebook does not show (between two poses of a torus, onto a "
                         "smaller shape, onto a larger shape).")
 
 
