@@ -112,10 +112,11 @@ case "${1:-}" in
     root=(); [ "$(id -u)" = 0 ] && root=(--allow-root)  # containers run as root; JupyterLab refuses it otherwise
     log "starting JupyterLab on notebooks/00_start_here.ipynb (Ctrl-C to stop)"
     # Open the series' first notebook rather than the Launcher (also the link JupyterLab prints);
-    # on Binder the badge's urlpath does the same.
+    # on Binder the badge's urlpath does the same. The repository is served, not notebooks/ alone:
+    # the notebooks link ../docs/glossary.md, which JupyterLab cannot open outside its root.
     config=$(no_grader_menus)
     JUPYTER_CONFIG_PATH="$PWD/$config${JUPYTER_CONFIG_PATH:+:$JUPYTER_CONFIG_PATH}" \
-      exec "$VENV/bin/jupyter" lab --notebook-dir=notebooks --LabApp.default_url=/lab/tree/00_start_here.ipynb \
+      exec "$VENV/bin/jupyter" lab --notebook-dir=. --LabApp.default_url=/lab/tree/notebooks/00_start_here.ipynb \
       "${LAB_OPTIONS[@]}" "${root[@]}" "${@:2}" ;;
   test)
     system_packages; python_env "[test]"

@@ -30,7 +30,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 
-from student_edition import CODE_STUB, NOTEBOOKS, has_exercises, nbgrader_meta, read, series, source  # noqa: E402
+from student_edition import (  # noqa: E402
+    CODE_STUB, NOTEBOOKS, copy_for_edition, has_exercises, nbgrader_meta, read, series, source,
+)
 
 CONFIG = """\
 # nbgrader settings of the lbo_notebooks course, written by `./make.sh course` (scripts/course.py).
@@ -119,7 +121,7 @@ def write(course: Path, force: bool = False, only: list[str] | None = None) -> l
         else:
             shutil.rmtree(folder, ignore_errors=True)
             folder.mkdir(parents=True)
-            shutil.copy2(nb, folder / nb.name)
+            copy_for_edition(nb, folder / nb.name)  # with the glossary beside it
         written.append(folder / nb.name)
     (course / "nbgrader_config.py").write_text(CONFIG.format(stub=CODE_STUB), encoding="utf-8")
 

@@ -12,7 +12,8 @@ site; stray notebooks are left out): solution regions (``### BEGIN SOLUTION`` ..
 hidden tests (``### BEGIN HIDDEN TESTS`` ...) disappear, check cells are locked, outputs are
 cleared. Notebooks without exercises pass through unchanged apart from that. Files a notebook
 reads by a relative path outside its folder (``../benchmarks/...``) are copied to the same place
-relative to the edition, so it runs where it is written. A notebook in ``build/student/`` that
+relative to the edition, so it runs where it is written; the glossary (and the formulas page it
+links) is copied beside the notebooks, whose link to it then points there. A notebook in ``build/student/`` that
 changed since it was written (a student's answers) is never overwritten: the new edition of it
 is written beside it as ``NN_name.new.ipynb``.
 
@@ -110,12 +111,33 @@ def series(folder: Path) -> list[Path]:
     return [start] + [p for p in listed if p.exists() and p != start]
 
 
+#: The docs pages an edition carries beside its notebooks: the glossary every notebook links, and
+#: the formulas page the glossary links (``](maths.md)``, beside it as in docs/).
+PAGES_BESIDE = ("glossary.md", "maths.md")
+GLOSSARY_LINK = "](../docs/glossary.md)"
+
+
+def copy_for_edition(nb: Path, target: Path) -> None:
+    """Copy notebook ``nb`` to ``target`` with its glossary link pointing beside it, and put the
+    glossary (and the page it links) beside it. An edition's folder is served or handed out alone
+    (JupyterLab's root, an nbgrader assignment), where ``../docs/`` does not exist."""
+    text = nb.read_text(encoding="utf-8")
+    target.write_text(text.replace(GLOSSARY_LINK, "](glossary.md)"), encoding="utf-8")
+    shutil.copystat(nb, target)
+    copy_pages_beside(target.parent)
+
+
+def copy_pages_beside(folder: Path) -> None:
+    for name in PAGES_BESIDE:
+        shutil.copy2(ROOT / "docs" / name, folder / name)
+
+
 def course(root: Path) -> Path:
     """A course directory whose assignment's source is a copy of the series in notebooks/."""
     source_dir = root / "source" / ASSIGNMENT
     source_dir.mkdir(parents=True)
     for nb in series(NOTEBOOKS):
-        shutil.copy2(nb, source_dir / nb.name)
+        copy_for_edition(nb, source_dir / nb.name)
     (root / "nbgrader_config.py").write_text(CONFIG.format(root=str(root), db_url=f"sqlite:///{root / 'gradebook.db'}",
                                                            stub=CODE_STUB, sockets=str(root / "kernel")), encoding="utf-8")
     return source_dir
@@ -165,6 +187,7 @@ def publish(release: Path, out: Path) -> None:
         shutil.copy2(nb, target)
     manifest_path.write_text(json.dumps(manifest, indent=1) + "\n", encoding="utf-8")
     copy_relative_files(out)
+    copy_pages_beside(out)
     shown = out.relative_to(ROOT) if out.is_relative_to(ROOT) else out
     log(f"wrote the student edition of {len(manifest)} notebooks to {shown}/")
 

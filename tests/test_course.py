@@ -148,6 +148,9 @@ def _check_ids(scores: dict, answered: dict[str, str]) -> list[str]:
 def test_every_assignment_generates_and_releases_alone(course):
     assignments = sorted(p.name for p in (course / "source").iterdir())
     assert len(assignments) == 13 and all((course / "release" / a / f"{a}.ipynb").exists() for a in assignments)
+    # Each assignment carries the glossary its notebook links (beside it: ../docs/ is not handed out).
+    assert all((course / "release" / a / "glossary.md").is_file() for a in assignments)
+    assert all("](glossary.md)" in (course / "release" / a / f"{a}.ipynb").read_text() for a in assignments)
     assert (course / "POINTS.md").exists() and (course / "RUBRICS.md").read_text().count("**Rubric") >= 7
 
 

@@ -199,3 +199,24 @@ def test_the_old_numbering_fails(markdown, sections):
     assert len(old) == 5
     for head, body in old.items():
         assert problems(head, body, markdown, sections), f"the old pointer of '{head}' passed"
+
+
+def test_an_edition_carries_the_glossary_beside_its_notebooks(tmp_path):
+    """The student edition and the nbgrader assignments are served or handed out alone, where
+    ``../docs/`` does not exist (issue 43: the link did nothing in JupyterLab): each copy of a
+    notebook links ``glossary.md`` beside it, and the glossary and every page it links are there."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("student_edition", REPO / "scripts" / "student_edition.py")
+    edition = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(edition)
+    for nb in edition.series(NOTEBOOKS):
+        edition.copy_for_edition(nb, tmp_path / nb.name)
+        copy = nbformat.read(tmp_path / nb.name, as_version=4)
+        header = copy.cells[0].source
+        assert "](glossary.md)" in header and "../docs/" not in header, nb.name
+        assert [c.source for c in copy.cells[1:]] == [c.source for c in nbformat.read(nb, as_version=4).cells[1:]]
+    assert (tmp_path / "glossary.md").read_text(encoding="utf-8") == GLOSSARY.read_text(encoding="utf-8")
+    for target in re.findall(r"\]\(([^)#\s]+)\)", GLOSSARY.read_text(encoding="utf-8")):
+        if not re.match(r"[a-z]+:", target):
+            assert (tmp_path / target).is_file(), f"the glossary links {target}, which the edition lacks"

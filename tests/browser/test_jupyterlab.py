@@ -152,7 +152,8 @@ SETTINGS = {"@jupyterlab/apputils-extension/notification.jupyterlab-settings":
 def _start_url() -> str:
     """The page ``./make.sh lab`` opens (its ``--LabApp.default_url``)."""
     match = re.search(r"--LabApp\.default_url=(\S+)", (REPO / "make.sh").read_text())
-    assert match, "make.sh lab must open the first notebook: pass --LabApp.default_url=/lab/tree/00_start_here.ipynb"
+    assert match, ("make.sh lab must open the first notebook: pass "
+                   "--LabApp.default_url=/lab/tree/notebooks/00_start_here.ipynb")
     return match.group(1)
 
 
@@ -184,23 +185,26 @@ def _code(nb_path: Path) -> str:
 
 
 class Lab:
-    """A JupyterLab server on 127.0.0.1 serving a temporary copy of ``notebooks/``."""
+    """A JupyterLab server on 127.0.0.1 serving ``root``; the notebooks are under ``root / prefix``
+    (``notebooks/`` in a copy of the repository, as ``./make.sh lab`` serves it, or an edition's
+    folder itself), and its settings, workspaces and log go to ``home``."""
 
-    def __init__(self, root: Path) -> None:
-        self.root = root
+    def __init__(self, root: Path, prefix: str = "", home: Path | None = None, default_url: str | None = None) -> None:
+        self.root, self.prefix = root, prefix
+        self.home = home if home is not None else root.parent.parent
         self.port, self.token = _free_port(), secrets.token_hex(16)
         self.url = f"http://127.0.0.1:{self.port}"
-        settings = root.parent.parent / "settings"
+        settings = self.home / "settings"
         for name, value in SETTINGS.items():
             (settings / name).parent.mkdir(parents=True, exist_ok=True)
             (settings / name).write_text(json.dumps(value))
-        self.log = open(root.parent.parent / "jupyterlab.log", "w")
+        self.log = open(self.home / "jupyterlab.log", "w")
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ServerApp.open_browser=False",
              "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
              f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
-             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={root.parent.parent / 'workspaces'}",
-             f"--LabApp.default_url={_start_url()}", *_lab_options()],
+             f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={self.home / 'workspaces'}",
+             f"--LabApp.default_url={default_url or _start_url()}", *_lab_options()],
             stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
@@ -235,16 +239,17 @@ class Lab:
 
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
-    # A copy of notebooks/ (JupyterLab autosaves: the repository's notebooks must stay clean) next
-    # to links to the rest of the repository, so that paths like "../benchmarks/x.json" still work.
-    mirror = tmp_path_factory.mktemp("lab") / "repo"
+    # The repository, as ./make.sh lab serves it: a copy of notebooks/ (JupyterLab autosaves: the
+    # repository's notebooks must stay clean) next to links to the rest of the repository, so that
+    # paths like "../benchmarks/x.json" and the link to ../docs/glossary.md still work.
+    home = tmp_path_factory.mktemp("lab")
+    mirror = home / "repo"
     mirror.mkdir()
     for entry in REPO.iterdir():
         if entry.name not in {"notebooks", ".git", "artifacts"}:
             (mirror / entry.name).symlink_to(entry)
-    root = mirror / "notebooks"
-    shutil.copytree(REPO / "notebooks", root, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
-    server = Lab(root)
+    shutil.copytree(REPO / "notebooks", mirror / "notebooks", ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
+    server = Lab(mirror, prefix="notebooks/", home=home)
     yield server
     server.stop()
 
@@ -331,7 +336,7 @@ def page(offline, lab):
 
 
 def _open(page: Page, lab: Lab, path: str) -> None:
-    page.goto(f"{lab.url}/lab/tree/{path}?reset&token={lab.token}")
+    page.goto(f"{lab.url}/lab/tree/{lab.prefix}{path}?reset&token={lab.token}")
     page.locator(".jp-NotebookPanel .jp-Notebook").first.wait_for(state="visible", timeout=120_000)
 
 
@@ -583,6 +588,36 @@ def _move_a_slider(page: Page, notebook: Path, out: Path) -> None:
     assert after_png != before_png, f"{notebook.name}: moving the slider did not change the picture"
 
 
+#: Words of the glossary's first paragraph: the page that opened is the glossary.
+GLOSSARY_WORDS = "The terms the notebooks use"
+
+
+def check_glossary_opens(page: Page, lab: Lab, stems: list[str], out: Path) -> None:
+    """From each notebook, click the glossary link of its first cell (as a reader would): a tab
+    titled glossary.md opens and shows the glossary, with no failed request (a 404 is silent in
+    JupyterLab otherwise: the link just does nothing)."""
+    out.mkdir(parents=True, exist_ok=True)
+    for stem in stems:
+        _open(page, lab, f"{stem}.ipynb")
+        link = page.locator(".jp-NotebookPanel .jp-RenderedMarkdown a", has_text=re.compile(r"^glossary$")).first
+        link.wait_for(state="visible", timeout=60_000)
+        link.click()
+        tab = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab", has_text="glossary.md")
+        tab.first.wait_for(state="visible", timeout=30_000)
+        page.wait_for_function("words => document.body.innerText.includes(words)", arg=GLOSSARY_WORDS, timeout=30_000)
+        current = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.lm-mod-current").all_inner_texts()
+        assert any("glossary.md" in t for t in current), f"{stem}: the glossary link opened {current}"
+        assert not page.locator(".jp-Dialog").all_inner_texts(), f"{stem}: a dialog instead of the glossary"
+        page.screenshot(path=str(out / f"{stem}.png"))
+        lab.shutdown_kernels()
+
+
+def test_the_glossary_opens_from_every_notebook(page: Page, lab: Lab, offline: Offline) -> None:
+    check_glossary_opens(page, lab, [p.stem for p in NOTEBOOKS], ARTIFACTS / "glossary")
+    assert not [f for f in offline.failed if "glossary" in f], offline.failed
+    offline.check("the glossary from every notebook")
+
+
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_notebook_runs_in_jupyterlab(page: Page, lab: Lab, offline: Offline, notebook: Path) -> None:
     out = ARTIFACTS / notebook.stem
@@ -664,14 +699,14 @@ def test_lab_opens_on_start_here(page: Page, lab: Lab, offline: Offline) -> None
     """The page JupyterLab opens (and the link it prints) is the first notebook, not the Launcher."""
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     # A first start: no saved workspace (JupyterLab otherwise reopens what the last session showed).
-    workspaces = lab.root.parent.parent / "workspaces"
+    workspaces = lab.home / "workspaces"
     shutil.rmtree(workspaces, ignore_errors=True)
     workspaces.mkdir()
     page.goto(f"{lab.url}/?token={lab.token}")
     page.locator(".jp-NotebookPanel .jp-Notebook").first.wait_for(state="visible", timeout=120_000)
     page.wait_for_timeout(3000)
     page.screenshot(path=str(ARTIFACTS / "lab_opens.png"))
-    assert urllib.parse.urlsplit(page.url).path == "/lab/tree/00_start_here.ipynb", page.url
+    assert urllib.parse.urlsplit(page.url).path == "/lab/tree/notebooks/00_start_here.ipynb", page.url
     current = page.locator(".lm-DockPanel-tabBar .lm-TabBar-tab.lm-mod-current").all_inner_texts()
     assert any("00_start_here.ipynb" in t for t in current), f"the open tab is {current}, not 00_start_here.ipynb"
     launchers = page.locator(".jp-Launcher").evaluate_all("els => els.filter(e => e.offsetParent !== null).length")

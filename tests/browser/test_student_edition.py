@@ -39,7 +39,8 @@ if os.environ.get("LBO_BROWSER_TESTS") != "1":
     pytest.skip("browser tests are opt-in: set LBO_BROWSER_TESTS=1", allow_module_level=True)
 
 from tests.browser.test_jupyterlab import (  # noqa: E402  (the same server, browser and page machinery)
-    ARTIFACTS, REPO, RUN_TIMEOUT, Lab, Offline, Page, _kernel_ready, _open, _run_all, _wait_until_done, browser, offline,
+    ARTIFACTS, REPO, RUN_TIMEOUT, Lab, Offline, Page, _kernel_ready, _open, _run_all, _wait_until_done, browser,
+    check_glossary_opens, offline,
 )
 
 __all__ = ["browser", "offline"]  # fixtures used here, imported from test_jupyterlab.py
@@ -76,7 +77,7 @@ def student_lab(tmp_path_factory):
     build = subprocess.run([sys.executable, str(REPO / "scripts" / "student_edition.py"), "--out", str(edition)],
                            capture_output=True, text=True, timeout=900)
     assert build.returncode == 0, f"student_edition.py failed:\n{build.stdout}\n{build.stderr}"
-    server = Lab(edition)
+    server = Lab(edition, default_url="/lab/tree/00_start_here.ipynb")  # as ./make.sh student lab
     yield server
     server.stop()
 
@@ -164,6 +165,15 @@ def _run_unanswered(page: Page, lab: Lab, stem: str, out: Path) -> None:
     assert n_checks >= 4 and len(shown) == n_checks, f"{stem}: {n_checks} check cells, feedback shown {shown}"
     assert all(status == "not attempted" for _, status in shown), f"{stem}: unanswered checks say {shown}"
     assert "BEGIN SOLUTION" not in page.inner_text(".jp-Notebook")
+
+
+def test_the_glossary_opens_from_every_notebook_of_the_edition(student_page: Page, student_lab: Lab, offline: Offline) -> None:
+    """The edition's folder is JupyterLab's root: the glossary lies beside the notebooks, which link it there."""
+    stems = sorted(p.stem for p in student_lab.root.glob("[0-9][0-9]_*.ipynb"))
+    assert len(stems) == len(list((REPO / "notebooks").glob("[0-9][0-9]_*.ipynb"))), stems
+    check_glossary_opens(student_page, student_lab, stems, ARTIFACTS / "student" / "glossary")
+    assert not [f for f in offline.failed if "glossary" in f], offline.failed
+    offline.check("the edition's glossary")
 
 
 #: The notebooks of the series that test_student_attempts_and_reads_the_feedback does not open.
