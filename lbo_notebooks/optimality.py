@@ -348,7 +348,7 @@ def worst_case_ratio(
 
 
 def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
-    """The paper's direct argument: a nonzero ``f`` in span(phi_0..phi_n) A-orthogonal to V.
+    """The witness argument (notebook 05, section 6): a nonzero ``f`` in span(phi_0..phi_n) A-orthogonal to V.
 
     V (spanned by the n columns of ``basis``) imposes n linear conditions on the n+1 coefficients
     of ``f = Phi_{n+1} c``, so such an ``f`` exists. Its error is all of it,

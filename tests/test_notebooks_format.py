@@ -269,6 +269,13 @@ def test_header_links_the_glossary(notebook):
         f"{path.name}: link the glossary from the first cell: [glossary](../docs/glossary.md)")
 
 
+def test_eigenfunctions_are_written_as_the_paper_writes_them(notebook):
+    """The paper writes the eigenfunctions \\phi_i; a series that mixes \\phi and \\varphi (issue 40)
+    makes a reader wonder whether they are two things."""
+    path, nb = notebook
+    assert not [i for i, c in enumerate(nb.cells) if "\\varphi" in _source(c)], f"{path.name}: write \\phi, not \\varphi"
+
+
 def test_ends_with_a_three_question_recap(notebook):
     path, nb = notebook
     if path.name.startswith("00_"):

@@ -282,7 +282,7 @@ def test_worst_case_ratio_rejects_bad_input(blob):
         worst_case_ratio(B, W.toarray(), A)
 
 
-# --- the direct argument -----------------------------------------------------------------------------
+# --- the witness argument -----------------------------------------------------------------------------
 @settings(max_examples=10, deadline=None)
 @given(seed=st.integers(0, 2**31 - 1), n=st.integers(1, 60))
 def test_witness_function_proves_the_lower_bound(blob, seed, n):

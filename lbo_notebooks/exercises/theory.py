@@ -418,7 +418,7 @@ RECAP_OPTIMALITY = (
                    "vacuous": right("white noise has a huge Dirichlet energy: fᵀWf / λ_n exceeds ‖f‖²_A, which bounds "
                                     "the error anyway."),
                    "violated": "the bound holds for every function, smooth or not."})),
-    _lenient(pick({"yes": "the direct argument only counts conditions: n of them cannot kill an (n + 1)-dimensional span, "
+    _lenient(pick({"yes": "the witness argument only counts conditions: n of them cannot kill an (n + 1)-dimensional span, "
                           "orthonormal basis or not (section 7 checks a non-orthonormal one).",
                    "no": right("the witness only needs n conditions on an (n + 1)-dimensional span, whatever the n "
                                "functions; section 7 checks a non-orthonormal expansion.")})),
@@ -428,7 +428,7 @@ RECAP_OPTIMALITY = (
 
 def check_recap_optimality(q1: Any, q2: Any, q3: Any, *, show: bool = True) -> Feedback:
     """Recap of notebook 05 (the theorem): (1) which `values[...]` after 10 terms, (2) the bound for white
-    noise, (3) whether the direct argument needs an orthonormal basis."""
+    noise, (3) whether the witness argument needs an orthonormal basis."""
     return recap("05-recap", [q1, q2, q3], list(RECAP_OPTIMALITY), show)
 
 
