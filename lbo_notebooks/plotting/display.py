@@ -12,7 +12,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..mesh import Mesh
 from ..pointcloud import PointCloud
 
-__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "check_scalars", "colour_range", "tidy_label"]
+__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "check_scalars", "colour_range", "tidy_label",
+           "default_colorscale", "DIVERGING", "SEQUENTIAL"]
 
 
 DEFAULT_MAX_FACES = 40_000
@@ -109,6 +110,23 @@ def colour_range(s: NDArray[np.float64] | None, cmin: float | None, cmax: float 
         r = size or 1.0
         return -r, r
     return (lo if cmin is None else cmin), (hi if cmax is None else cmax)
+
+
+#: The default colour scales: diverging (a neutral middle at zero) for a function of both signs or a
+#: range centred on zero, sequential for one of one sign (a distance, a density, a curvature floor),
+#: whose low end is not "zero" and whose middle means nothing.
+DIVERGING, SEQUENTIAL = "RdBu_r", "Viridis"
+
+
+def default_colorscale(lo: float | None, hi: float | None, symmetric: bool) -> str:
+    """The colour scale (a plotly name) for a colour range ``[lo, hi]`` when the caller gives none.
+
+    >>> default_colorscale(-1.0, 2.0, False), default_colorscale(0.0, 5.0, False), default_colorscale(0.0, 5.0, True)
+    ('RdBu_r', 'Viridis', 'RdBu_r')
+    """
+    if symmetric or lo is None or hi is None or (lo < 0 < hi):
+        return DIVERGING
+    return SEQUENTIAL
 
 
 _NEGATIVE_ZERO = re.compile(r"(?<![\w.])-(0(?:\.0*)?)(?![\d.])")

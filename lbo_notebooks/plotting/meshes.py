@@ -23,6 +23,7 @@ from .display import (
     Display,
     check_scalars,
     colour_range,
+    default_colorscale,
     positions,
     tidy_label,
 )
@@ -50,7 +51,7 @@ def plot_mesh(
     scalars: ArrayLike | None = None,
     *,
     title: str | None = None,
-    colorscale: str = "RdBu_r",
+    colorscale: str | None = None,
     cmin: float | None = None,
     cmax: float | None = None,
     symmetric: bool = False,
@@ -70,8 +71,9 @@ def plot_mesh(
     scalars : array_like, shape (n_vertices,) or (n_points,), optional
         A function on the vertices; drawn with smooth (per-vertex) colour interpolation.
     title : str, optional
-    colorscale : str
-        Any plotly colour scale name.
+    colorscale : str, optional
+        Any plotly colour scale name. Default: diverging ``"RdBu_r"`` for a function of both signs
+        (or with ``symmetric``), sequential ``"Viridis"`` for one of one sign (a distance).
     cmin, cmax : float, optional
         Colour range; by default the range of ``scalars`` (or ``[-r, r]`` with ``symmetric``).
         A constant function is drawn in the middle colour.
@@ -113,6 +115,7 @@ def plot_mesh(
     view = View(positions(mesh), up)
     radius = view.radius * (1 + MARGIN)
     top = 40 if title else 10
+    colorscale = colorscale or default_colorscale(lo, hi, symmetric)
     fig = go.Figure(trace(Display(mesh, max_faces), s, colorscale=colorscale, cmin=lo, cmax=hi, view=view,
                            showscale=s is not None, colorbar=dict(len=0.8, thickness=12)))
     scene_width = NOMINAL_WIDTH - (_COLORBAR_PX if s is not None else 0)
@@ -126,7 +129,7 @@ def plot_meshes(
     scalars: Sequence[ArrayLike | None] | None = None,
     titles: Sequence[str] | None = None,
     *,
-    colorscale: str = "RdBu_r",
+    colorscale: str | None = None,
     cmin: float | None = None,
     cmax: float | None = None,
     symmetric: bool = False,
@@ -248,7 +251,8 @@ def plot_meshes(
         colorbar = dict(x=x1, xanchor="left", xref="paper", y=(y0 + scene_top) / 2, yanchor="middle",
                         len=0.8 * (scene_top - y0), lenmode="fraction", thickness=10,
                         tickfont=dict(size=10)) if show else None
-        fig.add_trace(trace(Display(mesh, max_faces), v, colorscale=colorscale, cmin=lo, cmax=hi, showscale=show,
+        fig.add_trace(trace(Display(mesh, max_faces), v, colorscale=colorscale or default_colorscale(lo, hi, symmetric),
+                             cmin=lo, cmax=hi, showscale=show,
                              view=view, scene=name, colorbar=colorbar))
         if wrapped:
             annotations.append(dict(text=wrapped[p], x=(x0 + x1) / 2, y=y1, xref="paper", yref="paper",
@@ -290,12 +294,16 @@ def _view_rotation(view: View) -> NDArray[np.float64]:
     return np.array([view.right, -view.front, view.up])
 
 
+# The default colour scales by their matplotlib names.
+_MATPLOTLIB = {"RdBu_r": "RdBu_r", "Viridis": "viridis"}
+
+
 def plot_mesh_static(
     mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
     *,
     ax: Any = None,
-    cmap: str = "RdBu_r",
+    cmap: str | None = None,
     up: str | ArrayLike = "auto",
     elev: float | None = None,
     azim: float | None = None,
@@ -336,7 +344,7 @@ def plot_mesh_static(
             colours: Any = "#5b7a99"
         else:
             lo, hi = colour_range(s, None, None, symmetric)
-            colours = colormaps[cmap]((d.values(s) - lo) / (hi - lo))
+            colours = colormaps[cmap or _MATPLOTLIB[default_colorscale(lo, hi, symmetric)]]((d.values(s) - lo) / (hi - lo))
         ax.scatter(shown[:, 0], shown[:, 1], shown[:, 2], c=colours, s=6, depthshade=True, linewidths=0)
         return _finish_static(ax, view, elev, azim, title)
     tris = shown[d.faces]
@@ -349,7 +357,7 @@ def plot_mesh_static(
     else:
         face_values = d.values(s)[d.faces].mean(axis=1)
         lo, hi = colour_range(s, None, None, symmetric)
-        colours = colormaps[cmap]((face_values - lo) / (hi - lo))
+        colours = colormaps[cmap or _MATPLOTLIB[default_colorscale(lo, hi, symmetric)]]((face_values - lo) / (hi - lo))
         colours[:, :3] *= shade[:, None]
     ax.add_collection3d(Poly3DCollection(tris, facecolors=colours, edgecolors="none"))
     return _finish_static(ax, view, elev, azim, title)

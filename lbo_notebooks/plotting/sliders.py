@@ -16,6 +16,7 @@ from .display import (
     Display,
     check_scalars,
     colour_range,
+    default_colorscale,
     positions,
     tidy_label,
 )
@@ -55,7 +56,7 @@ class MeshSlider:
     """
 
     def __init__(self, mesh: Mesh | PointCloud, frame: Callable[[Any], Any], values: Sequence[Any], description: str,
-                 *, colorscale: str, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None,
+                 *, colorscale: str | None, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None,
                  up: str | ArrayLike = "auto", start: Any = None) -> None:
         import ipywidgets as widgets
         import plotly.graph_objects as go
@@ -107,12 +108,13 @@ class MeshSlider:
             if arr is not None:
                 s = check_scalars(self.mesh, arr)
                 lo, hi = colour_range(s, None, None, self._symmetric)
+                scale = self._colorscale or default_colorscale(lo, hi, self._symmetric)
                 if self._display.faces is None:  # a point cloud: the markers carry the colours
-                    trace.marker.update(color=self._display.values(s), colorscale=self._colorscale, cmin=lo, cmax=hi,
+                    trace.marker.update(color=self._display.values(s), colorscale=scale, cmin=lo, cmax=hi,
                                         showscale=True)
                 else:
                     trace.intensity, trace.intensitymode = self._display.values(s), "vertex"
-                    trace.colorscale, trace.cmin, trace.cmax, trace.showscale = self._colorscale, lo, hi, True
+                    trace.colorscale, trace.cmin, trace.cmax, trace.showscale = scale, lo, hi, True
             if self._title is not None:
                 self.figure.layout.title = tidy_label(self._title(value))
 
@@ -138,7 +140,7 @@ def mesh_slider(
     values: Sequence[Any],
     description: str = "n",
     *,
-    colorscale: str = "RdBu_r",
+    colorscale: str | None = None,
     symmetric: bool = False,
     max_faces: int = DEFAULT_MAX_FACES,
     height: int = 450,
