@@ -186,7 +186,7 @@ _HIDDEN_TESTS = re.compile(r"^[ \t]*#+\s*BEGIN HIDDEN TESTS.*?^[ \t]*#+\s*END HI
 _SOLUTION_MARKER = re.compile(r"^[ \t]*#+\s*(BEGIN|END) SOLUTION[^\n]*\n?", re.M)
 
 
-_SOLUTION_REGION = re.compile(r"^([ \t]*)#+\s*BEGIN SOLUTION[^\n]*\n.*?^[ \t]*#+\s*END SOLUTION[^\n]*", re.M | re.S)
+_SOLUTION_REGION = re.compile(r"^([ \t]*)#+\s*BEGIN SOLUTION[^\n]*\n.*?^[ \t]*#+\s*END SOLUTION[^\n]*\n?", re.M | re.S)
 
 
 def without_solutions(nb: nbformat.NotebookNode) -> None:
@@ -198,14 +198,14 @@ def without_solutions(nb: nbformat.NotebookNode) -> None:
     >>> nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
     ...     "x = ...\n### BEGIN SOLUTION\nx = 2\n### END SOLUTION", metadata={"nbgrader": {"solution": True}})])
     >>> without_solutions(nb); nb.cells[0].source
-    'x = ...\n# YOUR CODE HERE'
+    'x = ...'
     """
     for cell in nb.cells:
         grader = cell.metadata.get("nbgrader", {})
         if grader.get("solution") and cell.cell_type == "markdown":
             cell.source = "*Your written answer goes here (graded by your lecturer).*"
         elif grader.get("solution"):
-            cell.source = _SOLUTION_REGION.sub(lambda m: m.group(1) + "# YOUR CODE HERE", cell.source)
+            cell.source = _SOLUTION_REGION.sub("", cell.source).rstrip()
             cell.outputs = []
         elif grader.get("grade") and cell.cell_type == "code":
             cell.source = without_hidden_tests(cell.source)

@@ -41,8 +41,9 @@ import tempfile
 
 c = get_config()  # noqa: F821 - provided by nbgrader
 c.CourseDirectory.course_id = "lbo-notebooks"
-# The answer cells keep a stub that runs (not nbgrader's `raise NotImplementedError()`), so that a
-# notebook runs top to bottom unanswered and every check says "not attempted".
+# A solution region leaves nothing behind (not nbgrader's `raise NotImplementedError()`): the `...`
+# before it is the answer cell's one placeholder, the notebook runs top to bottom unanswered and
+# every check says "not attempted".
 c.ClearSolutions.code_stub = {{"python": {stub!r}}}
 c.ClearSolutions.text_stub = "YOUR ANSWER HERE"
 # A notebook runs in well under a minute; a cell (a graded run included) may take up to this long.

@@ -4,9 +4,9 @@ An exercise is three cells, in this order, where the idea is taught:
 
 1. ``prompt``: a Markdown cell, ``**Exercise NN-name** · *kind*`` and the question;
 2. ``answer``: the code cell the student edits, an nbgrader *solution* cell with grade id
-   ``NN-name-answer``. It starts with a placeholder line (``x = ...``) that the student edition
-   keeps, then the instructor's solution between ``### BEGIN SOLUTION`` and ``### END SOLUTION``,
-   which the student edition replaces by a stub;
+   ``NN-name-answer``. It starts with the placeholder the student edition keeps (``x = ...``, or
+   a ``def`` line, its docstring and ``...`` as its body), then the instructor's solution between
+   ``### BEGIN SOLUTION`` and ``### END SOLUTION``, which the student edition removes;
 3. ``check``: a locked nbgrader *grade* cell (grade id ``NN-name-check``, the points of the
    exercise's kind, ``lbo_notebooks.exercises.grading.POINTS``) that calls the check from
    ``lbo_notebooks.exercises``; its hidden test passes the answers, by the prompt's names, to the

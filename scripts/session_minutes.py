@@ -6,6 +6,11 @@ compute 8, a recap 5, a prediction or a choice 3, a written explanation 5. A not
 must state at least this many minutes (``tests/test_notebooks_format.py``); the lecturers' term plan
 takes its minutes from the headers (``scripts/booklet.py --sync-plan``).
 
+A reader studying alone has no lecturer to unblock an exercise or explain a figure: the header's
+self-study time (``about M on your own``) allows half as long again as the estimate, rounded up
+to five minutes, and never less than the class time the header states (``self_study_minutes``).
+The factor is an assumption of the model, not a measurement; the header must state at least it.
+
 Usage::
 
     python scripts/session_minutes.py            # the table: stated, estimated, and its parts
@@ -17,10 +22,13 @@ Examples
 ...                                      nbformat.v4.new_code_cell("x = 1\\ny = 2")])
 >>> estimate(nb)["minutes"]
 2.1
+>>> self_study_minutes(nb)
+5
 """
 
 from __future__ import annotations
 
+import math
 import re
 import sys
 from pathlib import Path
@@ -30,6 +38,7 @@ import nbformat
 ROOT = Path(__file__).resolve().parent.parent
 WORDS_PER_MINUTE = 120
 LINES_PER_MINUTE = 20
+SELF_STUDY_FACTOR = 1.5  # alone: no one to ask (an assumption of the model, see above)
 MINUTES_PER_EXERCISE = {"build": 25, "explore": 10, "compute": 8, "recap": 5, "predict": 3, "choice": 3, "written": 5}
 _FORMULA = re.compile(r"\$\$.+?\$\$|\$[^$\n]+\$", re.DOTALL)
 _HIDDEN = re.compile(r"^[ \t]*#+\s*BEGIN (?:HIDDEN TESTS|SOLUTION).*?^[ \t]*#+\s*END (?:HIDDEN TESTS|SOLUTION)[^\n]*\n?",
@@ -75,16 +84,30 @@ def estimate(nb: nbformat.NotebookNode) -> dict:
     return {"words": words, "lines": lines, "exercises": kinds, "minutes": round(minutes, 1)}
 
 
+def self_study_minutes(nb: nbformat.NotebookNode) -> int:
+    """The self-study time the model gives ``nb``: the estimate times ``SELF_STUDY_FACTOR``, rounded
+    up to a multiple of five minutes, or the class time its header states if that is longer."""
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from booklet import stated_minutes
+
+    try:
+        in_class = stated_minutes(nb)
+    except ValueError:  # no header yet
+        in_class = 0
+    return max(5 * math.ceil(SELF_STUDY_FACTOR * estimate(nb)["minutes"] / 5), in_class)
+
+
 def main() -> None:
     sys.path.insert(0, str(ROOT / "scripts"))
     from booklet import stated_minutes
 
-    print(f"| notebook | stated | estimate | words | code lines | exercises |\n| --- | ---: | ---: | ---: | ---: | --- |")
+    print("| notebook | stated | estimate | on your own | words | code lines | exercises |\n"
+          "| --- | ---: | ---: | ---: | ---: | ---: | --- |")
     for path in sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb")):
         nb = nbformat.read(path, as_version=4)
         est = estimate(nb)
         counts = {k: est["exercises"].count(k) for k in MINUTES_PER_EXERCISE if k in est["exercises"]}
-        print(f"| {path.stem} | {stated_minutes(nb)} | {est['minutes']} | {est['words']} | {est['lines']} | "
+        print(f"| {path.stem} | {stated_minutes(nb)} | {est['minutes']} | {self_study_minutes(nb)} | {est['words']} | {est['lines']} | "
               + ", ".join(f"{n} {k}" for k, n in counts.items()) + " |")
 
 

@@ -16,7 +16,7 @@ The notebooks are never changed (others edit them): each is read, and a copy get
   are fragments; a slide that would grow past :data:`SLIDE_LINES` lines goes on in a sub-slide;
 - skipped: verification cells (tag ``hide-input`` or collapsed in JupyterLab), written model
   answers and rubrics (nbgrader solution cells in Markdown), empty cells;
-- answer cells keep their skeleton with ``# YOUR CODE HERE`` for the solution, check cells lose
+- answer cells keep their skeleton (the ``...`` placeholder) without the solution, check cells lose
   their hidden tests (``### BEGIN HIDDEN TESTS``): the decks are safe to show to a class;
 - a ``slide_type`` the notebook sets itself is kept;
 - no outputs (the notebooks are not executed: code cells are shown as code).
@@ -52,7 +52,7 @@ SLIDE_LINES = 22                    # lines of text a 960 x 700 slide shows at t
 WRAP = 80                           # characters of prose per slide line
 
 _HIDDEN_TESTS = re.compile(r"^[ \t]*#+\s*BEGIN HIDDEN TESTS.*?^[ \t]*#+\s*END HIDDEN TESTS[^\n]*\n?", re.M | re.S)
-_SOLUTION = re.compile(r"^([ \t]*)#+\s*BEGIN SOLUTION[^\n]*\n.*?^[ \t]*#+\s*END SOLUTION[^\n]*", re.M | re.S)
+_SOLUTION = re.compile(r"^([ \t]*)#+\s*BEGIN SOLUTION[^\n]*\n.*?^[ \t]*#+\s*END SOLUTION[^\n]*\n?", re.M | re.S)
 _HEADING = re.compile(r"^(#{1,6})\s")
 _EXERCISE = re.compile(r"^\*\*Exercise \d\d-[\w-]+\*\*")
 
@@ -210,7 +210,7 @@ def slide_cells(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
         if cell.cell_type == "code":
             cell.outputs, cell.execution_count = [], None
             if grader.get("solution"):
-                cell.source = _SOLUTION.sub(lambda m: m.group(1) + "# YOUR CODE HERE", cell.source)
+                cell.source = _SOLUTION.sub("", cell.source).rstrip()
             elif grader.get("grade"):
                 cell.source = _HIDDEN_TESTS.sub("", cell.source).rstrip()
             cells.append(cell)

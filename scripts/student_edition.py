@@ -8,7 +8,8 @@ opens JupyterLab on the edition for self-study.)
 
 The build runs ``nbgrader generate_assignment`` on a throw-away course directory whose source is
 the series in ``notebooks/`` (``00_start_here`` and the notebooks its map lists, as on the static
-site; stray notebooks are left out): solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) become a stub,
+site; stray notebooks are left out): solution regions (``### BEGIN SOLUTION`` ... ``### END SOLUTION``) disappear,
+leaving the ``...`` placeholder before them,
 hidden tests (``### BEGIN HIDDEN TESTS`` ...) disappear, check cells are locked, outputs are
 cleared. Notebooks without exercises pass through unchanged apart from that. Files a notebook
 reads by a relative path outside its folder (``../benchmarks/...``) are copied to the same place
@@ -47,7 +48,9 @@ NOTEBOOKS = ROOT / "notebooks"
 ASSIGNMENT = "series"
 STUDENT = "self-check"
 MIME_TYPE = "application/vnd.lbo-notebooks.feedback+json"  # lbo_notebooks.exercises.MIME_TYPE
-CODE_STUB = "# YOUR CODE HERE\npass"  # not nbgrader's `raise NotImplementedError()`: the edition must run unanswered
+# Nothing in place of a solution: the `...` before it (a value, or a function's body) is the one
+# placeholder a student replaces, and the edition runs unanswered (nbgrader's default stub raises).
+CODE_STUB = ""
 MANIFEST = ".edition.json"  # digests of the notebooks as written, to tell a student's changes
 RELATIVE_FILE = re.compile(r"""\.\./[\w./-]+""")
 

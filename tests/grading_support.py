@@ -104,4 +104,4 @@ def solution_of(notebook: Path, exercise: str) -> str:
 
 def stub_of(notebook: Path, exercise: str) -> str:
     """The answer cell as the student edition hands it out (the solution replaced by the stub)."""
-    return _REGION.sub(r"\1# YOUR CODE HERE\n\1pass", answer_cell(notebook, exercise))
+    return _REGION.sub("", answer_cell(notebook, exercise))

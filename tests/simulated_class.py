@@ -1,8 +1,8 @@
 """Answers of a simulated class of three students, for the graded tests of the 81 exercises.
 
 Each dict maps an answer cell's nbgrader grade id (``"NN-name-answer"``) to the full source a
-student would type into that cell (the student edition's ``# YOUR CODE HERE`` / ``pass`` stub
-replaced, nothing else of the notebook changed). The answers were written from the prompts and
+student would type into that cell (the student edition's ``...``
+placeholder replaced, nothing else of the notebook changed). The answers were written from the prompts and
 the cells above each answer cell only, never from the instructor's solution code; they use the
 names the notebook's earlier cells define (``dog``, ``spectra``, ``W``, ``A``, ...) and define the
 names the prompt asks for, and nothing that depends on the solution's own intermediate names.

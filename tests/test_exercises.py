@@ -402,6 +402,31 @@ def test_exercise_cells_are_valid_nbgrader_cells():
     exec(check.source, namespace)                                   # the instructor edition passes its hidden test
 
 
+def test_every_answer_cell_hands_out_one_placeholder():
+    """nbgrader's own ClearSolutions, configured as the editions and the course configure it, leaves
+    each answer cell with the `...` a student replaces, and nothing else to replace or delete."""
+    import nbformat
+
+    clear = pytest.importorskip("nbgrader.preprocessors").ClearSolutions(
+        code_stub={"python": _script("student_edition").CODE_STUB})
+    answers = 0
+    for path in sorted(NOTEBOOKS.glob("[01][0-9]_*.ipynb")):
+        nb = nbformat.read(path, as_version=4)
+        nb.metadata.setdefault("kernelspec", {"name": "python3", "language": "python"})
+        handed_out, _ = clear.preprocess(nb, {})
+        for cell in handed_out.cells:
+            if cell.cell_type != "code" or not cell.metadata.get("nbgrader", {}).get("solution"):
+                continue
+            answers += 1
+            name = cell.metadata.nbgrader["grade_id"]
+            code = [line.split("#")[0].strip() for line in cell.source.splitlines()]
+            assert "..." in cell.source and "BEGIN SOLUTION" not in cell.source, name
+            assert not {"pass", "raise NotImplementedError()", "raise NotImplementedError"} & set(code), name
+            assert "YOUR CODE HERE" not in cell.source, name
+            compile(cell.source, name, "exec")                       # the edition runs unanswered
+    assert answers >= 80
+
+
 def test_rebuilt_edition_keeps_a_students_work(tmp_path):
     edition = _script("student_edition")
     release, out = tmp_path / "release", tmp_path / "out"
@@ -421,7 +446,7 @@ def test_rebuilt_edition_keeps_a_students_work(tmp_path):
 def test_instructor_answers_are_put_back_by_grade_id(tmp_path):
     edition = _script("student_edition")
     cell = lambda src, gid, **kw: {"cell_type": "code", "source": src, "metadata": {"nbgrader": {"grade_id": gid, **kw}}}  # noqa: E731
-    student = {"cells": [cell("x = ...\n# YOUR CODE HERE\npass", "9-x-answer", solution=True),
+    student = {"cells": [cell("x = ...\n", "9-x-answer", solution=True),
                          cell("feedback = check(x)", "9-x-check", grade=True)]}
     instructor = {"cells": [cell("x = ...\n### BEGIN SOLUTION\nx = 1\n### END SOLUTION", "9-x-answer", solution=True)]}
     (tmp_path / "s.ipynb").write_text(json.dumps(student))

@@ -191,13 +191,15 @@ def test_the_tagging_script_is_idempotent_and_keeps_outputs_visible():
 PROSE_WORD_LIMIT = 1600  # about what a 75–90-minute session can read, discuss and run
 TIME_ESTIMATE = re.compile(r"^\*Time: about (\d+) minutes in class[^*]*\*", re.MULTILINE)
 FORMULA = re.compile(r"\$\$.+?\$\$|\$[^$\n]+\$", re.DOTALL)
+TIME_LINE = re.compile(r"^\*Time: [^*\n]*\*", re.MULTILINE)  # the header's times: read at a glance, not prose
+SELF_STUDY = re.compile(r"^\*Time: about \d+ minutes in class[^*,]*, about (\d+) on your own\*", re.MULTILINE)
 
 
 def prose_words(nb) -> int:
     """Words of the markdown cells a student reads, each ``$…$`` or ``$$…$$`` formula counted as one
     word (a written answer's model answer and rubric are the lecturer's: the student edition has
     *YOUR ANSWER HERE* in their place)."""
-    return sum(len(FORMULA.sub("formula", _source(c)).split()) for c in nb.cells
+    return sum(len(FORMULA.sub("formula", TIME_LINE.sub("", _source(c))).split()) for c in nb.cells
                if c.cell_type == "markdown" and not c.metadata.get("nbgrader", {}).get("solution"))
 
 
@@ -239,6 +241,28 @@ def test_stated_time_is_at_least_the_estimate(notebook):
     assert stated >= est["minutes"], (f"{path.name}: states {stated} minutes, the estimate is {est['minutes']} "
                                       f"({est['words']} words, {est['lines']} code lines, {est['exercises']}); "
                                       "state at least that, or split the notebook")
+
+
+def test_header_gives_a_self_study_time(notebook):
+    """Issue 43: a reader alone learns how long a notebook takes them: at least the model's
+    self-study time (scripts/session_minutes.self_study_minutes), never less than the class time."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "scripts"))
+    from session_minutes import self_study_minutes
+
+    path, nb = notebook
+    found = SELF_STUDY.search(_source(nb.cells[0]))
+    assert found, f"{path.name}: say '*Time: about N minutes in class, about M on your own*' under the title"
+    alone, in_class = int(found.group(1)), int(TIME_ESTIMATE.search(_source(nb.cells[0])).group(1))
+    assert alone >= max(self_study_minutes(nb), in_class), (
+        f"{path.name}: states {alone} minutes on one's own; the model gives {self_study_minutes(nb)}")
+
+
+def test_readme_states_the_series_self_study_total():
+    notebooks = sorted((Path(__file__).resolve().parent.parent / "notebooks").glob("[01][0-9]_*.ipynb"))
+    total = sum(int(SELF_STUDY.search(_source(nbformat.read(p, as_version=4).cells[0])).group(1)) for p in notebooks)
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    stated = re.search(r"studied alone: about (\d+) hours", readme)
+    assert stated and int(stated.group(1)) == round(total / 60), f"README: the series alone is {total / 60:.1f} hours"
 
 
 # --- code cells read without horizontal scrolling (issue 29) --------------------------------------

@@ -377,7 +377,7 @@ def call_attempt(function: Any, *args: Any) -> Any:
     except (Exception, SystemExit) as err:  # the student's bug (even a sys.exit), reported, not raised
         raise Stop(WRONG, f"Your function raised {type(err).__name__}: {err}") from None
     if is_placeholder(value):
-        raise Stop(NOT_ATTEMPTED, "Your function returns nothing: still the stub, or a missing `return`?")
+        raise Stop(NOT_ATTEMPTED, "Your function returns nothing: is its body still `...`, or is a `return` missing?")
     return value
 
 

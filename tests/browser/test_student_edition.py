@@ -15,7 +15,7 @@ each of notebooks 01, 03 and 04 a fresh page
 1. runs every cell (*Run > Run All Cells*), unanswered: no cell errors, every check cell shows
    exactly one feedback line and each says "not attempted";
 2. answers one exercise wrong, as a student would: clicks into its answer cell, replaces the
-   ``...`` placeholder and the stub by typed code, runs it and its check (Shift+Enter twice); the
+   ``...`` placeholder by typed code, runs it and its check (Shift+Enter twice); the
    page must show "wrong" with the hint aimed at that mistake, and no solution;
 3. answers another exercise right the same way: the page must show "✔ correct";
 4. in 03, asks for a solution on purpose (``exercises.solution(...)`` in a new cell): the
