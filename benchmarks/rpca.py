@@ -24,7 +24,8 @@ import scipy.linalg
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes, stiffness_matrix
 from lbo_notebooks.mesh import Mesh
-from lbo_notebooks.rpca import RegularizedPCA, principal_angles
+from lbo_notebooks.inner_product import principal_angles
+from lbo_notebooks.rpca import RegularizedPCA
 
 
 def two_poses(n_vertices: int) -> tuple[Mesh, np.ndarray]:

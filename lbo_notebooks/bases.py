@@ -28,7 +28,6 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import moved, renamed
 from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_operators
 from .mesh import Mesh
@@ -83,7 +82,6 @@ def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np
     return np.asarray(eigenbasis((W, M), k).vectors[:, 1:])
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The first k Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
 
@@ -97,7 +95,6 @@ def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray
     return np.array(eigenbasis(mesh, k, mass_kind=mass_kind).vectors)
 
 
-@renamed({"count": "k"})
 def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
     """Random smooth functions: white noise smoothed twice by an implicit heat step.
 
@@ -167,7 +164,6 @@ def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> 
     return F, ["x", "y", "z", "heat kernel", "geodesic distance", "random 1", "random 2", "random 3"]
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def random_smooth_basis(
     mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", seed: int = 0, width: float = 0.15
 ) -> NDArray[np.float64]:
@@ -198,7 +194,6 @@ def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
     return out
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def pca_basis(
     mesh: Mesh,
     k: int,
@@ -255,7 +250,6 @@ def _umbrella_laplacian(mesh: Mesh) -> sp.csr_matrix:
     return (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the combinatorial graph Laplacian ``L = D - Adj`` (uniform "umbrella" weights).
 
@@ -273,7 +267,6 @@ def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> ND
     return _identity_mass_eigenbasis(mesh, k, mass_kind, _umbrella_laplacian)
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def identity_mass_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the cotangent ``W`` with the identity as mass (``W x = mu x``, no area weights).
 
@@ -303,7 +296,6 @@ def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
     return out
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max_degree: int = 30) -> NDArray[np.float64]:
     """Polynomials in the embedding coordinates x, y, z, by increasing total degree.
 
@@ -341,7 +333,6 @@ def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max
     )
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The eigenbasis of a different metric, A-orthonormalised for the *regular* mass.
 
@@ -379,7 +370,6 @@ def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "v
     return _constant_first(mesh, A, _smallest_eigenvectors(W2, A2, k), k)
 
 
-@renamed({"n": "k", "mass": "mass_kind"})
 def competitor_bases(
     mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", seed: int = 0, metric: Metric | None = None
 ) -> dict[str, NDArray[np.float64]]:
@@ -402,7 +392,3 @@ def competitor_bases(
     if metric is not None:
         bases["other metric"] = metric_basis(mesh, k, metric, mass_kind=mass_kind)
     return bases
-
-
-# Old spelling: eigen_basis (an array) read too much like eigenbasis (a Spectrum).
-__getattr__ = moved(__name__, {"eigen_basis": "lbo_notebooks.bases:lbo_basis"})

@@ -47,7 +47,6 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._deprecation import moved, renamed
 from ._validation import check_number
 from .mesh import Mesh, per_mesh
 from .operators import MassKind, check_mass_kind, corner_angles, mass_matrix
@@ -264,7 +263,6 @@ def conformal_factor(
     raise ValueError(f"where must be 'vertex' or 'face', got {where!r}.")
 
 
-@renamed({"kind": "mass_kind"})
 def metric_mass_matrix(
     mesh: Mesh,
     alpha: float,
@@ -320,7 +318,3 @@ def metric_mass_matrix(
         return A
     scale = conformal_factor(mesh, alpha, floor=floor, where="vertex")
     return sp.diags(base.diagonal() * scale).tocsr()
-
-
-# Old spelling: the exact-curvature torus is a test shape and lives with the shapes.
-__getattr__ = moved(__name__, {"jittered_torus": "lbo_notebooks.shapes:jittered_torus"})

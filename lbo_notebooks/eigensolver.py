@@ -25,7 +25,6 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._deprecation import moved
 from ._platform import default_workers, return_freed_memory
 from ._validation import check_integer, check_number
 from .blas_threads import one_blas_thread
@@ -516,8 +515,3 @@ class _Stitcher:
         )
         window = (here.window.low, here.window.high)
         return _window_set(self.pencil, self.pencil.factor(here.shift), window, here.window.expected, BLOCK_SIZE * 2**attempt)
-
-
-# Old spelling: the inertia count belongs to the factorisation (sparse_factor). (SliceFactor and
-# plan_sets, which this module uses, stay readable here; their homes are sparse_factor and slicing.)
-__getattr__ = moved(__name__, {"count_below": "lbo_notebooks.sparse_factor:count_below"})

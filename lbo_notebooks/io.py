@@ -30,7 +30,7 @@ from typing import Union
 import numpy as np
 from numpy.typing import NDArray
 
-from ._deprecation import moved, warn
+from ._warnings import warn
 from .formats import (
     BINARY_FORMATS, FORMATS, POINT_FORMATS, RawMesh, mesh_text, read_point_text, read_raw, write_mesh_binary,
 )
@@ -326,8 +326,3 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
         return PointCloud(points)
     except MeshError as exc:
         raise MeshError(f"{str(p)!r}: {exc}") from None
-
-
-# Old spellings: repair has one home, lbo_notebooks.repair. (FORMATS and POINT_FORMATS, which io
-# reads, stay readable here; their home is lbo_notebooks.formats.)
-__getattr__ = moved(__name__, {name: f"lbo_notebooks.repair:{name}" for name in ("clean_mesh", "CleanReport")})

@@ -23,8 +23,8 @@ from typing import Any
 
 import scipy.sparse as sp
 
-from ._deprecation import warn
 from ._validation import check_number
+from ._warnings import warn
 from .mesh import Mesh, MeshError, check_coordinate_range
 from .operators import check_mass_kind, mass_matrix, stiffness_matrix
 from .pointcloud import PointCloud

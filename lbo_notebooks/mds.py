@@ -35,10 +35,8 @@ import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
 from ._validation import check_integer
-from ._deprecation import moved, renamed
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from .blas_threads import one_blas_thread
-from .embedding_error import gram_error, procrustes_error  # noqa: F401  old spellings mds.gram_error, ... (home: embedding_error)
 from .geodesics import (
     GeodesicMethod,
     check_connected,
@@ -67,28 +65,21 @@ __all__ = [
 #: Defaults of :func:`spectral_mds` (``n_samples`` and ``k`` are capped at the number of
 #: vertices). The rule: fixed counts, independent of the area and the units (mu is dimensionless,
 #: :func:`scale_mu`), with more sampled fields than eigenfunctions (q = 1.5 k). The error depends on
-#: the shape's geometry more than on its resolution, but it does grow slowly with n (a walking dog:
-#: 0.47% at 3k vertices, 0.69% at 12k, 0.79% at 23k; ``--growth``); above about 25k vertices no
-#: reference can be computed here (classical MDS needs two n x n matrices), so the 1% bound at 50k
-#: rests on that trend (about +0.11% per doubling of n: some 0.9% at 50k for that dog). With ``sampled="fields"`` the embedding is not confined to
-#: the span of the eigenfunctions, so 200 of them do better than 300 with projected rows: on the
-#: tuning shapes (``benchmarks/mds.py --smds-tuning``: two creature poses, a dog with long legs and
-#: tail, a bumpy sphere, a thin torus) the Gram error against classical MDS was at most 0.6% where
-#: the previous default (projected rows, k = q = 300) reached 0.9%; with q <= k the interpolation
-#: of the columns is underdetermined and depends on mu, with q = 1.5 k mu in 0.01-0.2 changes it by
-#: under 5%. Validated on twelve other shapes (creatures at other sizes, poses and proportions, a
-#: horse with holes, genus 1 and 2, two open sheets): at most 0.69% (``benchmarks/mds.py
-#: --validation``, recorded in ``lbo_notebooks/recorded/mds.json``). k = 200 also takes 51k vertices
-#: end to end with 0.72 of the previous defaults' CPU time (``--speed``, recorded median; about 7.5 s
-#: on a quiet machine, estimated from that ratio and the previous 10.5 s).
+#: the shape's geometry more than on its resolution, but it does grow slowly with n; above about 25k
+#: vertices no reference can be computed here (classical MDS needs two n x n matrices), so the 1%
+#: bound at 50k rests on that trend. With ``sampled="fields"`` the embedding is not confined to the
+#: span of the eigenfunctions, so 200 of them do better on the tuning shapes than 300 with projected
+#: rows (the previous default, k = q = 300); with q <= k the interpolation of the columns is
+#: underdetermined and depends on mu, with q = 1.5 k it hardly does. Shapes that chose nothing
+#: confirm the bound (recorded in ``lbo_notebooks/recorded/mds.json``), and k = 200 also costs less
+#: CPU time than the previous defaults.
 SMDS_DEFAULTS: dict[str, Any] = {"energy": "biharmonic", "k": 200, "n_samples": 300, "mu": 0.05, "sampled": "fields"}
 
 #: Lanczos tolerance of the eigenbasis :func:`spectral_mds` computes itself. The embedding only
 #: needs the span of the eigenfunctions and eigenvalues good to a few digits (they weigh the
 #: smoothness term): with 1e-6 the eigenvalues still agree with a 1e-10 basis to 1e-14 and the
-#: embedding to 1e-11 (an 8k-vertex dog, k = 200; no further gain in time at 1e-4). At 51k
-#: vertices the eigenbasis then took 11.1 s of CPU instead of 12.2 s at k = 300, and 7.2 s at the
-#: default k = 200 (one run each on a loaded machine, so only roughly).
+#: embedding to 1e-11 (an 8k-vertex dog, k = 200; no further gain in time at 1e-4), and the
+#: eigenbasis costs less CPU time than at the default tolerance.
 SMDS_EIGEN_TOL = 1e-6
 
 #: How :func:`spectral_mds` uses the samples' squared-distance rows ``F = D2[S, :]`` (q x n):
@@ -346,7 +337,6 @@ def _scaling_with_fields(
     return phi @ y[:k] + fields.T @ y[k:], G
 
 
-@renamed({"n_eigs": "k"}, keyword_only=("n_samples", "k", "mu", "method"), n_positional=2)
 def spectral_mds(
     mesh: Mesh,
     dim: int = 3,
@@ -410,8 +400,8 @@ def spectral_mds(
         Geodesic method for the sample distances (passed to the geodesic solver).
     energy : {"biharmonic", "dirichlet"}, default "biharmonic"
         Smoothness term of the interpolation: ``sum_i lam_i^2 c_i^2`` (the paper's) or
-        ``sum_i lam_i c_i^2``. On 3.5-5k-vertex meshes biharmonic was, each at its best ``mu``, as
-        accurate or better, and far less sensitive to ``mu`` (``benchmarks/mds.py --energies``).
+        ``sum_i lam_i c_i^2``. Each at its best ``mu``, biharmonic was as accurate or
+        better, and far less sensitive to ``mu``.
     sampled : {"fields", "rows", "pairs"}, default "fields"
         What is kept of the samples' distance fields (see step 3).
     spectrum : Spectrum, optional
@@ -462,7 +452,7 @@ def spectral_mds(
 
     # One BLAS thread throughout (unless the user chose the count): the eigensolver and the heat
     # method limit themselves anyway, and OpenBLAS threads spinning against another program made
-    # the embedding's products 10-20x slower (0.2-0.5 s -> 3.9-7.3 s at 25k vertices; benchmarks/busy.py).
+    # the embedding's products many times slower.
     with one_blas_thread(), progress_bar(3, "spectral MDS", progress, long=n >= LARGE_MESH) as bar:
         # 1. eigenbasis
         bar.set_postfix_str("eigenbasis", refresh=True)
@@ -543,9 +533,3 @@ def spectral_mds(
         "timings": {"eigenbasis": t1 - t0, "sampling": t2 - t1, "embedding": t3 - t2, "total": t3 - t0},
     }
     return X, details
-
-
-# fast classical scaling has its own module; the old spellings resolve lazily, with a warning (an
-# import here would put fast_scaling, and the geodesics under it, one level under mds).
-__getattr__ = moved(__name__, {"fast_classical_scaling": "lbo_notebooks.fast_scaling:fast_classical_scaling",
-                               "FCS_DEFAULTS": "lbo_notebooks.fast_scaling:FCS_DEFAULTS"})

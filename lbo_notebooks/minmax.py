@@ -26,7 +26,6 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import moved, renamed
 from ._validation import check_integer
 from .inner_product import (
     a_orthonormalize,
@@ -230,7 +229,6 @@ def min_rayleigh_quotient(
     return ConstrainedRayleigh(W, A).minimum(orthogonal_to, return_vector=return_vector)
 
 
-@renamed({"codim": "k"})
 def random_subspace(
     n_vertices: int, k: int, *, seed: int = 0, pool: ArrayLike | None = None
 ) -> NDArray[np.float64]:
@@ -270,7 +268,6 @@ def random_subspace(
     return P @ rng.normal(size=(P.shape[1], int(k)))
 
 
-@renamed({"n": "k"})
 def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     """Constraints of the optimal codimension-k subspace: the first k eigenvectors.
 
@@ -311,11 +308,3 @@ def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix
     True
     """
     return 1.0 / min_rayleigh_quotient(stiffness, mass, orthogonal_to=basis)
-
-
-# Old spellings: the 3-D figure and its slider moved to plotting (no plotly code in this module), the
-# 3 x 3 plane that the figure draws to the teaching helpers (not a library algorithm).
-__getattr__ = moved(__name__, {
-    **{name: f"lbo_notebooks.plotting:{name}" for name in ("rayleigh_sphere_figure", "plane_slider", "PlaneSlider")},
-    **{name: f"lbo_notebooks.teaching:{name}" for name in ("plane_normal", "symmetric_3x3", "plane_circle")},
-})

@@ -13,7 +13,6 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._deprecation import renamed
 from .mesh import Mesh, per_mesh
 
 __all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "check_mass_kind"]
@@ -150,7 +149,6 @@ def check_mass_kind(mass_kind: Any) -> str:
     return mass_kind
 
 
-@renamed({"kind": "mass_kind"})
 def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
 

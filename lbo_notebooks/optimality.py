@@ -26,7 +26,6 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import moved, renamed
 from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
 from .solver_policy import start_vector, use_dense
@@ -100,7 +99,6 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     return float(out) if arr.ndim == 1 else np.asarray(out)
 
 
-@renamed({"n": "k"})
 def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
     """Squared A-norm error ``||f - Phi_k Phi_k.T A f||_A^2`` of the k-term eigen-expansion.
 
@@ -130,7 +128,6 @@ def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np
     return err**2 if isinstance(err, float) else np.asarray(err) ** 2
 
 
-@renamed({"n": "k"})
 def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
     """The theorem's bound ``(f @ W @ f) / lam[k]`` on :func:`representation_error`.
 
@@ -257,7 +254,6 @@ def worst_case_ratio(
 def worst_case_ratio(
     basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[True]
 ) -> tuple[float, NDArray[np.float64]]: ...
-@renamed({"return_function": "return_vector"})
 def worst_case_ratio(
     basis: ArrayLike,
     stiffness: sp.spmatrix,
@@ -379,7 +375,3 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c
     return fix_signs(f / np.sqrt(float(f @ (spectrum.mass @ f))), spectrum.mass)
-
-
-# Old spelling: complement_ratio belongs with min-max (lbo_notebooks.minmax).
-__getattr__ = moved(__name__, {"complement_ratio": "lbo_notebooks.minmax:complement_ratio"})

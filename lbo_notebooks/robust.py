@@ -33,7 +33,6 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._deprecation import moved
 from ._validation import check_integer, is_integer
 from .mesh import Mesh, MeshError
 from .pointcloud import PointCloud
@@ -290,7 +289,3 @@ def _as_pair(L: sp.spmatrix, M: sp.spmatrix) -> tuple[sp.csr_matrix, sp.csr_matr
             "coincide or belong to no face. Weld or drop them (lbo.clean_mesh, or PointCloud without duplicates)."
         )
     return W, A
-
-
-# Old spelling: the choice of operators for an input has one owner, lbo_notebooks.laplacians.
-__getattr__ = moved(__name__, {"select_operators": "lbo_notebooks.laplacians:select_operators"})

@@ -26,13 +26,12 @@ single shift-invert Lanczos run cannot resolve both ends. :class:`RegularizedPCA
 
 Cost: one sparse factorisation of ``W + t0 A``, one per data eigenvalue above the split (at most
 c, the number of data columns), and a Lanczos run as long as :func:`~lbo_notebooks.eigenbasis`'s;
-memory O(n (k + c)). Measured (``benchmarks/rpca.py``, 20,000 vertices, k = 100, one BLAS thread):
-about 4.3 s of CPU against 3.7 s for the eigenbasis alone.
+memory O(n (k + c)). In CPU time a solve costs a little more than the eigenbasis alone.
 
 Threads: the sparse path's time goes to sparse solves and Lanczos' level-2 products. On an idle
-machine BLAS threads make the latter faster (25,000 vertices, k = 100: 4.1 s instead of 4.8 s),
-but OpenBLAS threads spin while they wait for a core, and beside one busy program the same call
-took 7.3 s, on a loaded machine up to 7x its time (``benchmarks/busy.py``). So on meshes of
+machine BLAS threads make the latter somewhat faster, but OpenBLAS threads spin while they wait
+for a core: beside one busy program the same call is slower than on one thread, and on a loaded
+machine several times slower. So on meshes of
 10,000 vertices or more the solver looks whether the machine's other cores are idle
 (:func:`~lbo_notebooks.idle_cores.machine_is_idle`, 50 ms) and otherwise, as always on smaller
 meshes, runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count the user set is kept).
@@ -64,18 +63,14 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from ._validation import check_integer
-from ._deprecation import renamed, warn
 from ._progress import LARGE_MESH, check_progress, progress_bar
+from ._validation import check_integer
 from .blas_threads import one_blas_thread
 from .idle_cores import machine_is_idle
 from .inner_product import (
     a_orthonormalize,
     check_operators,
     fix_signs,
-    principal_angles,  # noqa: F401  old spelling rpca.principal_angles (home: inner_product)
-    reconstruct,  # noqa: F401  old spelling (home: inner_product)
-    reconstruction_error,  # noqa: F401  old spelling (home: inner_product)
 )
 from .rpca_pencil import complement_lanczos, data_eigenpairs, rayleigh_ritz
 from .solver_policy import default_shift, use_dense
@@ -184,12 +179,6 @@ class RPCAResult:
         """Number of basis functions."""
         return int(self.basis.shape[1])
 
-    @property
-    def m(self) -> int:
-        """Deprecated spelling of :attr:`k`."""
-        warn("RPCAResult.m is deprecated: use RPCAResult.k instead.")
-        return self.k
-
     def __repr__(self) -> str:
         return f"RPCAResult(k={self.k}, mu={self.mu:.4g}, n_data={self.n_data})"
 
@@ -254,17 +243,14 @@ class RegularizedPCA:
         """``s_B``: the largest eigenvalue of ``(A X X.T A, A)``, i.e. of ``X.T A X``."""
         return float(max(self.data_values[0], 0.0))
 
-    @renamed({"m": "k"})
     def reference_eigenvalue(self, k: int) -> float:
         """Weyl's estimate ``4 pi k / area`` of the k-th Laplace–Beltrami eigenvalue."""
         return 4.0 * np.pi * _check_k(k, self.n_vertices) / self.area
 
-    @renamed({"m": "k"})
     def mu_from_beta(self, beta: float, k: int) -> float:
         """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
         return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(k))
 
-    @renamed({"m": "k"})
     def beta_from_mu(self, mu: float, k: int) -> float:
         """Inverse of :meth:`mu_from_beta`."""
         mu = _check_mu(mu)
@@ -276,7 +262,6 @@ class RegularizedPCA:
         return r / (1.0 + r)
 
     # ---- solving ----
-    @renamed({"m": "k"})
     def solve(self, k: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
         """The regularized PCA basis of size ``k`` for weight ``mu`` (or dimensionless ``beta``).
 
@@ -395,7 +380,6 @@ class RegularizedPCA:
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
         return RPCAResult(basis=fix_signs(ritz, A), values=values, mu=mu, n_data=n_data)
 
-    @renamed({"m": "k"})
     def sweep(
         self,
         k: int,
@@ -423,7 +407,6 @@ class RegularizedPCA:
 
 
 # --- functional interface ----------------------------------------------------------------------
-@renamed({"m": "k"})
 def regularized_pca(
     data: ArrayLike,
     stiffness: sp.spmatrix,
@@ -480,7 +463,6 @@ def regularized_pca(
     return (basis, np.array(result.values)) if return_values else basis
 
 
-@renamed({"m": "k"})
 def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
 
@@ -509,7 +491,6 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, cen
     return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_k(k, A.shape[0]) / float(A.sum()))
 
 
-@renamed({"m": "k"})
 def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Inverse of :func:`mu_from_beta`."""
     mu = _check_mu(mu)

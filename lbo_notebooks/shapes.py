@@ -1,8 +1,7 @@
 """Procedural surfaces generated in code: the package's embedded, network-free data.
 
 Every function here is deterministic and returns a validated :class:`~lbo_notebooks.Mesh`.
-The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures`
-(``shapes.creature`` and ``shapes.creature_poses`` still work for one release, with a warning).
+The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures`.
 """
 
 from __future__ import annotations
@@ -12,19 +11,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ._deprecation import moved
 from ._validation import check_integer
 from .mesh import Mesh
 
 __all__ = ["icosphere", "ellipsoid", "torus", "jittered_torus", "rectangle", "disk", "bumpy_sphere", "scan_like"]
-
-# Old spellings: the creatures were re-exported here; they live in lbo_notebooks.creatures (and
-# pose_distortion, a measurement, in lbo_notebooks.distortion).
-__getattr__ = moved(__name__, {
-    **{name: f"lbo_notebooks.creatures:{name}"
-       for name in ("creature", "creature_poses", "creature_parts", "SPECIES", "POSES", "JOINTS", "PARTS")},
-    "pose_distortion": "lbo_notebooks.distortion:pose_distortion",
-})
 
 
 def _check_int(name: str, value: Any, low: int, high: int | None = None) -> int:

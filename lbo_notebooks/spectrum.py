@@ -17,9 +17,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from ._deprecation import moved, renamed, warn
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from ._validation import check_integer, check_number
+from ._warnings import warn
 from .inner_product import (
     a_orthonormalize,
     check_functions,
@@ -42,15 +42,9 @@ Operators = tuple[sp.spmatrix, sp.spmatrix]
 def _is_long(n: int, k: int) -> bool:
     """Whether ``eigenbasis`` of ``k`` pairs on ``n`` vertices takes more than about two seconds (a bar by default).
 
-    Measured: ``eigenbasis(mesh, k)`` timed with ``time.perf_counter`` (operators included, one
-    BLAS thread, two shared cores, after a warm-up call) on ``shapes.bumpy_sphere(5)`` (10k
-    vertices): 0.3 s at k = 20, 0.7 s at k = 100, 2.1 s at k = 300; ``torus(n_major=125,
-    n_minor=80)`` (10k): 0.9 s at k = 200; ``torus(n_major=250, n_minor=100)`` (25k): 1.0 s at
-    k = 20 and at k = 100, 2.8 s at k = 120; ``bumpy_sphere(6)`` (41k): 1.8 s at k = 20, 3.7 s
-    at k = 60; ``torus(n_major=400, n_minor=125)`` (50k): 2.7 s at k = 20, 3.6 s at k = 100,
-    10 s at k = 300. The Lanczos sets cost about 7e-7 s per vertex and pair, and from 40k
-    vertices even a small k takes about 2 s (the factorisation grows faster than ``n``): a bar
-    from 40,000 vertices, or from 10,000 when ``n k >= 3e6`` (10k at k >= 300, 25k at k >= 120).
+    The Lanczos sets cost in proportion to ``n k``, and the factorisation grows faster than ``n``,
+    so from 40k vertices even a small ``k`` takes about that long: a bar from 40,000 vertices, or
+    from 10,000 when ``n k >= 3e6`` (10k at k >= 300, 25k at k >= 120).
     """
     return n >= LARGE_MESH and (n >= 4 * LARGE_MESH or n * k >= 3_000_000)
 
@@ -113,7 +107,6 @@ class Spectrum:
             raise ValueError(f"k must be between 0 and k={self.k} (the eigenpairs computed), got {k}.")
         return int(k)
 
-    @renamed({"n": "k"})
     def project(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """Coefficients ``Phi_n.T @ (A @ f)`` of ``f`` in the first ``k`` eigenfunctions.
 
@@ -123,13 +116,11 @@ class Spectrum:
         k = self._check_n(k)
         return self.vectors[:, :k].T @ (self.mass @ arr)
 
-    @renamed({"n": "k"})
     def reconstruct(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """The A-orthogonal projection of ``f`` onto the span of the first ``k`` eigenfunctions."""
         k = self._check_n(k)
         return self.vectors[:, :k] @ self.project(f, k)
 
-    @renamed({"n": "k"})
     def error(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64] | float:
         """A-norm of ``f - reconstruct(f, k)``: a float for 1-D ``f``, an array per column for 2-D."""
         arr = self._check_f(f)
@@ -139,7 +130,6 @@ class Spectrum:
         return float(out) if arr.ndim == 1 else out
 
 
-@renamed({"mass": "mass_kind"})
 def eigenbasis(
     mesh: Union[Mesh, Operators],
     k: int,
@@ -216,9 +206,8 @@ def eigenbasis(
         Convergence tolerance of the Lanczos runs: each pair's residual in the shift-inverted
         problem, relative to its eigenvalue there. Default: slicing's ``1e-10``, ARPACK's machine
         precision. Eigenvalues converge as its square, and the basis is A-orthonormalised to
-        round-off either way; a looser ``1e-8`` is faster at large ``k`` (at 51k vertices and
-        ``k = 300``, 15-20%) and still gives the eigenvalues to about 1e-14 and the span of all
-        but the last few eigenvectors to round-off (:func:`spectral_mds` asks for ``1e-6``).
+        round-off either way; a looser ``1e-8`` is faster at large ``k`` and still gives the
+        eigenvalues to about 1e-14 and the span of all but the last few eigenvectors to round-off (:func:`spectral_mds` asks for ``1e-6``).
     progress : bool or None, default None
         A progress bar over the ``k`` eigenpairs, with the stage it is in (ordering, Lanczos sets
         or ARPACK, orthonormalising). Spectrum slicing advances it as each Lanczos set finishes
@@ -414,7 +403,3 @@ def _arpack_is_complete(
     except ValueError:  # the point is an eigenvalue (or the pivots are off the diagonal): no proof
         return False
     return count == int(np.count_nonzero(values < point))
-
-
-# Old spelling: fix_signs belongs to the A-inner-product algebra (lbo_notebooks.inner_product).
-__getattr__ = moved(__name__, {"fix_signs": "lbo_notebooks.inner_product:fix_signs"})

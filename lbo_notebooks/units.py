@@ -33,7 +33,6 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._deprecation import moved
 from .mesh import USABLE_SIZE_RANGE, box_diagonal
 
 __all__ = ["USABLE_DIAGONAL", "length_exponent", "unit_area_exponent"]
@@ -79,7 +78,3 @@ def unit_area_exponent(mass_entries: ArrayLike) -> int:
             "definite (check the mesh for degenerate faces, or rescale coordinates that underflow)."
         )
     return int(np.round((np.log2(peak) + np.log2(total)) / 2.0))
-
-
-# Old spelling: the range check lives in lbo_notebooks.mesh, beside the range it enforces.
-__getattr__ = moved(__name__, {"check_coordinate_range": "lbo_notebooks.mesh:check_coordinate_range"})

@@ -3,8 +3,7 @@
 
 Reads the source with ``ast`` (nothing is imported, so it runs anywhere in milliseconds). Every
 relative import counts, at module level or inside a function (a lazy import is still a
-dependency). A deprecation shim (``_deprecation.moved``) resolves its old spelling by a string at
-attribute access and is not an import. The rules:
+dependency). The rules:
 
 * no cycle between modules (``a`` imports ``b`` imports ... ``a``);
 * every module sits in one of the :data:`LAYERS` below, and imports only from its own layer or
@@ -31,9 +30,9 @@ from pathlib import Path
 #: The house, bottom to top: (layer, what it holds, module patterns). A module may import from its
 #: own layer and from the layers under it, never from a layer above.
 LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
-    ("support", "tools every layer uses: deprecation shims, argument checks, optional open3d, progress bars, "
+    ("support", "tools every layer uses: warnings, argument checks, optional open3d, progress bars, "
      "BLAS threads and platform details, cost measurement",
-     ("_deprecation", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "idle_cores", "cost")),
+     ("_warnings", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "idle_cores", "cost")),
     ("data", "the mesh and point cloud, units, files in and out, repair",
      ("mesh", "units", "io", "formats", "formats.*", "repair", "pointcloud")),
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",

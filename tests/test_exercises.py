@@ -1340,7 +1340,7 @@ def _scaling(phi, alpha, dim, *, centre=True, factor=-0.5, power=0.5, smallest=F
 
 def test_small_scaling_reference_and_library(rows_embedding):
     phi, alpha, X = rows_embedding
-    from lbo_notebooks.mds import gram_error
+    from lbo_notebooks.embedding_error import gram_error
 
     assert gram_error(_scaling(phi, alpha, 3), X) < 1e-8    # the k x k route is the library's embedding
     _status(ex.check_small_scaling(_solution_function("09-scaling", "my_scaling"), phi, alpha, X, show=False), CORRECT, "k × k")
@@ -1396,7 +1396,7 @@ def test_classical_memory():
 
 
 def test_gram_2d(rows_embedding):
-    from lbo_notebooks.mds import gram_error, procrustes_error
+    from lbo_notebooks.embedding_error import gram_error, procrustes_error
 
     phi, alpha, X = rows_embedding
     rng = np.random.default_rng(1)
@@ -1476,7 +1476,7 @@ def test_recap_07_cost():
 
 def test_messages_of_07_never_give_the_answer(rows_embedding):
     phi, alpha, X = rows_embedding
-    from lbo_notebooks.mds import gram_error
+    from lbo_notebooks.embedding_error import gram_error
 
     Z = X + 0.05 * np.abs(X).max() * np.random.default_rng(2).normal(size=X.shape)
     cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
@@ -1493,7 +1493,7 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
 def test_values_of_07_copied_from_a_printout():
     """A value right to the digits it shows but coarser than the tolerance is asked for digits, not
     for another method; one rounded to enough digits is right (10-two-d is judged within 1%)."""
-    from lbo_notebooks.mds import gram_error
+    from lbo_notebooks.embedding_error import gram_error
 
     rng = np.random.default_rng(5)
     X = rng.normal(size=(60, 3)) * [3.0, 2.0, 1.0]

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, classical_mds, farthest_point_sampling, fast_classical_scaling, gram_error, shapes
-from lbo_notebooks.mds import procrustes_error
+from lbo_notebooks.embedding_error import procrustes_error
 
 
 @pytest.fixture(scope="module")

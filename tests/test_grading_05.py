@@ -143,7 +143,6 @@ LIBRARY_PROJECTIONS = {
     "a wrapper": "def helper(s, f, n):\n    return s.reconstruct(f, n)\n\ndef my_project(s, f, n):\n    return helper(s, f, n)",
     "inner_product.reconstruct": ("from lbo_notebooks.inner_product import reconstruct\n\n"
                                   "def my_project(s, f, n):\n    return reconstruct(s.vectors[:, :n], s.mass, f)"),
-    "rpca's re-export": "def my_project(s, f, n):\n    return lbo.rpca.reconstruct(s.vectors[:, :n], s.mass, f)",
     "the error, caught": ("def my_project(s, f, n):\n    try:\n        s.error(f, n)\n    except Exception:\n        pass\n"
                           "    P = s.vectors[:, :n]\n    return P @ (P.T @ (s.mass @ f))"),
     "krylov": ("from lbo_notebooks import krylov\n\ndef my_project(s, f, n):\n    y = np.array(f, dtype=float)[:, None]\n"

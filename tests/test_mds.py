@@ -12,11 +12,10 @@ from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
 from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
 from lbo_notebooks.cost import growth_exponent, least_cost, measure_cost
 from lbo_notebooks.shape_distribution import shape_distribution, shape_distribution_distances
+from lbo_notebooks.embedding_error import gram_error, procrustes_error
 from lbo_notebooks.mds import (
     classical_mds,
-    gram_error,
     landmark_mds,
-    procrustes_error,
     SMDS_DEFAULTS,
     scale_mu,
     spectral_mds,

@@ -53,7 +53,7 @@ def _declared_names() -> dict[str, list[str]]:
 
 
 def test_no_public_name_has_two_homes():
-    """Issue 27: one ``__all__`` per public name; old spellings are deprecation shims, outside ``__all__``.
+    """Issue 27: one ``__all__`` per public name.
 
     A subpackage's ``__init__`` presenting the names of its own modules (``plotting``,
     ``exercises``) is its front door, not a second home; the top-level ``lbo_notebooks``

@@ -13,13 +13,11 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes, stiffness_matrix
+from lbo_notebooks.inner_product import principal_angles, reconstruct, reconstruction_error
 from lbo_notebooks.rpca import (
     RegularizedPCA,
     beta_from_mu,
     mu_from_beta,
-    principal_angles,
-    reconstruct,
-    reconstruction_error,
     regularized_pca,
 )
 

@@ -28,7 +28,6 @@ from typing import Any, Mapping
 import numpy as np
 from numpy.typing import NDArray
 
-from .._deprecation import moved
 from .._validation import check_integer
 from ..mesh import Mesh
 from .rig import JOINT_ORDER, deform, rotation_vector, template_for
@@ -228,7 +227,3 @@ def joint_bands(species: str = "dog", n_vertices: int = 10_000) -> NDArray[np.bo
     mask = np.any((w > 0.0) & (w < 1.0), axis=0)
     mask.setflags(write=False)
     return mask
-
-
-# Old spellings: how far a pose is from an isometry is a measurement, in lbo_notebooks.distortion.
-__getattr__ = moved(__name__, {name: f"lbo_notebooks.distortion:{name}" for name in ("pose_distortion", "vertex_strain")})

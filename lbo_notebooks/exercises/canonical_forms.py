@@ -292,7 +292,7 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
     >>> check_small_scaling(mine, phi, alpha, mine(phi, alpha, 3), show=False).correct
     True
     """
-    from ..mds import gram_error
+    from ..embedding_error import gram_error
 
     def body() -> str:
         phi_, alpha_ = np.asarray(phi, dtype=np.float64), np.asarray(alpha, dtype=np.float64)
@@ -356,7 +356,7 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
     (the typical slips are 8% and more away on the notebook's dog); a value copied from a printout
     that is right to its digits but coarser than that is asked for more digits.
     """
-    from ..mds import gram_error, procrustes_error
+    from ..embedding_error import gram_error, procrustes_error
 
     def body() -> str:
         require_attempt(value)

@@ -22,8 +22,7 @@ _PROJECTION = ("lbo_notebooks.spectrum:Spectrum.project", "lbo_notebooks.spectru
 
 
 def notebook_dog() -> Any:
-    """The notebook's dog (``shapes.creature("dog", n_vertices=2000)``, whose new home is
-    ``creatures.creature``), rebuilt: never the kernel's."""
+    """The notebook's dog (``creatures.creature("dog", n_vertices=2000)``), rebuilt: never the kernel's."""
     from ...creatures import creature
 
     return creature("dog", n_vertices=2000)
