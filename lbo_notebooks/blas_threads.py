@@ -2,7 +2,7 @@
 
 The eigensolver's slices and the heat method's blocks run in two threads, each calling BLAS;
 two threads each running a multi-threaded BLAS compete for the same cores and were no faster
-than one (``benchmarks/geodesics.py``). So while they run, BLAS gets one thread.
+than one. So while they run, BLAS gets one thread.
 
 That count is *process-wide* (OpenBLAS with pthreads keeps one pool for the whole process), so a
 ``threadpool_limits`` per call is wrong as soon as calls overlap: each call records the count it

@@ -3,7 +3,7 @@
 Two ways, for two questions. In the same process (:func:`measure_cost`, :func:`least_cost`): CPU
 time and the peak of NumPy and Python allocations, cheap enough for a notebook. In a fresh process
 (:func:`measure_in_fresh_process`, :func:`least_wall_time`): wall time and the growth of the whole
-process's peak memory (RSS, compiled libraries included), what the benchmarks (``benchmarks/``)
+process's peak memory (RSS, compiled libraries included), what the benchmarks (``benchmarks/README.md``)
 report against other libraries.
 
 Used by the notebooks to show live how classical and spectral MDS scale with the number of
@@ -107,10 +107,10 @@ def _settle_blas_threads(timeout: float = 1.0) -> None:
     """Give a forked child the idle BLAS thread pools a process of its own has.
 
     OpenBLAS tears its thread pool down across ``fork`` and builds it again at the child's first
-    change of its thread count. The new threads spin for about 0.1 s before they sleep: on two cores,
+    change of its thread count. The new threads spin for a while before they sleep: on two cores,
     a first call that limits BLAS to one thread (as the package's solvers do) competed with two
-    spinning pools (``eigenbasis`` at 10k vertices took 0.54-0.64 s, against 0.44-0.49 s in a new
-    interpreter, where the pools were built and went idle at import). So the pools are rebuilt here, before any timing (setting each
+    spinning pools and was timed slower than in a new interpreter, where the pools were built and
+    went idle at import. So the pools are rebuilt here, before any timing (setting each
     library's own count again changes nothing else), and the child waits until it is idle: less
     than a tenth of a core used over 20 ms, at most ``timeout`` seconds.
     """

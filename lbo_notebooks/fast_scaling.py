@@ -25,10 +25,9 @@ __all__ = ["fast_classical_scaling", "FCS_DEFAULTS"]
 
 
 #: Defaults of :func:`fast_classical_scaling` (mu is dimensionless, see ``_interpolation_operator``).
-#: Checked on the SMDS tuning shapes (``benchmarks/mds.py --fcs-tuning``; none of them is reported
-#: elsewhere): the Gram error against classical MDS is at most 2.3% with 100 samples, 1.5% with
-#: 150 and 0.74% with 200, and changes by under 3% as mu goes from 1e-4 to 0.1. 150 samples keep
-#: a 50k-vertex mesh under 4 s on two cores (200 took 4-5 s); pass ``n_samples=200`` for more.
+#: Chosen on the SMDS tuning shapes: the Gram error against classical MDS falls as samples are
+#: added and hardly depends on mu; 150 samples trade that error against the time on a 50k-vertex
+#: mesh. Pass ``n_samples=200`` for more accuracy.
 FCS_DEFAULTS: dict[str, float] = {"n_samples": 150, "mu": 1e-3}
 
 
@@ -36,8 +35,8 @@ def _interpolation_operator(mesh: Mesh, samples: NDArray[np.int64], mu: float) -
     """``M = (S.T S + mu_abs E)^-1 S.T`` (n x q) of :func:`fast_classical_scaling`, and ``mu_abs``.
 
     ``E = W A^-1 W`` is the biharmonic energy. (The Dirichlet energy W alone is cheaper, but
-    harmonic interpolation of point values spikes in 2D: Gram errors 5-13x larger in a quick test
-    at q = 50-100.) ``E`` has a two-ring stencil, and its factorisation fills three times as much
+    harmonic interpolation of point values spikes in 2D, and its Gram errors were several times
+    larger.) ``E`` has a two-ring stencil, and its factorisation fills three times as much
     as W's, so M is found as a smoothing spline instead (docs/maths.md, "Fast classical scaling"):
     with ``Z`` solving ``W A^-1 W Z = S.T`` on weights that sum to zero (two solves with the
     cached factorisation of W, shared with the heat method), the minimiser is ``x = Z w + c``

@@ -113,18 +113,16 @@ def _nearest_rows(
 
     ``|q - p|^2 = |q|^2 - 2 q.p + |p|^2``, so the nearest ``p`` maximises ``q.p - |p|^2 / 2``:
     with ``-|p|^2 / 2`` appended to every point and ``1`` to every query, that is a matrix
-    product and an argmax along its rows, done on tiles of 1024 queries x 2048 points (at 50,000
-    x 50,000 points in 81 dimensions 40% faster than full rows of points, whose products leave
-    the cache before the argmax reads them). A k-d tree, the textbook answer, degrades to a
-    near-exhaustive search in the 30-80 dimensions of a spectral embedding, and there its scalar
-    distance loops lose to the matrix product by an order of magnitude (benchmarks/matching.py).
-    ``dtype=np.float32`` halves the time; the scores it compares differ by ``|p - p'|^2 / 2``
-    between neighbouring points, far above its rounding, so only near-ties can change.
+    product and an argmax along its rows, done on tiles of 1024 queries x 2048 points (faster
+    than full rows of points, whose products leave the cache before the argmax reads them). A
+    k-d tree, the textbook answer, degrades to a near-exhaustive search in the 30-80 dimensions of a spectral embedding, and there its scalar
+    distance loops lose clearly to the matrix product. ``dtype=np.float32`` is faster (half the
+    memory traffic); the scores it compares differ by ``|p - p'|^2 / 2`` between neighbouring points, far above its rounding, so only near-ties can change.
 
     The blocks of 1024 queries are shared among ``workers`` threads (default: the usable cores,
     at most 2), each running BLAS on one thread (:mod:`lbo_notebooks.blas_threads`): the argmax
-    runs in parallel too, and no BLAS thread spins waiting for a core that another program holds
-    (``benchmarks/busy.py``). Every block is computed alone, so the result does not depend on
+    runs in parallel too, and no BLAS thread spins waiting for a core that another program holds.
+    Every block is computed alone, so the result does not depend on
     ``workers``.
     """
     n_points, dim = points.shape

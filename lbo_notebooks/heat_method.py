@@ -12,10 +12,8 @@ three linear steps:
 Both matrices are factorised once per mesh. Each source is a separate right-hand side of the same
 two solves, and step 2 (not linear: it normalises) acts on each source's field alone, so a block
 of b sources is b right-hand sides of the same two factorisations, and the triangular solves work
-on b columns at once: at 50k vertices a source costs 11-12 ms in blocks of 8, against 22 ms alone
-(``benchmarks/geodesics.py``). The two factorisations run in two threads (SuperLU releases the
-GIL while it factorises; its solves release it too but gain little from a second thread, see
-``benchmarks/superlu_threads.py``).
+on b columns at once, so a source costs less in a block than alone. The two factorisations run
+in two threads (SuperLU releases the GIL while it factorises; its solves release it too but gain little from a second thread).
 
 Step 1 uses the intrinsic Delaunay Laplacian of robust-laplacian (Sharp & Crane 2020): its
 weights are non-negative, so the diffused heat has no spurious extrema on meshes with obtuse or
@@ -40,9 +38,8 @@ from .sparse_factor import mesh_order_where_it_pays, symmetric_lu
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
 
-#: Largest block of sources. Measured per source (deformed torus, best of two runs): 10k vertices
-#: 2.5 ms alone, 1.7 ms in blocks of 4, 1.9 in blocks of 8 to 64; 50k vertices 22 ms alone,
-#: 11-12 ms in blocks of 8 to 32, 19 ms in blocks of 64.
+#: Largest block of sources. A source costs less in a block than alone; past blocks of 8 the cost
+#: per source stops falling, and very large blocks cost more again.
 MAX_BLOCK = 8
 #: Cap on block size x vertices, so that the (3 m x block) gradient array stays under about 100 MB
 #: on meshes of a million vertices.
@@ -95,8 +92,8 @@ def _in_blocks(work: Callable[[slice], None], total: int, block: int) -> None:
 
     Each thread gets one BLAS thread: SuperLU's solves call BLAS on blocks of ``block`` columns,
     and two threads each running a two-thread BLAS were no faster than one thread alone. With one
-    BLAS thread each, two threads solved blocks of 8 sources 1.8x faster than one
-    (``benchmarks/geodesics.py``), and every block comes out the same, bit for bit, for any
+    BLAS thread each, two threads solve blocks of sources clearly faster than one,
+    and every block comes out the same, bit for bit, for any
     number of threads.
     """
     blocks = [slice(start, min(start + block, total)) for start in range(0, total, block)]
@@ -203,8 +200,8 @@ class HeatMethod:
         t = float(t_coef) * mesh.mean_edge_length**2
         W_delaunay, A_delaunay = robust_operators(mesh)
         # Both factorisations at once (SuperLU releases the GIL while it factorises). The intrinsic
-        # Delaunay operators have a pattern of their own (flipped edges: on a stretched 51k torus a
-        # mesh-edge order gave them 3x the fill), so the heat step is ordered on its own matrix.
+        # Delaunay operators have a pattern of their own (flipped edges: on a stretched torus a
+        # mesh-edge order gave them much more fill), so the heat step is ordered on its own matrix.
         with ThreadPoolExecutor(2) as pool:
             poisson = pool.submit(_poisson_factor, mesh)
             self._heat = _factor(A_delaunay + t * W_delaunay)

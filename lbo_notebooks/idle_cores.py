@@ -2,9 +2,8 @@
 
 OpenBLAS threads spin while they wait for a core, so beside another busy program a call running
 BLAS on every core can take several times longer than on one thread (regularized PCA
-at 25,000 vertices: 1.8-1.9x beside one spinning process in ``benchmarks/busy.py``, 7x in issue
-30's first measurement), while on an idle machine the same threads make it about 20% faster. :func:`machine_is_idle`
-tells the two apart at the start of a call: it reads the kernel's CPU counters (``/proc/stat``)
+on a large mesh, for one), while on an idle machine the same threads make it faster.
+:func:`machine_is_idle` tells the two apart at the start of a call: it reads the kernel's CPU counters (``/proc/stat``)
 twice, ``interval`` seconds apart, and counts the idle cores in between. The answer can be wrong
 later in the call (another program may start), and it is only a guess where the counters do not
 show the CPU quota (a container's cgroup limit is read from ``/sys/fs/cgroup/cpu.max`` when

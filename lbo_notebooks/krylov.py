@@ -32,17 +32,15 @@ BLOCK_SIZE = 4
 # A direction of a new block is dependent when less than this fraction of its A-norm survives.
 DEPENDENT = 1e-10
 # Krylov basis size per wanted eigenpair before a thick restart (memory against restarts). At
-# 2.5 an interior window of 10k vertices, k = 100, restarted just before converging and needed
-# 16 more blocks; at 3.0 it is done one block after its first restart. Fresh runs, median of 4, 10k
-# vertices, k = 100: bumpy sphere -6%, rectangle -13%, torus and ellipsoid -0 to -3% in time,
-# +0-3 MiB (the basis is touched only as far as it grows); 10k / k = 300 and 50k / k = 100, 300
-# within +-2% in time, +2-8% in memory.
+# 2.5 an interior window could restart just before converging and need many more blocks; at 3.0
+# it is done about one block after its first restart, as fast or faster for a little more memory
+# (the basis is touched only as far as it grows).
 BASIS_PER_PAIR = 3.0
 # Thick restarts before giving up (each one refills the basis from the wanted Ritz vectors).
 MAX_RESTARTS = 50
 # A window may hold more pairs than expected (a cluster), and the basis grows to keep them, but to
 # at most this many times its first size and never to the whole space: a window that held most of
-# a 642-vertex spectrum once grew the basis past n at every restart (1.5 GB, no return in 240 s).
+# a 642-vertex spectrum once grew the basis past n at every restart and never returned.
 MAX_GROWTH = 8
 
 
@@ -210,8 +208,8 @@ def nearest_eigenpairs(
     cur = 0  # first column of the block T is applied to next
     local = 0  # T Q_cur lies in span(Q[:, local:m]) in exact arithmetic (Lanczos)
     restarts = 0
-    # The sets measured at 10k vertices, k = 100 needed 2.5-3.5 basis vectors per pair before all
-    # converged: a look before 2 per pair only costs its O(m^3).
+    # A set needs more than 2 basis vectors per pair before all its pairs converge: a look before
+    # that only costs its O(m^3).
     next_check = max(nev + 2 * b, 2 * nev)
     while True:
         Y = np.asfortranarray(solve(mass @ Q[:, cur : cur + b]))

@@ -6,10 +6,9 @@ descriptors, a ``k x k`` functional map from the quadratic energy of
 :func:`~lbo_notebooks.functional_maps.estimate_map` (descriptors, Laplacian commutativity,
 descriptor commutativity and orientation), then ZoomOut to ``k_final`` on 2000 farthest-point
 samples of each shape, and one final nearest-neighbour search over every vertex. Nothing uses
-vertex indices: the target's vertices may come in any order. At 25,000 vertices the eigenbases
-are most of the time: ZoomOut on every vertex took 54 s of CPU there, on the samples 2 s
-(sampling included), for a mean error of 0.0018 instead of 0.0005 sqrt(area)
-(benchmarks/matching.py).
+vertex indices: the target's vertices may come in any order. On large meshes the eigenbases
+take most of the time: ZoomOut on the samples costs a small fraction of ZoomOut on every vertex,
+for a somewhat larger mean error.
 
 :func:`matching_error` is the standard score: for every target vertex the geodesic distance *on
 the source* between the predicted and the true match, divided by ``sqrt(source area)``;
@@ -50,9 +49,8 @@ N_SAMPLES = 2000
 
 #: Lanczos tolerance of the eigenbases :func:`match` computes. Point maps come from nearest
 #: neighbours among the eigenfunctions' values, which 1e-6 residuals do not move: on the dog
-#: pair (target shuffled) the maps were identical to those with the solver's default tolerance at
-#: 25k and 50k vertices, for 11-15% less CPU time (7.1 -> 6.3 s and 17.8 -> 15.2 s;
-#: benchmarks/matching.py).
+#: pair (target shuffled) the maps were identical to those with the solver's default tolerance,
+#: for less CPU time.
 EIGEN_TOL = 1e-6
 
 
@@ -151,7 +149,7 @@ def match(
     sampled = n_samples is not None and n_min > 2.5 * n_samples
     long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
     # One BLAS thread throughout (unless the user chose the count): the nearest-neighbour search
-    # runs in its own threads, and the rest gains little from more (benchmarks/busy.py).
+    # runs in its own threads, and the rest gains little from more and loses beside a busy program.
     with one_blas_thread(), progress_bar(5 + sampled, "match", progress, long=long) as bar:
         def stage(name: str) -> None:
             bar.set_postfix_str(name, refresh=True)

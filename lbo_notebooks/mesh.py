@@ -441,7 +441,7 @@ def _directed_edges(f: NDArray[np.int64]) -> NDArray[np.int64]:
 
 
 def _pair_keys(pairs: NDArray[np.int64], n: int) -> NDArray[np.int64]:
-    # One int64 per index pair: 1-D np.unique is ~50x faster than np.unique(..., axis=0).
+    # One int64 per index pair: 1-D np.unique is much faster than np.unique(..., axis=0).
     return pairs[:, 0] * np.int64(n) + pairs[:, 1]
 
 

@@ -27,23 +27,17 @@ __all__ = [
 # Fewest eigenpairs worth a Lanczos set of their own (a set costs a factorisation).
 MIN_SET = 20
 # Neighbouring windows overlap by twice this fraction of the interval between their shifts (room
-# for the split to sit in a gap). 0.1 cost 6-13% more time at 50k vertices than 0.05 and redid no
-# fewer windows on spheres, tori, rectangles and bumpy spheres of 10-50k vertices (measured when
-# each window reached this fraction past the middle of the interval, before the windows were
-# centred on their shifts).
+# for the split to sit in a gap). A wider overlap cost more time and redid no
+# fewer windows.
 OVERLAP = 0.05
 # Lanczos converges last at the window's edge farthest from the shift, and a lopsided window costs
 # a set more than its extra pairs: a window reaches down at most this many times as far as up
-# (all but the lowest, which reaches the floor).
-# Shift-invert at 10k vertices, k = 100 (the top set alone, its window fixed, the shift moved): 206
-# ms at the window's middle against 231 ms with the shift 10% of the window above it and 333 ms
-# 25% above (a disk). With the lower windows aimed at their middle too (centred_target),
-# eigenbasis took 0.83-0.94 of the time on the six 10k shapes of benchmarks/eigen.py --family
-# (2026-11-26). 1.2, 1.3 and 1.4 were within 5% of 1.0 in time; 1.2 let the pairs either side of
-# a split come out up to 2e-10 from A-orthogonal on a small bumpy sphere (4e-12 at 1.0, 9e-12 before).
+# (all but the lowest, which reaches the floor). A set converges fastest with its shift in the
+# middle of its window (and the lower windows aimed at their middle too: centred_target); larger
+# reaches saved no time and left the pairs either side of a split less A-orthogonal.
 REACH = 1.0
 # Where the lowest set's shift sits between the floor and the top of its window (its low
-# eigenvalues lie far apart, so their side converges early); 0.5 and 0.65 were within 5%.
+# eigenvalues lie far apart, so their side converges early); nearby values made little difference.
 LOWEST_CENTRE = 0.55
 
 

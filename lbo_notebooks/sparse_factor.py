@@ -5,10 +5,9 @@ shift-invert eigensolver (``W - b A``, indefinite), the heat method (``A + t W``
 ``W``), regularized PCA, the smoothing bases. :func:`symmetric_lu` is that factorisation, once.
 
 The ordering decides the cost. On a surface mesh the graph is planar-like, and nested dissection
-(METIS, via ``pymetis``) cuts it along small separators. Against SuperLU ordering the same matrix
-itself by minimum degree (``benchmarks/ordering.py``, one run): at 51k vertices 27% less fill, the
-factorisation 3.1x faster (1.3x counting the ordering's own time) and each solve 1.3x faster; at
-150k vertices 29% less fill, factorisation 7.2x (3.5x) and solves 1.7x faster. The ordering
+(METIS, via ``pymetis``) cuts it along small separators. On large meshes it leaves less fill than
+SuperLU's own minimum-degree ordering of the same matrix, so the factorisation and every solve
+are faster, the ordering's own run included. The ordering
 depends only on the sparsity pattern, so matrices that share one can share it
 (:func:`fill_reducing_order`), as the eigensolver's shifts do. Below
 :data:`NESTED_DISSECTION_MIN` unknowns METIS's own run costs more than it saves, so a matrix given
@@ -38,12 +37,9 @@ __all__ = [
 ]
 
 # Below this many unknowns a matrix with no order given is ordered by SuperLU itself (minimum
-# degree on A + A^T): at 2.5k vertices METIS's run plus the factorisation took 2.2x as long as
-# SuperLU's alone, at 10k they were about even (0.7x-1.1x on two meshes), at 51k 1.3x faster.
-# The eigensolver follows the same rule with its several shifts (the first factorisation's order
-# serves the others): eigenbasis(mesh, 100) on six 10k-vertex shapes took 0.80-1.02 times as long
-# as with METIS's order (whose run alone took 31-47 ms of about 0.45 s), 0.83-0.97 times at
-# 15.5k-19.4k vertices (k = 100 and 300). benchmarks/eigen.py has the measurements.
+# degree on A + A^T): on small meshes METIS's own run costs more than the fill it saves, on large
+# ones it pays for itself. The eigensolver follows the same rule with its several shifts (the
+# first factorisation's order serves the others), and below this size it is no slower for it.
 NESTED_DISSECTION_MIN = 20_000
 
 
@@ -88,10 +84,10 @@ def mesh_order(mesh: Mesh) -> NDArray[np.intp]:
 
     Every operator assembled on the mesh's own triangles (``W``, ``A``, ``W - b A``, ``A + t W``,
     the pinned ``W``) has the pattern of the edge graph, so they all share this order: one METIS
-    run (0.25 s at 51k vertices) serves the eigensolver and the heat method's Poisson step (from
+    run serves the eigensolver and the heat method's Poisson step (from
     :data:`NESTED_DISSECTION_MIN` vertices on; below, neither asks for it). Not
     the intrinsic Delaunay operators of :mod:`~lbo_notebooks.robust`: their flipped edges cross
-    this order's separators (on a stretched 51k-vertex torus, 3x the fill), so they are ordered
+    this order's separators (much more fill on a stretched torus), so they are ordered
     on their own pattern.
 
     Examples

@@ -63,7 +63,7 @@ def _remesh(spec: Species, n_vertices: int) -> tuple[NDArray[np.float64], NDArra
     v = v.astype(np.float64) + origin
     f = np.ascontiguousarray(f, dtype=np.int32)
     # A surface of equilateral triangles with edge h has 2 area / (sqrt(3) h^2) vertices. The
-    # remesher lands about 4% below that at small sizes (measured), hence the factor 0.98;
+    # remesher lands a little below that at small sizes, hence the factor 0.98;
     # a second pass corrects h when the count is more than 4% off.
     p = v[f]
     area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
@@ -71,7 +71,7 @@ def _remesh(spec: Species, n_vertices: int) -> tuple[NDArray[np.float64], NDArra
     stage = 1.25 * spec.spacing
     if h < stage:
         # Refining far below the marching-cubes edge length in one go stalls the remesher
-        # (measured: > 2 min at 45k vertices); an intermediate, projected mesh avoids it.
+        # (for minutes on large meshes); an intermediate, projected mesh avoids it.
         v, f = gpytoolbox.remesh_botsch(v, f, 5, stage, True)
         v = project_to_surface(spec, np.asarray(v, dtype=np.float64))
         f = np.ascontiguousarray(f, dtype=np.int32)

@@ -11,7 +11,7 @@ file operation needs open3d or its system libraries. Before any data is read, th
 announces (OFF, PLY, binary STL) are checked against the file size, so a corrupt header fails at
 once instead of allocating gigabytes. open3d's readers were tried first and rejected because a
 broken file must raise :class:`MeshError`, not kill the Python process or Jupyter kernel
-(measured with open3d 0.20):
+(tried with open3d 0.20):
 
 - PLY: a five-line ASCII PLY whose quad has an out-of-range index crashes the interpreter
   (segmentation fault, in its ear-clipping triangulation); randomly corrupted binary PLY files
@@ -27,8 +27,8 @@ broken file must raise :class:`MeshError`, not kill the Python process or Jupyte
   vertex wherever its texture or normal index changes (cutting the surface open at every seam)
   and skips faces with more than three corners. Here the ``v`` and ``f`` lines are read directly,
   so vertex ``k`` of the mesh is the ``k``-th ``v`` line and ``vt``/``vn`` seams do not exist.
-- STL: open3d reads ASCII STL through ASSIMP at single precision, and its binary reader took
-  about 4 s for 200k triangles; a binary STL is a header and fixed 50-byte records, read here
+- STL: open3d reads ASCII STL through ASSIMP at single precision, and its binary reader is slow on
+  large files; a binary STL is a header and fixed 50-byte records, read here
   with one ``numpy.fromfile`` call.
 - open3d writes text formats with six significant digits, which is lossy; here they are written
   with 17, so that saving and loading gives back the same float64 coordinates.

@@ -129,8 +129,8 @@ def _ply_header(p: Path) -> tuple[bytes, int, str, list[_PlyElement]]:
 def _ply_elements(p: Path, header: bytes, body_start: int, fmt: str, elements: list[_PlyElement]) -> tuple[NDArray[Any], NDArray[Any] | None]:
     """The ``vertex`` and ``face`` rows, read by plyfile.
 
-    Binary files are memory-mapped (plyfile reads list rows one by one in Python otherwise:
-    about 120x slower on a 200k-triangle scan, see ``benchmarks/ply.py``), first assuming
+    Binary files are memory-mapped (plyfile otherwise reads list rows one by one in Python, far
+    slower on a large scan), first assuming
     triangles and then quads; plyfile needs a real file for that,
     so a normalised header goes with a copy of the body into a temporary file.
     """
@@ -231,8 +231,7 @@ def _ply_ascii_body(p: Path, body_start: int, elements: list[_PlyElement]) -> tu
 def _ply_ascii_fast(body: str, lines: list[str], elements: list[_PlyElement]) -> RawMesh | None:
     """ASCII PLY of scalar rows and triangle faces, parsed in one NumPy call; None if not that case.
 
-    plyfile parses ASCII row by row in Python (about 8x slower on a 100k-vertex scan,
-    ``benchmarks/ply.py``); this
+    plyfile parses ASCII row by row in Python, much slower on a large scan; this
     covers what most files hold, with one row per line as plyfile demands. Anything else (polygons, lists outside the faces, a count that does not match the header)
     goes to plyfile, which reads it or names the problem.
     """

@@ -4,7 +4,7 @@
 the notebook does not show (a bumpy sphere, a bumpy torus, an open curved patch, a flattened
 ellipsoid with obtuse triangles) with every route of the library (and of the other installed
 libraries) to corner angles or defects made unavailable. Every other answer is a value. 08-floor is judged on the notebook's horse
-rebuilt from its definition (``creature("horse", n_vertices=4000)``, about 5 s: the cost of this
+rebuilt from its definition (``creature("horse", n_vertices=4000)``, a few seconds: the cost of this
 notebook's slowest graded run), never on the kernel's ``horse``; the others need no context. A
 number rounded by hand is judged on its precision (see ``minmax_and_metrics._precision``): a prediction right to
 three significant digits is right (0.111 for 1/9, 6.28 for 2π), the floor fraction must name the

@@ -15,7 +15,7 @@ from ._answers import choice, number, recap_of_choices
 @functools.lru_cache(maxsize=1)
 def _dog() -> Any:
     """The notebook's dog, rebuilt from its definition (``lbo.creature("dog", "walking",
-    n_vertices=2000)``), not taken from the kernel. About 4 s."""
+    n_vertices=2000)``), not taken from the kernel. A few seconds."""
     from ... import creatures
 
     return creatures.creature("dog", "walking", n_vertices=2000)

@@ -2,8 +2,9 @@
 
 The value exercises (11-energy, 11-validation) are judged against the notebook's own context,
 rebuilt here from its definitions (the dog of 3,000 vertices, training on *standing* and
-*walking*, the sweep over ``betas``), never from the student's kernel: about 3 s for the poses,
-0.5 s for the PCA limit and 4 s for the sweep on one core. The builds (11-objective, 11-rpca-basis) are
+*walking*, the sweep over ``betas``), never from the student's kernel: a few seconds
+each for the poses, the PCA limit and the sweep on one core.
+The builds (11-objective, 11-rpca-basis) are
 judged on shapes, data, bases and weights the notebook never shows, with the library's routes to
 the objective and to the basis unavailable.
 """

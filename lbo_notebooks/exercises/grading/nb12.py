@@ -4,7 +4,7 @@ The builds (12-hks, 12-fmap, 12-zoomout-step) are judged on spectra, times, poin
 sizes the notebook never shows (no dog: small spheres, tori, an ellipsoid, a disk; shapes of
 different vertex counts for the maps), with the library's HKS, functional map and ZoomOut (and
 pyFM's) unavailable. 12-bound is judged against the standing dog's eigenbasis rebuilt from the
-notebook's definitions (3,000 vertices, 60 eigenpairs: about 3 s on one core), not the student's
+notebook's definitions (3,000 vertices, 60 eigenpairs: a few seconds on one core), not the student's
 ``ref``.
 """
 
