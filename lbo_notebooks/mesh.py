@@ -1,7 +1,7 @@
 """The :class:`Mesh` value type and the checks that make a triangle mesh usable.
 
 A :class:`Mesh` is immutable: it copies the arrays it is given, marks its copies read-only and
-caches derived geometry (edges, areas, components) on first use. Every check that fails raises
+caches what is computed from them on first use (:class:`Mesh`, *Notes*). Every check that fails raises
 :class:`MeshError`, whose message names the defect and how to fix it.
 """
 
@@ -72,9 +72,9 @@ def real_coordinates(values: ArrayLike, what: str) -> NDArray[np.float64]:
                 "(np.real(...)) if the imaginary part is round-off, or find where it came from."
             )
         return np.array(a, dtype=np.float64, copy=True)
+    except MeshError:
+        raise
     except (TypeError, ValueError) as exc:
-        if isinstance(exc, MeshError):
-            raise
         raise MeshError(f"{what} must be numbers convertible to float64: {exc}") from None
 
 
@@ -129,9 +129,8 @@ def check_coordinate_range(points: ArrayLike, what: str = "mesh") -> None:
         return  # all points coincide, or NaN coordinates: the callers' own checks name those problems
     size = "too large" if diagonal > high else "too small"
     direction = "overflow" if diagonal > high else "underflow"
-    fix = (
-        "mesh.with_vertices(mesh.vertices / mesh.diagonal)" if what == "mesh" else "PointCloud(points / scale), with scale the bounding-box diagonal"
-    )
+    fix = ("mesh.with_vertices(mesh.vertices / mesh.diagonal)" if what == "mesh"
+           else "PointCloud(points / scale), with scale the bounding-box diagonal")
     raise MeshError(
         f"the {what}'s coordinates are out of the usable range: its bounding box has a diagonal of {diagonal:.3g}, "
         f"{size} for double precision (areas and squared lengths computed from it {direction}; usable diagonals lie "
@@ -151,8 +150,7 @@ def _as_vertices(vertices: ArrayLike) -> NDArray[np.float64]:
         rows = np.flatnonzero(bad)
         raise MeshError(
             f"{plural(rows.size, 'vertex has', 'vertices have')} non-finite (NaN or inf) coordinates (first: vertex "
-            f"{rows[0]}, counted from 0); "
-            "fix or remove them before building the mesh."
+            f"{rows[0]}, counted from 0); fix or remove them before building the mesh."
         )
     return v
 
@@ -235,6 +233,13 @@ class Mesh:
 
     Examples
     --------
+    Notes
+    -----
+    What is computed from the arrays (geometry, operators, curvature, factorisations, orderings) is cached on
+    the mesh, keyed as :func:`per_mesh` says; :meth:`clear_cache` drops it (factorisations can outweigh the arrays).
+
+    Examples
+    --------
     >>> m = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
     >>> m.n_vertices, m.n_faces, m.area
     (3, 1, 0.5)
@@ -303,6 +308,10 @@ class Mesh:
             cache[key] = compute(self)
         return cache[key]
 
+    def clear_cache(self) -> None:
+        """Drop what was computed from this mesh and kept on it; it is recomputed when asked for."""
+        self._cache.clear()
+
     # --- derived geometry -------------------------------------------------------------------
     @property
     def edges(self) -> NDArray[np.int64]:
@@ -347,8 +356,7 @@ class Mesh:
     @property
     def diagonal(self) -> float:
         """Length of the bounding-box diagonal (a scale for tolerances)."""
-        lo, hi = self.bounding_box
-        return float(np.linalg.norm(hi - lo))
+        return float(np.linalg.norm(np.subtract(*self.bounding_box[::-1])))
 
     @property
     def mean_edge_length(self) -> float:
@@ -386,11 +394,8 @@ class Mesh:
         return _hash(self)
 
     def __repr__(self) -> str:
-        return (
-            f"Mesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, "
-            f"components={self.n_components}, boundary_edges={len(self.boundary_edges)}, "
-            f"euler_characteristic={self.euler_characteristic})"
-        )
+        return (f"Mesh(n_vertices={self.n_vertices}, n_faces={self.n_faces}, components={self.n_components}, "
+                f"boundary_edges={len(self.boundary_edges)}, euler_characteristic={self.euler_characteristic})")
 
     def summary(self) -> str:
         """A one-paragraph human-readable description (size, topology, scale)."""

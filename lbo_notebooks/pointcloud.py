@@ -110,6 +110,10 @@ class PointCloud:
             self._cache[key] = compute(self)
         return self._cache[key]
 
+    def clear_cache(self) -> None:
+        """Drop the operators computed from this cloud and kept on it; later calls recompute them."""
+        self._cache.clear()
+
     def __len__(self) -> int:
         return self.n_points
 

@@ -194,3 +194,29 @@ def test_a_mesh_pickles_as_its_arrays_without_its_cache():
     copy = pickle.loads(pickle.dumps(mesh))
     assert np.array_equal(copy.vertices, mesh.vertices) and np.array_equal(copy.faces, mesh.faces)
     assert not copy.vertices.flags.writeable and copy.cached("demo", lambda m: 7) == 7
+
+
+def test_clear_cache_drops_what_was_computed_and_changes_no_result():
+    """Issue 42.4: the cache is documented on Mesh and can be dropped; results do not depend on it."""
+    import lbo_notebooks as lbo
+
+    mesh = shapes.icosphere(2)
+    before = lbo.eigenbasis(mesh, 6)
+    distances = lbo.geodesic_distances(mesh, [0])
+    assert mesh._cache  # the operators (and what the solver reused) were kept
+    mesh.clear_cache()
+    assert not mesh._cache
+    after = lbo.eigenbasis(mesh, 6)
+    np.testing.assert_array_equal(before.values, after.values)
+    np.testing.assert_array_equal(before.vectors, after.vectors)
+    np.testing.assert_array_equal(distances, lbo.geodesic_distances(mesh, [0]))
+    assert mesh == shapes.icosphere(2) and "clear_cache" in type(mesh).__doc__
+
+
+def test_a_point_cloud_drops_its_operators_too():
+    import lbo_notebooks as lbo
+
+    cloud = lbo.PointCloud(shapes.icosphere(2).vertices)
+    values = lbo.eigenbasis(cloud, 4).values
+    cloud.clear_cache()
+    np.testing.assert_array_equal(values, lbo.eigenbasis(cloud, 4).values)
