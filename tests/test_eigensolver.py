@@ -181,40 +181,63 @@ def test_a_mesh_and_its_operators_give_the_same_basis():
     assert np.array_equal(a.values, b.values) and np.array_equal(a.vectors, b.vectors)
 
 
+@dataclasses.dataclass(frozen=True)
+class LanczosRun:
+    """One call of the public block Lanczos (krylov.nearest_eigenpairs) as slice_eigsh made it."""
+
+    shift: float
+    low: float
+    high: float
+    deflated: bool
+
+
+def lanczos_runs(monkeypatch, change=None) -> list:
+    """Record every Lanczos run slice_eigsh starts (a set's or a completion's), in the order they start.
+
+    ``change(run, values, vectors)`` may alter what a set's run returns (e.g. drop a pair).
+    """
+    import lbo_notebooks.eigensolver as eigensolver
+
+    original, runs = eigensolver.nearest_eigenpairs, []
+
+    def recorded(solve, W, A, shift, nev, **kwargs):
+        run = LanczosRun(float(shift), *map(float, kwargs["window"]), kwargs.get("deflate") is not None)
+        runs.append(run)
+        values, vectors = original(solve, W, A, shift, nev, **kwargs)
+        return (values, vectors) if change is None or run.deflated else change(run, values, vectors)
+
+    monkeypatch.setattr(eigensolver, "nearest_eigenpairs", recorded)
+    return runs
+
+
 def test_sets_start_from_the_top_of_the_spectrum(monkeypatch):
     # Higher windows take longer: they are placed and started first, so that a worker is not left
     # with the longest set at the end. The result does not depend on the order.
-    import lbo_notebooks.eigensolver as eigensolver
-
-    started = []
-    original = eigensolver._window_set
-    monkeypatch.setattr(eigensolver, "_window_set", lambda pencil, factor, *rest, **kw: started.append(factor.shift) or original(pencil, factor, *rest, **kw))
+    started = lanczos_runs(monkeypatch)
     W, A = operators(shapes.bumpy_sphere(3))
     values, _, _ = slice_eigsh(W, A, 80, v0=start(W.shape[0]), shift=0.01, slice_size=20, workers=1)
-    assert len(started) == 4 and started == sorted(started, reverse=True)
+    shifts = [run.shift for run in started]
+    assert len(shifts) == 4 and shifts == sorted(shifts, reverse=True)
     np.testing.assert_allclose(values[1:], dense_values(W, A)[1:80], rtol=1e-8)
 
 
 @pytest.mark.parametrize("mesh, k, slice_size", [(shapes.disk(n_rings=30), 100, 100), (shapes.bumpy_sphere(3), 80, 20)])
 def test_windows_are_centred_on_their_shifts(monkeypatch, mesh, k, slice_size):
-    # Lanczos converges last at the window edge farthest from its shift: every window reaches
-    # down at most REACH times as far as up (the lowest reaches the floor, its shift about
-    # LOWEST_CENTRE of the way up), neighbouring windows overlap, and the result is unchanged.
-    import lbo_notebooks.eigensolver as eigensolver
-    from lbo_notebooks.slicing import LOWEST_CENTRE, REACH
-
-    seen = []
-    stitch = eigensolver._stitch
-    monkeypatch.setattr(eigensolver, "_stitch", lambda pencil, k, slices: seen.append(slices.slices) or stitch(pencil, k, slices))
+    # Lanczos converges last at the window edge farthest from its shift: every set's shift lies
+    # inside its window and no window is lopsided below its shift (the lowest reaches down to the
+    # floor, its shift well inside it), together the windows cover the spectrum from below its
+    # lowest eigenvalue to above lam_k, neighbouring windows overlap, and the result is unchanged.
+    runs = lanczos_runs(monkeypatch)
     W, A = operators(mesh)
     values, vectors, _ = slice_eigsh(W, A, k, v0=start(W.shape[0]), shift=0.01, slice_size=slice_size, workers=2)
-    floor, *sets = seen[0]
-    assert len(sets) == plan_sets(k, slice_size, 2)
-    lowest, *others = [s.window for s in sets]
-    assert lowest.low == floor.shift and 0.3 < (lowest.shift - lowest.low) / (lowest.high - lowest.low) < 0.8
-    assert abs((lowest.shift - lowest.low) / (lowest.high - lowest.low) - LOWEST_CENTRE) < 0.25
+    sets = sorted((run for run in runs if not run.deflated), key=lambda run: run.shift)
+    assert len(sets) == plan_sets(k, slice_size, 2) and not any(run.deflated for run in runs)
+    lowest, *others = sets
+    assert -0.01 <= lowest.low < values[0] and sets[-1].high > values[-1]  # the floor .. past lam_k
+    assert 0.3 < (lowest.shift - lowest.low) / (lowest.high - lowest.low) < 0.8
     for window in others:
-        assert window.shift - window.low <= REACH * (window.high - window.shift) * (1 + 1e-12)
+        assert window.low < window.shift < window.high
+        assert window.shift - window.low <= window.high - window.shift + 1e-12 * window.high  # not lopsided down
     for below, above in zip([lowest, *others], others):
         assert above.low < below.high and below.shift < above.low
     np.testing.assert_allclose(values[1:], dense_values(W, A)[1:k], rtol=1e-8)
@@ -289,18 +312,28 @@ def test_a_cluster_larger_than_the_remaining_count_is_stepped_over():
 
 def test_the_top_is_certified_from_a_gap_when_the_window_top_count_is_unavailable(monkeypatch):
     # Usually the count at the top of the last window certifies lam_k; when that point is an
-    # eigenvalue (no count), a count in a gap above lam_k must do it instead.
+    # eigenvalue (no count: its factorisation is singular), a count in a gap above lam_k must do
+    # it instead. The top window is the first one slicing.plan_window plans (from the top down).
     import lbo_notebooks.eigensolver as eigensolver
 
-    submit = eigensolver._submit_sets
+    plan, factor, windows, refused = eigensolver.plan_window, Pencil.factor, [], []
 
-    def without_top_count(*args, **kwargs):
-        return dataclasses.replace(submit(*args, **kwargs), top_count=None)
+    def planned(*args, **kwargs):
+        windows.append(plan(*args, **kwargs))
+        return windows[-1]
+
+    def singular_at_the_top(pencil, shift):
+        if windows and shift == windows[0].high and not refused:
+            refused.append(shift)
+            raise ValueError("W - shift A is singular: the shift is an eigenvalue")
+        return factor(pencil, shift)
 
     W, A = operators(shapes.bumpy_sphere(3))
     exact = dense_values(W, A)
-    monkeypatch.setattr(eigensolver, "_submit_sets", without_top_count)
+    monkeypatch.setattr(eigensolver, "plan_window", planned)
+    monkeypatch.setattr(Pencil, "factor", singular_at_the_top)
     values, vectors, n_below = slice_eigsh(W, A, 70, v0=start(W.shape[0]), shift=0.01, slice_size=30)
+    assert refused == [windows[0].high]  # the count at the top of the top window was not available
     np.testing.assert_allclose(values[1:], exact[1:70], rtol=1e-8)
     assert n_below >= 70 and count_below(W, A, 0.5 * (exact[n_below - 1] + exact[n_below])) == n_below
     check_pairs(W, A, values, vectors)
@@ -311,32 +344,19 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
     # Lanczos may return only part of an exactly repeated eigenvalue. Here a set is made to drop
     # the pair nearest its shift: the inertia count exposes the gap, and only the missing pair is
     # looked for (A-orthogonally to the found ones), instead of running the whole set again.
-    import lbo_notebooks.eigensolver as eigensolver
-
     W, A = operators(shapes.bumpy_sphere(3))
     exact = dense_values(W, A)
-    original, runs = eigensolver._window_set, []
 
-    def dropping(pencil, factor, window, *args, **kwargs):
-        values, vectors = original(pencil, factor, window, *args, **kwargs)
-        runs.append(factor.shift)
-        lowest, top = window[0] < 0, factor.shift > 25
-        side = values < factor.shift if where == "below the lowest shift" else values > factor.shift
+    def dropping(run, values, vectors):
+        lowest, top = run.low < 0, run.shift > 25
+        side = values < run.shift if where == "below the lowest shift" else values > run.shift
         if (lowest and where == "below the lowest shift") or (top and where == "above the top shift"):
-            drop = np.flatnonzero(side)[np.argmin(np.abs(values[side] - factor.shift))]
+            drop = np.flatnonzero(side)[np.argmin(np.abs(values[side] - run.shift))]
             keep = np.arange(values.size) != drop
             return values[keep], vectors[:, keep]
         return values, vectors
 
-    deflated = []
-    original_nearest = eigensolver.nearest_eigenpairs
-
-    def spy(*args, **kwargs):
-        deflated.append(kwargs.get("deflate") is not None)
-        return original_nearest(*args, **kwargs)
-
-    monkeypatch.setattr(eigensolver, "_window_set", dropping)
-    monkeypatch.setattr(eigensolver, "nearest_eigenpairs", spy)
+    runs = lanczos_runs(monkeypatch, dropping)
     values, vectors, n_below = slice_eigsh(W, A, 60, v0=start(W.shape[0]), shift=0.01, slice_size=20, workers=2)
     np.testing.assert_allclose(values[1:], exact[1:60], rtol=1e-8)
     # Residuals as tight as everywhere; across sets the pairs are A-orthogonal up to residual / gap
@@ -346,17 +366,18 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
     assert np.abs(residual).max() <= 1e6 * np.finfo(float).eps * scale * np.abs(vectors).max()
     assert np.abs(vectors.T @ (A @ vectors) - np.eye(60)).max() < 1e-8
     assert n_below >= 60 and count_below(W, A, values[-1] * (1 + 1e-9)) <= n_below
-    assert len(runs) == plan_sets(60, 20, 2)  # every set ran once: none was redone
-    assert deflated.count(True) == 1
+    sets = [run for run in runs if not run.deflated]
+    assert len(sets) == plan_sets(60, 20, 2) and len({run.shift for run in sets}) == len(sets)  # every set ran once: none was redone
+    assert len(runs) - len(sets) == 1  # one completion, deflated against the found pairs
 
 
 def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(monkeypatch):
-    """Below NESTED_DISSECTION_MIN no METIS run: SuperLU's minimum degree orders the first shift's
+    """On a small mesh (642 vertices) no METIS run: SuperLU's minimum degree orders the first shift's
     matrix, and every later factorisation reuses that order (the same fill, no ordering step)."""
     from lbo_notebooks import eigensolver, sparse_factor
 
     def no_metis(*args):
-        raise AssertionError("METIS ran below NESTED_DISSECTION_MIN")
+        raise AssertionError("METIS ran on a small mesh")
 
     monkeypatch.setattr(eigensolver, "fill_reducing_order", no_metis)
     monkeypatch.setattr(sparse_factor, "mesh_order", no_metis)
@@ -407,7 +428,8 @@ for k, shift in json.loads(sys.argv[1]):
 """
 
 
-def test_a_floor_far_below_the_spectrum_neither_hangs_nor_drops_a_copy():
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["result", "seconds"])
+def test_a_floor_far_below_the_spectrum_neither_hangs_nor_drops_a_copy(timed):
     # shift is only the floor of slicing (no eigenvalue below -shift). A floor 100 or 1e3 times the
     # spectrum's scale below it once planned the first window from the floor's count, so that the
     # window held most of the spectrum and its Krylov basis grew without bound (no return in 240 s,
@@ -429,4 +451,5 @@ def test_a_floor_far_below_the_spectrum_neither_hangs_nor_drops_a_copy():
     assert len(runs) == len(cases)
     for run in runs:
         assert run["error"] <= 1e-9 and run["gram"] <= 1e-10 and run["n_below"] >= run["k"], run
-        assert run["seconds"] < 15, run
+        if timed:  # a wall time: opt-in (LBO_TIMING_TESTS=1, tests/conftest.py)
+            assert run["seconds"] < 15, run

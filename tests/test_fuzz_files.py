@@ -35,6 +35,7 @@ well under a minute on one core.
 
 from __future__ import annotations
 
+import os
 import re
 import struct
 import time
@@ -51,7 +52,9 @@ from lbo_notebooks.io import MeshRepairWarning, load_mesh, load_points, save_mes
 
 SEED = 26
 MUTANTS_PER_BASE = 96  # six rounds of the sixteen mutations
-SLOW_CALL = 10.0  # seconds
+# A call slower than this is a failure: a wall time, so only with LBO_TIMING_TESTS=1 (tests/conftest.py;
+# the checks sit in the helpers every test here shares, so they are switched, not marked).
+SLOW_CALL = 10.0 if os.environ.get("LBO_TIMING_TESTS") == "1" else float("inf")  # seconds
 BOM = b"\xef\xbb\xbf"  # UTF-8 byte order mark
 
 
@@ -493,8 +496,9 @@ def _insert_propertyless_element(data: bytes, rng: np.random.Generator) -> tuple
     return data[:at] + f"element junk {count}\n".encode() + data[at:], count
 
 
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["memory", "seconds"])
 @pytest.mark.parametrize("name", PLY_BASES)
-def test_a_propertyless_element_with_a_huge_count_is_refused_fast_in_ascii_and_ignored_in_binary(tmp_path, bases, name):
+def test_a_propertyless_element_with_a_huge_count_is_refused_fast_in_ascii_and_ignored_in_binary(tmp_path, bases, name, timed):
     import tracemalloc
 
     data, failures = bases[name], []
@@ -522,7 +526,7 @@ def test_a_propertyless_element_with_a_huge_count_is_refused_fast_in_ascii_and_i
                 elapsed = time.perf_counter() - start
                 peak = tracemalloc.get_traced_memory()[1]
                 tracemalloc.stop()
-            if elapsed > 2.0 or peak > PEAK_BYTES:
+            if (timed and elapsed > 2.0) or peak > PEAK_BYTES:  # the wall time: opt-in (tests/conftest.py)
                 failures.append(f"{path.name}: {what}: {elapsed:.2f} s, peak {peak / 2**20:.1f} MiB")
     assert not failures, "\n".join(failures)
 

@@ -262,14 +262,15 @@ BROKEN = [
 ]
 
 
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["message", "seconds"])
 @pytest.mark.parametrize("name,content,words", [c[1:] for c in BROKEN], ids=[c[0] for c in BROKEN])
-def test_broken_file_raises_mesh_error_quickly(tmp_path, name, content, words):
+def test_broken_file_raises_mesh_error_quickly(tmp_path, name, content, words, timed):
     path = write(tmp_path / name, content)
     start = time.perf_counter()
     with pytest.raises(MeshError) as info:
         load_mesh(path)
     elapsed = time.perf_counter() - start
-    assert elapsed < 5.0, f"took {elapsed:.1f} s: a broken file must fail fast, not hang"
+    assert not timed or elapsed < 5.0, f"took {elapsed:.1f} s: a broken file must fail fast, not hang"
     message = str(info.value)
     assert words.lower() in message.lower(), message
     assert name in message  # the message names the file
@@ -638,8 +639,9 @@ def test_ply_with_extra_properties_polygons_and_other_elements(tmp_path, binary)
     assert "1 polygon split" in message
 
 
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["outcome", "seconds"])
 @pytest.mark.parametrize("ext,binary", WRITE_MODES)
-def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary):
+def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary, timed):
     """Truncated, overwritten or padded bytes: never a crash, a hang or another exception."""
     source = save_mesh(shapes.icosphere(1), tmp_path / f"src{ext}", binary=binary).read_bytes()
     rng = np.random.default_rng(WRITE_MODES.index((ext, binary)))
@@ -655,7 +657,7 @@ def test_randomly_corrupted_files_load_or_raise_mesh_error(tmp_path, ext, binary
         except MeshError:
             continue
         finally:
-            assert time.perf_counter() - start < 5.0
+            assert not timed or time.perf_counter() - start < 5.0  # a wall time: opt-in (tests/conftest.py)
         assert np.all(np.isfinite(mesh.vertices)) and 0 <= mesh.faces.min() and mesh.faces.max() < mesh.n_vertices
         values = spectrum.values
         assert np.all(np.isfinite(values)) and np.all(np.diff(values) >= 0)
@@ -979,14 +981,15 @@ def test_a_propertyless_element_count_is_bounded_by_the_lines_an_ascii_file_hold
     assert load_mesh(write(tmp_path / "fits.ply", fits)).n_faces == 1
 
 
-def test_a_propertyless_element_takes_no_bytes_in_a_binary_file(tmp_path):
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["result", "seconds"])
+def test_a_propertyless_element_takes_no_bytes_in_a_binary_file(tmp_path, timed):
     head = _PLY_HEAD.format(fmt="binary_little_endian", nv=3, nf=1, extra="element junk 2000000000\n").encode()
     body = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2)
     path = write(tmp_path / "nothing.ply", head + body)
     code = f"from lbo_notebooks.io import load_mesh\nprint(load_mesh({str(path)!r}).faces.tolist())\n"
     start = time.perf_counter()
     result = _run_under_a_memory_limit(code)
-    assert time.perf_counter() - start < 30
+    assert not timed or time.perf_counter() - start < 30  # a wall time: opt-in (tests/conftest.py)
     assert result.stdout.strip() == "[[0, 1, 2]]", result.stdout + result.stderr
 
 

@@ -139,7 +139,8 @@ def test_deflation_needs_vectors_of_the_operators_size():
         nearest_eigenpairs(solver(W, A, 3.0), W, A, 3.0, 4, start=np.ones(W.shape[0]), deflate=np.ones((5, 2)))
 
 
-def test_a_window_holding_far_more_than_expected_stays_bounded():
+@pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["memory", "seconds"])
+def test_a_window_holding_far_more_than_expected_stays_bounded(timed):
     # A window that holds most of the spectrum (the planning of a set from a far floor did that)
     # once grew the basis past n, each restart larger (1.5 GB and no return in 240 s). Now the basis
     # never outgrows the space: the run ends, with the pairs or a RuntimeError, in bounded time.
@@ -174,4 +175,6 @@ print(json.dumps({"outcome": outcome, "seconds": time.perf_counter() - start, "p
         pytest.fail("nearest_eigenpairs with an over-full window did not return within 60 s")
     assert done.returncode == 0, done.stderr[-2000:]
     run = json.loads(done.stdout)
-    assert run["seconds"] < 20 and run["peak_mb"] < 600, run
+    assert run["peak_mb"] < 600, run
+    if timed:  # a wall time: opt-in (LBO_TIMING_TESTS=1, tests/conftest.py)
+        assert run["seconds"] < 20, run

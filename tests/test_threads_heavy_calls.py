@@ -83,22 +83,36 @@ def test_rpca_keeps_blas_threads_on_a_large_mesh_only_when_the_machine_is_idle(s
 
 
 def test_machine_is_idle_reads_the_cpu_counters(monkeypatch):
+    # Through the documented input, /proc/stat's first line (user nice system idle iowait irq
+    # softirq steal ...), read twice: idle + iowait of the total jiffies is the idle share.
+    import builtins
+    import io
+
     from lbo_notebooks import idle_cores
+
+    real_open, lines = builtins.open, []
+
+    def proc_stat(path, *args, **kwargs):
+        if path != "/proc/stat":
+            return real_open(path, *args, **kwargs)
+        if not lines:
+            raise OSError("no /proc/stat")
+        return io.StringIO(lines.pop(0) + "\ncpu0 1 2 3 4 5 6 7 8 0 0\n")
 
     monkeypatch.setattr(idle_cores, "usable_cores", lambda: 2.0)
     monkeypatch.setattr(idle_cores.os, "cpu_count", lambda: 2)
-    samples = iter([(100, 1000), (300, 1200)])  # 200 of 200 jiffies idle: both cores idle
-    monkeypatch.setattr(idle_cores, "_cpu_times", lambda: next(samples))
-    assert idle_cores.machine_is_idle(0.0)
-    samples = iter([(100, 1000), (200, 1200)])  # half idle: another program holds a core
-    monkeypatch.setattr(idle_cores, "_cpu_times", lambda: next(samples))
-    assert not idle_cores.machine_is_idle(0.0)
-
-    def unreadable():
-        raise OSError("no /proc/stat")
-
-    monkeypatch.setattr(idle_cores, "_cpu_times", unreadable)
-    assert not idle_cores.machine_is_idle(0.0)  # the safe side
+    monkeypatch.setattr(idle_cores, "open", proc_stat, raising=False)  # the module's open: /proc/stat
+    lines[:] = ["cpu  800 0 100 60 40 0 0 0 7 0", "cpu  800 0 100 210 90 0 0 0 9 0"]  # 200 of 200 jiffies idle
+    assert idle_cores.machine_is_idle(0.0)  # both cores idle
+    lines[:] = ["cpu  800 0 100 60 40 0 0 0 0 0", "cpu  850 0 150 110 40 0 0 0 0 0"]  # 50 of 150 idle
+    assert not idle_cores.machine_is_idle(0.0)  # another program holds a core
+    lines[:] = []
+    assert not idle_cores.machine_is_idle(0.0)  # unreadable: the safe side
+    lines[:] = ["cpu  800 0 100 60 40 0 0 0 0 0"]
+    assert not idle_cores.machine_is_idle(0.0)  # readable once, then not: the safe side
+    lines[:] = ["cpu  800 0 100 60 40 0 0 0 0 0", "cpu  800 0 100 60 40 0 0 0 0 0"]
+    assert not idle_cores.machine_is_idle(0.0)  # no time passed on the counters
+    lines[:] = ["cpu  800 0 100 60 40 0 0 0 7 0", "cpu  800 0 100 210 90 0 0 0 9 0"]
     monkeypatch.setattr(idle_cores, "usable_cores", lambda: 1.0)
     assert not idle_cores.machine_is_idle(0.0)  # one core: nothing to share
     monkeypatch.undo()
