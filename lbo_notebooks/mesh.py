@@ -231,8 +231,6 @@ class Mesh:
     MeshError
         If the arrays do not describe a valid mesh; the message names the defect and the fix.
 
-    Examples
-    --------
     Notes
     -----
     What is computed from the arrays (geometry, operators, curvature, factorisations, orderings) is cached on

@@ -76,3 +76,19 @@ def test_no_module_is_over_600_lines():
     sizes = {str(p.relative_to(root)): len(p.read_text().splitlines()) for p in root.rglob("*.py")}
     over = {name: n for name, n in sizes.items() if n > 600}
     assert not over, f"split these by concept: {over}"
+
+
+def test_every_public_docstring_parses_as_numpydoc():
+    """A malformed docstring (a section twice, a section inside another) drops the name from the
+    site's reference table; numpydoc's parser says so here, without building the site."""
+    import inspect
+
+    docscrape = pytest.importorskip("numpydoc.docscrape")
+    import lbo_notebooks as lbo
+
+    for name in lbo.__all__:
+        value = getattr(lbo, name)
+        if inspect.ismodule(value):
+            continue
+        parse = docscrape.ClassDoc if inspect.isclass(value) else docscrape.FunctionDoc
+        parse(value)  # raises ValueError on a repeated or misplaced section
