@@ -23,7 +23,8 @@ is written beside it as ``NN_name.new.ipynb``.
 (a) the student edition runs top to bottom without an error, unanswered, and every check in it
     reports "not attempted" (read from the feedback's own MIME type in the outputs);
 (b) with the instructor's answers put back into the student edition's answer cells (matched by
-    grade id), ``nbgrader autograde`` gives full marks.
+    grade id), ``nbgrader autograde`` gives full marks on every autograded check (written answers
+    wait for the lecturer's manual grade).
 
 Both run at once (a subprocess each way), so the check costs about one execution of those
 notebooks in wall time on two cores. See docs/exercises.md.
@@ -274,9 +275,16 @@ def check(release: Path, root: Path) -> bool:
         for nb in submission.notebooks:
             if nb.name + ".ipynb" not in names:
                 continue
-            full = nb.max_score > 0 and nb.score == nb.max_score
-            failed = [g.name for g in nb.grades if g.score != g.max_score]
-            log(f"(b) {nb.name}: autograde {nb.score:g} / {nb.max_score:g} points" + ("" if full else f"; lost in {failed}"))
+            # Written answers (NN-name-explain) wait for the lecturer's grade: not the autograder's to give.
+            written = [g for g in nb.grades if g.needs_manual_grade]
+            auto = [g for g in nb.grades if not g.needs_manual_grade]
+            failed = [g.name for g in auto if g.score != g.max_score]
+            failed += [g.name for g in written if not g.name.endswith("-explain")]  # a code check left to a human
+            auto_max = sum(g.max_score for g in auto)
+            full = auto_max > 0 and not failed
+            waiting = f"; {sum(g.max_score for g in written):g} points of written answers await a manual grade" if written else ""
+            log(f"(b) {nb.name}: autograde {sum(g.score for g in auto):g} / {auto_max:g} points{waiting}"
+                + ("" if full else f"; lost in {failed}"))
             ok &= full
     log(f"checks done in {time.monotonic() - start:.0f} s")
     return ok

@@ -184,6 +184,17 @@ def _code(nb_path: Path) -> str:
     return "\n".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code")
 
 
+def _reader_config(home: Path) -> str:
+    """The config directory ``./make.sh lab`` and ``./make.sh student lab`` put ahead of the
+    environment's (nbgrader's menus off), written by make.sh's own ``no_grader_menus`` under ``home``."""
+    script = (REPO / "make.sh").read_text()
+    function = re.search(r"^no_grader_menus\(\) \{\n.*?^\}\n", script, re.M | re.S)
+    assert function, "make.sh must define no_grader_menus(), the readers' JupyterLab config"
+    made = subprocess.run(["bash", "-c", function.group(0) + "no_grader_menus"], cwd=home, capture_output=True,
+                          text=True, check=True)
+    return str(home / made.stdout.strip())
+
+
 class Lab:
     """A JupyterLab server on 127.0.0.1 serving ``root``; the notebooks are under ``root / prefix``
     (``notebooks/`` in a copy of the repository, as ``./make.sh lab`` serves it, or an edition's
@@ -199,13 +210,14 @@ class Lab:
             (settings / name).parent.mkdir(parents=True, exist_ok=True)
             (settings / name).write_text(json.dumps(value))
         self.log = open(self.home / "jupyterlab.log", "w")
+        env = {**os.environ, "JUPYTER_CONFIG_PATH": _reader_config(self.home)}
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ServerApp.open_browser=False",
              "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
              f"--IdentityProvider.token={self.token}", "--allow-root", f"--ServerApp.root_dir={root}",
              f"--LabApp.user_settings_dir={settings}", f"--LabApp.workspaces_dir={self.home / 'workspaces'}",
              f"--LabApp.default_url={default_url or _start_url()}", *_lab_options()],
-            stdout=self.log, stderr=subprocess.STDOUT, cwd=root)
+            stdout=self.log, stderr=subprocess.STDOUT, cwd=root, env=env)
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
             if self.proc.poll() is not None:
@@ -711,6 +723,11 @@ def test_lab_opens_on_start_here(page: Page, lab: Lab, offline: Offline) -> None
     assert any("00_start_here.ipynb" in t for t in current), f"the open tab is {current}, not 00_start_here.ipynb"
     launchers = page.locator(".jp-Launcher").evaluate_all("els => els.filter(e => e.offsetParent !== null).length")
     assert launchers == 0, "the Launcher is shown beside the first notebook"
+    # Issue 43: a reader's lab has no grader menus (nbgrader is installed with the test extras).
+    menus = page.locator(".lm-MenuBar-itemLabel").all_inner_texts()
+    assert "Nbgrader" not in menus, f"nbgrader's menu is in the reader's JupyterLab: {menus}"
+    assert page.locator(".jp-NotebookPanel-toolbar").get_by_text("Validate", exact=True).count() == 0, (
+        "nbgrader's Validate button is in the reader's JupyterLab")
     offline.check("JupyterLab start page (00_start_here)")
     # The notebook's kernel has started: nothing in the server's output a newcomer reads as trouble.
     _kernel_ready(page, lab, 120)

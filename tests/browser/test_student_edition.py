@@ -155,6 +155,11 @@ def _run_unanswered(page: Page, lab: Lab, stem: str, out: Path) -> None:
     prompts = _wait_until_done(page, RUN_TIMEOUT)
     page.wait_for_timeout(1000)
     page.screenshot(path=str(out / "unanswered.png"))
+    builds = page.locator(".jp-CodeCell .jp-InputArea", has_text="def my_")
+    if builds.count():  # issue 43: a build cell hands out its def line, docstring and `...` only
+        builds.first.scroll_into_view_if_needed()
+        builds.first.screenshot(path=str(out / "build_placeholder.png"))
+        assert "YOUR CODE HERE" not in builds.first.inner_text()
     not_run = [i for i, p in enumerate(prompts) if not re.search(r"\[\d+\]", p)]
     assert not not_run, f"{stem}: code cells {not_run} did not run (prompts {prompts})"
     tracebacks = [t[:800] for t in page.locator(".jp-OutputArea-output").all_inner_texts() if "Traceback" in t]
