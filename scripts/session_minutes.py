@@ -36,6 +36,8 @@ from pathlib import Path
 import nbformat
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+from booklet import stated_minutes  # noqa: E402  (the header's class time, parsed once for all)
 WORDS_PER_MINUTE = 120
 LINES_PER_MINUTE = 20
 SELF_STUDY_FACTOR = 1.5  # alone: no one to ask (an assumption of the model, see above)
@@ -87,9 +89,6 @@ def estimate(nb: nbformat.NotebookNode) -> dict:
 def self_study_minutes(nb: nbformat.NotebookNode) -> int:
     """The self-study time the model gives ``nb``: the estimate times ``SELF_STUDY_FACTOR``, rounded
     up to a multiple of five minutes, or the class time its header states if that is longer."""
-    sys.path.insert(0, str(ROOT / "scripts"))
-    from booklet import stated_minutes
-
     try:
         in_class = stated_minutes(nb)
     except ValueError:  # no header yet
@@ -98,9 +97,6 @@ def self_study_minutes(nb: nbformat.NotebookNode) -> int:
 
 
 def main() -> None:
-    sys.path.insert(0, str(ROOT / "scripts"))
-    from booklet import stated_minutes
-
     print("| notebook | stated | estimate | on your own | words | code lines | exercises |\n"
           "| --- | ---: | ---: | ---: | ---: | ---: | --- |")
     for path in sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb")):
