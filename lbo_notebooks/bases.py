@@ -32,7 +32,7 @@ from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_operators
 from .mesh import Mesh
 from .operators import MassKind, check_mass_kind, mass_matrix, stiffness_matrix
-from .sparse_factor import symmetric_lu
+from .solvers import symmetric_lu
 from .spectrum import eigenbasis
 
 __all__ = [

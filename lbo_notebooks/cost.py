@@ -54,7 +54,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
 
     ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
     steadier than wall time. The call runs with one BLAS thread
-    (:func:`~lbo_notebooks.blas_threads.one_blas_thread`, unless you set the count yourself):
+    (:func:`~lbo_notebooks._engine.threads.one_blas_thread`, unless you set the count yourself):
     otherwise idle BLAS threads spinning for work are counted as CPU time too, and on a busy
     machine they can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
     call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
@@ -68,7 +68,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """
     import tracemalloc
 
-    from .blas_threads import one_blas_thread
+    from ._engine.threads import one_blas_thread
 
     started = tracemalloc.is_tracing()
     if not started:
@@ -114,7 +114,7 @@ def _settle_blas_threads(timeout: float = 1.0) -> None:
     library's own count again changes nothing else), and the child waits until it is idle: less
     than a tenth of a core used over 20 ms, at most ``timeout`` seconds.
     """
-    from .blas_threads import rebuild_thread_pools
+    from ._engine.threads import rebuild_thread_pools
 
     rebuild_thread_pools()
     deadline = time.perf_counter() + timeout

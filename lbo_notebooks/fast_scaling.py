@@ -15,7 +15,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
-from .blas_threads import one_blas_thread
+from .solvers import one_blas_thread
 from .geodesics import GeodesicMethod, check_connected, check_method, farthest_point_sampling
 from .inner_product import fix_signs
 from .mesh import Mesh

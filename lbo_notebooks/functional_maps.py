@@ -40,11 +40,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validation import check_integer
 from ._progress import LARGE_MESH, check_progress, progress_bar
-from .blas_threads import one_blas_thread
-from .eigensolver import default_workers
 from .inner_product import a_norms
 from .mesh import Mesh
 from .spectrum import Spectrum
+from .solvers import default_workers, one_blas_thread
 
 __all__ = [
     "map_from_points",
@@ -120,7 +119,7 @@ def _nearest_rows(
     memory traffic); the scores it compares differ by ``|p - p'|^2 / 2`` between neighbouring points, far above its rounding, so only near-ties can change.
 
     The blocks of 1024 queries are shared among ``workers`` threads (default: the usable cores,
-    at most 2), each running BLAS on one thread (:mod:`lbo_notebooks.blas_threads`): the argmax
+    at most 2), each running BLAS on one thread (:mod:`lbo_notebooks._engine.threads`): the argmax
     runs in parallel too, and no BLAS thread spins waiting for a core that another program holds.
     Every block is computed alone, so the result does not depend on
     ``workers``.

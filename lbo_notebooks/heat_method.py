@@ -31,10 +31,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ._platform import default_workers
-from .blas_threads import one_blas_thread
 from .mesh import Mesh, MeshError, per_mesh
-from .sparse_factor import mesh_order_where_it_pays, symmetric_lu
+from .solvers import default_workers, mesh_order_where_it_pays, one_blas_thread, symmetric_lu
 
 __all__ = ["HeatMethod", "face_gradient_operator", "solve_poisson"]
 

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validation import check_integer
 from ._progress import LARGE_MESH, check_progress, progress_bar
-from .blas_threads import one_blas_thread
+from .solvers import one_blas_thread
 from .functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
 from .mesh import Mesh
 from .spectrum import eigenbasis

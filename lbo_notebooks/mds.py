@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validation import check_integer
 from ._progress import LARGE_MESH, check_progress, progress_bar
-from .blas_threads import one_blas_thread
+from .solvers import one_blas_thread
 from .geodesics import (
     GeodesicMethod,
     check_connected,

@@ -33,8 +33,7 @@ from .inner_product import (
     check_operators,
     fix_signs,
 )
-from .solver_policy import default_shift, start_vector, use_dense
-from .sparse_factor import symmetric_lu
+from .solvers import default_shift, start_vector, symmetric_lu, use_dense
 from .spectrum import Spectrum
 
 __all__ = [
@@ -205,7 +204,7 @@ def min_rayleigh_quotient(
         ``"dense"``: a basis of L by SVD and ``scipy.linalg.eigh`` (small n); ``"sparse"``:
         shift-invert Lanczos on the constrained problem, one sparse LU of ``W + s A`` and ``codim``
         extra solves (no dense n x n matrix; see :class:`ConstrainedRayleigh`, which reuses the
-        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.solver_policy.use_dense`.
+        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks._engine.policy.use_dense`.
     return_vector : bool
         Also return the minimiser, A-normalised, sign fixed by :func:`~lbo_notebooks.inner_product.fix_signs`.
 

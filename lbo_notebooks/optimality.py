@@ -28,8 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validation import check_integer
 from .inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
-from .solver_policy import start_vector, use_dense
-from .sparse_factor import symmetric_lu
+from .solvers import start_vector, symmetric_lu, use_dense
 from .spectrum import Spectrum
 
 __all__ = [

@@ -33,8 +33,8 @@ machine BLAS threads make the latter somewhat faster, but OpenBLAS threads spin 
 for a core: beside one busy program the same call is slower than on one thread, and on a loaded
 machine several times slower. So on meshes of
 10,000 vertices or more the solver looks whether the machine's other cores are idle
-(:func:`~lbo_notebooks.idle_cores.machine_is_idle`, 50 ms) and otherwise, as always on smaller
-meshes, runs BLAS on one thread (:mod:`lbo_notebooks.blas_threads`; a count the user set is kept).
+(:func:`~lbo_notebooks.solvers.blas_threads_for`, 50 ms) and otherwise, as always on smaller
+meshes, runs BLAS on one thread (a count the user set is kept).
 
 The step-1 factor does not depend on ``mu`` (``mu W + tau A = mu (W + t0 A)``), so a sweep over
 ``mu`` reuses it: build one :class:`RegularizedPCA` and call :meth:`RegularizedPCA.solve` per weight.
@@ -54,7 +54,6 @@ eigenbasis, and a given ``beta`` gives the same basis whatever the shape's size 
 
 from __future__ import annotations
 
-from contextlib import nullcontext
 from dataclasses import dataclass
 from typing import Literal, Sequence
 
@@ -65,16 +64,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._progress import LARGE_MESH, check_progress, progress_bar
 from ._validation import check_integer
-from .blas_threads import one_blas_thread
-from .idle_cores import machine_is_idle
 from .inner_product import (
     a_orthonormalize,
     check_operators,
     fix_signs,
 )
 from .rpca_pencil import complement_lanczos, data_eigenpairs, rayleigh_ritz
-from .solver_policy import default_shift, use_dense
-from .sparse_factor import SymmetricFactor, symmetric_lu
+from .solvers import SymmetricFactor, blas_threads_for, default_shift, symmetric_lu, use_dense
 from .spectrum import eigenbasis
 
 __all__ = [
@@ -276,7 +272,7 @@ class RegularizedPCA:
         method : {"auto", "dense", "sparse"}
             ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
             ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
-            ``"auto"`` follows :func:`~lbo_notebooks.solver_policy.use_dense`.
+            ``"auto"`` follows :func:`~lbo_notebooks._engine.policy.use_dense`.
 
         Returns
         -------
@@ -296,8 +292,7 @@ class RegularizedPCA:
             return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_dense(k, mu)
         # The sparse paths: BLAS threads only on a large mesh and an otherwise idle machine
         # (module docstring, "Threads").
-        idle = self.n_vertices >= LARGE_MESH and machine_is_idle()
-        with nullcontext() if idle else one_blas_thread():
+        with blas_threads_for(large=self.n_vertices >= LARGE_MESH):
             return self._solve_pca_limit(k, method) if mu == 0.0 else self._solve_sparse(k, mu)
 
     # mu = inf: the Laplace–Beltrami eigenbasis

@@ -19,8 +19,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from .inner_product import a_orthonormalize
-from .solver_policy import start_vector
-from .sparse_factor import SymmetricFactor, symmetric_lu
+from .solvers import SymmetricFactor, start_vector, symmetric_lu
 
 __all__ = ["DATA_TOL", "MAX_ROUNDS", "complement_lanczos", "data_eigenpairs", "rayleigh_ritz"]
 

@@ -18,7 +18,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from ._validation import check_integer
-from .solver_policy import start_vector, use_dense
+from .solvers import start_vector, use_dense
 
 __all__ = ["check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
 

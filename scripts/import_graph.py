@@ -30,15 +30,15 @@ from pathlib import Path
 #: The house, bottom to top: (layer, what it holds, module patterns). A module may import from its
 #: own layer and from the layers under it, never from a layer above.
 LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
-    ("support", "tools every layer uses: warnings, argument checks, optional open3d, progress bars, "
-     "BLAS threads and platform details, cost measurement",
-     ("_warnings", "_validation", "_open3d", "_progress", "_platform", "blas_threads", "idle_cores", "cost")),
+    ("support", "tools every layer uses: warnings, argument checks, optional open3d, progress bars",
+     ("_warnings", "_validation", "_open3d", "_progress")),
     ("data", "the mesh and point cloud, units, files in and out, repair",
      ("mesh", "units", "io", "formats", "formats.*", "repair", "pointcloud")),
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
      ("operators", "robust", "curvature", "laplacians")),
-    ("linear algebra", "A-inner products, factorisations, Krylov and the sliced eigensolver",
-     ("inner_product", "solver_policy", "sparse_factor", "krylov", "slicing", "eigensolver")),
+    ("linear algebra", "A-inner products; the private engine (factorisations, Krylov, the sliced eigensolver, "
+     "the thread policy), the solver services over it that the analyses use, cost measurement",
+     ("inner_product", "_engine", "_engine.*", "solvers", "cost")),
     ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
     ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
      ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "scaling", "fast_scaling",

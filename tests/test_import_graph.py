@@ -76,3 +76,17 @@ def test_a_chain_of_more_than_eight_levels_fails(tmp_path):
     result = run(package)
     assert result.returncode == 1
     assert "TOO HIGH: longest chain (10 levels, at most 8): m9 -> m8" in result.stdout
+
+
+def test_the_engine_is_private_and_takes_no_mesh():
+    """Issue 42: at most three modules outside the engine import it; the engine imports no mesh."""
+    result = run()
+    edges = {
+        line.split("->")[0].strip(): {dep.strip() for dep in line.split("->")[1].split(",")}
+        for line in result.stdout.splitlines()
+        if " -> " in line and not line.startswith(("longest", "TOO HIGH", "CYCLE"))
+    }
+    engine = {name for name in edges if name == "_engine" or name.startswith("_engine.")}
+    importers = {name for name, deps in edges.items() if name not in engine and deps & engine}
+    assert len(importers) <= 3, importers
+    assert not any(deps & {"mesh", "pointcloud"} for name, deps in edges.items() if name in engine)

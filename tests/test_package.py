@@ -45,6 +45,8 @@ def _declared_names() -> dict[str, list[str]]:
         if path == root / "__init__.py":
             continue  # the lazy front door: its __all__ is computed from _EXPORTS
         module = ".".join(path.relative_to(root).with_suffix("").parts)
+        if module.startswith("_engine"):
+            continue  # private: its names are public only through lbo_notebooks.solvers
         for node in ast.parse(path.read_text()).body:
             if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
                 for name in ast.literal_eval(node.value):

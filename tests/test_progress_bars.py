@@ -17,8 +17,8 @@ import pytest
 
 import lbo_notebooks as lbo
 from lbo_notebooks import mds, rpca, shapes, spectrum
-from lbo_notebooks.eigensolver import slice_eigsh
-from lbo_notebooks.slicing import plan_sets
+from lbo_notebooks._engine.eigensolver import slice_eigsh
+from lbo_notebooks._engine.slicing import plan_sets
 
 from .kernel import cell_outputs, is_widget
 

@@ -2,7 +2,7 @@
 
 OpenBLAS threads spin while they wait for a core, so beside another busy program these calls
 took 4-20x the CPU time they need (benchmarks/busy.py). They now hold
-:func:`~lbo_notebooks.blas_threads.one_blas_thread` (match's nearest-neighbour search runs its
+:func:`~lbo_notebooks._engine.threads.one_blas_thread` (match's nearest-neighbour search runs its
 own worker threads instead), which must leave the caller's process-wide count as it found it and
 must not touch a count the user set by an environment variable. (rPCA keeps the caller's threads
 on a large mesh when the rest of the machine is idle, where they make it faster.) The set-up is that of
@@ -16,6 +16,7 @@ import pytest
 
 import lbo_notebooks as lbo
 from lbo_notebooks import fast_scaling, functional_maps, mds, rpca, shapes
+from lbo_notebooks._engine import threads as engine_threads
 from tests.test_threads import blas_threads, caller_threads  # noqa: F401 - caller_threads is a fixture
 
 
@@ -73,7 +74,7 @@ def test_rpca_keeps_blas_threads_on_a_large_mesh_only_when_the_machine_is_idle(s
     reference = solver.solve(20, beta=0.5)
     monkeypatch.setattr(rpca, "LARGE_MESH", 100)  # as if the sphere were large
     for idle, inside in ((True, caller_threads), (False, [1] * len(caller_threads))):
-        monkeypatch.setattr(rpca, "machine_is_idle", lambda idle=idle: idle)
+        monkeypatch.setattr(engine_threads, "machine_is_idle", lambda idle=idle: idle)
         seen.clear()
         result = solver.solve(20, beta=0.5)
         assert seen and all(counts == inside for counts in seen), (idle, seen)
@@ -88,7 +89,7 @@ def test_machine_is_idle_reads_the_cpu_counters(monkeypatch):
     import builtins
     import io
 
-    from lbo_notebooks import idle_cores
+    idle_cores = engine_threads
 
     real_open, lines = builtins.open, []
 

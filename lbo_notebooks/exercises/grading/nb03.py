@@ -70,8 +70,8 @@ _MASS = (
 # pencil. SciPy's eigsh / eigh are what the exercise asks for, and stay.
 _EIGENSOLVE = (
     "lbo_notebooks.spectrum:eigenbasis", "lbo_notebooks.spectrum:_solve_in_unit_area",
-    "lbo_notebooks.eigensolver:slice_eigsh", "lbo_notebooks.eigensolver:_window_set", "lbo_notebooks.eigensolver:_stitch",
-    "lbo_notebooks.krylov:nearest_eigenpairs",
+    "lbo_notebooks._engine.eigensolver:slice_eigsh", "lbo_notebooks._engine.eigensolver:_window_set", "lbo_notebooks._engine.eigensolver:_stitch",
+    "lbo_notebooks._engine.krylov:nearest_eigenpairs",
     "lbo_notebooks.bases:lbo_basis", "lbo_notebooks.bases:_smallest_eigenvectors",
     "lbo_notebooks.minmax:min_rayleigh_quotient", "lbo_notebooks.minmax:_min_dense",
     "lbo_notebooks.minmax:ConstrainedRayleigh.minimum", "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",

@@ -18,7 +18,7 @@ from ._registry import Verdict, from_feedback, grader, recap_verdict, student_ca
 # eigenvectors first is a legitimate (if unneeded) step, not the projection.
 _PROJECTION = ("lbo_notebooks.spectrum:Spectrum.project", "lbo_notebooks.spectrum:Spectrum.reconstruct",
                "lbo_notebooks.spectrum:Spectrum.error", "lbo_notebooks.optimality:representation_error",
-               "lbo_notebooks.inner_product:reconstruct", "lbo_notebooks.krylov:_project_out")
+               "lbo_notebooks.inner_product:reconstruct", "lbo_notebooks._engine.krylov:_project_out")
 
 
 def notebook_dog() -> Any:

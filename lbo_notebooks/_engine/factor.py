@@ -24,16 +24,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import ctypes
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .mesh import Mesh, per_mesh
 
 __all__ = [
-    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "mesh_order",
-    "mesh_order_where_it_pays", "symmetric_lu",
+    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "return_freed_memory",
+    "symmetric_lu",
 ]
 
 # Below this many unknowns a matrix with no order given is ordered by SuperLU itself (minimum
@@ -76,45 +77,6 @@ def fill_reducing_order(matrix: sp.spmatrix) -> NDArray[np.intp]:
     graph.sort_indices()
     order, _ = pymetis.nested_dissection(pymetis.CSRAdjacency(graph.indptr, graph.indices))
     return np.asarray(order, dtype=np.intp)
-
-
-@per_mesh
-def mesh_order(mesh: Mesh) -> NDArray[np.intp]:
-    """:func:`fill_reducing_order` of the mesh's edge graph, computed once per mesh.
-
-    Every operator assembled on the mesh's own triangles (``W``, ``A``, ``W - b A``, ``A + t W``,
-    the pinned ``W``) has the pattern of the edge graph, so they all share this order: one METIS
-    run serves the eigensolver and the heat method's Poisson step (from
-    :data:`NESTED_DISSECTION_MIN` vertices on; below, neither asks for it). Not
-    the intrinsic Delaunay operators of :mod:`~lbo_notebooks.robust`: their flipped edges cross
-    this order's separators (much more fill on a stretched torus), so they are ordered
-    on their own pattern.
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes
-    >>> m = shapes.icosphere(2)
-    >>> order = mesh_order(m)
-    >>> sorted(order.tolist()) == list(range(m.n_vertices)), mesh_order(m) is order  # cached
-    (True, True)
-    """
-    edges, n = mesh.edges, mesh.n_vertices
-    graph = sp.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
-    return fill_reducing_order(graph)
-
-
-def mesh_order_where_it_pays(mesh: Mesh) -> NDArray[np.intp] | None:
-    """:func:`mesh_order` from :data:`NESTED_DISSECTION_MIN` vertices on, else ``None`` (SuperLU orders the matrix).
-
-    The one rule for callers that factorise operators of a mesh (the eigensolver, the heat method).
-
-    Examples
-    --------
-    >>> from lbo_notebooks import shapes
-    >>> mesh_order_where_it_pays(shapes.icosphere(2)) is None  # 162 vertices: METIS would not pay
-    True
-    """
-    return mesh_order(mesh) if mesh.n_vertices >= NESTED_DISSECTION_MIN else None
 
 
 class SymmetricFactor:
@@ -250,9 +212,9 @@ class SliceFactor:
     def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float, order: NDArray[np.intp] | None = None) -> "SliceFactor":
         """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue.
 
-        ``order``: a :func:`~lbo_notebooks.sparse_factor.fill_reducing_order` of the pattern of
+        ``order``: a :func:`~lbo_notebooks._engine.factor.fill_reducing_order` of the pattern of
         ``stiffness`` and ``mass``, shared by every shift (when omitted,
-        :func:`~lbo_notebooks.sparse_factor.symmetric_lu` chooses one by size).
+        :func:`~lbo_notebooks._engine.factor.symmetric_lu` chooses one by size).
         """
         try:
             lu = symmetric_lu(stiffness - shift * mass, order)
@@ -276,3 +238,18 @@ def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
     4
     """
     return SliceFactor.of(stiffness, mass, value).n_below
+
+
+def return_freed_memory() -> None:
+    """Ask glibc to hand freed heap pages back to the system (a factorisation leaves many behind).
+
+    Does nothing where the C library is not glibc.
+
+    Examples
+    --------
+    >>> return_freed_memory()  # never fails, whatever the platform
+    """
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # not glibc (macOS, Windows, musl): nothing to do
+        pass

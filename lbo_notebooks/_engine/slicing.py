@@ -1,6 +1,6 @@
 """Where the spectrum is cut: the shared problem, the placement of the shifts and each window's plan.
 
-:mod:`~lbo_notebooks.eigensolver` slices the spectrum of ``W phi = lam A phi`` into windows, one
+:mod:`~lbo_notebooks._engine.eigensolver` slices the spectrum of ``W phi = lam A phi`` into windows, one
 block Lanczos set per window. This module decides where: :func:`plan_sets` how many sets,
 :func:`place_shift` each shift (a factorisation whose inertia count is near a target), and
 :func:`plan_window` the window of eigenvalues the set at a shift returns (and :func:`centred_target`
@@ -17,7 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .sparse_factor import SliceFactor
+from .factor import SliceFactor
 
 __all__ = [
     "LOWEST_CENTRE", "MIN_SET", "OVERLAP", "REACH", "Pencil", "WindowPlan", "centred_target", "place_shift", "plan_sets",
@@ -47,7 +47,7 @@ class Pencil:
 
     ``order`` is the fill-reducing order every shift's ``W - b A`` shares. When it is ``None``
     the first factorisation orders the matrix itself (SuperLU's minimum degree, what pays below
-    :data:`~lbo_notebooks.sparse_factor.NESTED_DISSECTION_MIN` unknowns) and its order is kept
+    :data:`~lbo_notebooks._engine.factor.NESTED_DISSECTION_MIN` unknowns) and its order is kept
     for the others, which then skip that step. ``v0`` is the Lanczos start vector of every set and
     ``tol`` their tolerance.
     """
