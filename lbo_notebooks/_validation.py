@@ -25,16 +25,43 @@ ValueError: k must be a positive integer, got True.
 Traceback (most recent call last):
 ...
 ValueError: tol must be a number between 0 and 1 (e.g. 1e-10), got 2.0.
+
+The same checks, declared: :func:`validated` takes one constraint per argument (:class:`Integer`,
+:class:`Number`, :class:`Options`, :class:`Boolean`, :class:`Satisfies`), binds the arguments once
+per call, and hands the normalized values (``int``, ``float``, the option) to the body. A bound or
+message may be a callable of the arguments, so it can depend on another one:
+
+>>> @validated(n=Integer(1), k=Integer(1, lambda n, **_: n, what="an integer between 1 and n ({high})"),
+...            tol=Number(0, 1, open_low=True, none=True), method=Options("cotan", "robust"))
+... def pick(n, k=1, tol=None, method="cotan"):
+...     "Pick k of n."
+...     return k, tol, method
+>>> pick(np.int64(5), np.int32(3), 1)
+(3, 1.0, 'cotan')
+>>> pick(5, 6)
+Traceback (most recent call last):
+...
+ValueError: k must be an integer between 1 and n (5), got 6.
+>>> pick(5, method="fem")
+Traceback (most recent call last):
+...
+ValueError: method must be one of ('cotan', 'robust'), got 'fem'.
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import numpy as np
 
-__all__ = ["is_integer", "is_number", "check_integer", "check_number"]
+__all__ = [
+    "is_integer", "is_number", "check_integer", "check_number",
+    "validated", "Constraint", "Integer", "Number", "Options", "Boolean", "Satisfies",
+]
 
 
 def is_integer(value: Any) -> bool:
@@ -142,3 +169,195 @@ def check_number(
     if not inside:
         raise _fail(name, _described(low, high, open_low, open_high, False) if what is None else what, value, hint)
     return float(value)
+
+
+# --- Declared constraints: one table per public function -------------------------------------------
+
+Bound = Any  # a number, None, or a callable of the function's arguments (``lambda mesh, **_: mesh.n_vertices``)
+
+
+def _resolve(bound: Bound, arguments: dict[str, Any]) -> Any:
+    return bound(**arguments) if callable(bound) else bound
+
+
+class Constraint:
+    """One argument's rule: :meth:`check` returns the normalized value or raises ``ValueError``.
+
+    ``none=True`` lets ``None`` through unchanged. ``what`` (what the value must be) and ``hint``
+    (appended after the value) may be strings, formatted with the resolved ``{low}`` and ``{high}``,
+    or callables of the function's arguments. ``message`` replaces the whole message; it is
+    formatted with ``{name}``, ``{value!r}``, ``{type}`` (the value's type name), ``{low}``, ``{high}``,
+    or is a callable ``message(name, value)``.
+    """
+
+    low: Bound = None
+    high: Bound = None
+
+    def __init__(self, *, what: Any = None, hint: Any = None, message: Any = None, none: bool = False) -> None:
+        self.what, self.hint, self.message, self.none = what, hint, message, none
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:  # pragma: no cover - each kind has its own
+        raise NotImplementedError
+
+    def normalize(self, value: Any) -> Any:
+        return value
+
+    def default_what(self, low: Any, high: Any) -> str:  # pragma: no cover
+        raise NotImplementedError
+
+    def check(self, value: Any, name: str, arguments: dict[str, Any]) -> Any:
+        if value is None and self.none:
+            return None
+        low, high = _resolve(self.low, arguments), _resolve(self.high, arguments)
+        if self.accepts(value, low, high):
+            return self.normalize(value)
+        parts = {"low": low, "high": high}
+        if callable(self.message):
+            raise ValueError(self.message(name, value))
+        if self.message is not None:
+            raise ValueError(self.message.format(name=name, value=value, type=type(value).__name__, **parts))
+        what = self.default_what(low, high) if self.what is None else self._text(self.what, arguments, parts)
+        hint = None if self.hint is None else self._text(self.hint, arguments, parts)
+        raise _fail(name, what, value, hint)
+
+    @staticmethod
+    def _text(text: Any, arguments: dict[str, Any], parts: dict[str, Any]) -> str:
+        return text(**arguments) if callable(text) else text.format(**parts)
+
+
+class Integer(Constraint):
+    """An integer (:func:`is_integer`, so not ``True``) in ``low..high``; the body gets ``int(value)``."""
+
+    def __init__(self, low: Bound = None, high: Bound = None, **options: Any) -> None:
+        super().__init__(**options)
+        self.low, self.high = low, high
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:
+        return is_integer(value) and (low is None or value >= low) and (high is None or value <= high)
+
+    def normalize(self, value: Any) -> int:
+        return int(value)
+
+    def default_what(self, low: Any, high: Any) -> str:
+        return _described(low, high, False, False, True)
+
+
+class Number(Constraint):
+    """A finite real number (:func:`is_number`) in ``[low, high]``; ``open_low``/``open_high`` exclude an end.
+
+    The body gets ``float(value)``.
+    """
+
+    def __init__(self, low: Bound = None, high: Bound = None, *, open_low: bool = False, open_high: bool = False,
+                 **options: Any) -> None:
+        super().__init__(**options)
+        self.low, self.high, self.open_low, self.open_high = low, high, open_low, open_high
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:
+        return is_number(value) and (low is None or (value > low if self.open_low else value >= low)) and (
+            high is None or (value < high if self.open_high else value <= high)
+        )
+
+    def normalize(self, value: Any) -> float:
+        return float(value)
+
+    def default_what(self, low: Any, high: Any) -> str:
+        return _described(low, high, self.open_low, self.open_high, False)
+
+
+class Options(Constraint):
+    """One of the given strings, integers or other scalars; ``True`` never counts as ``1``. Gives the option itself."""
+
+    def __init__(self, *choices: Any, **options: Any) -> None:
+        super().__init__(**options)
+        self.choices = choices
+
+    def _match(self, value: Any) -> Any:
+        if isinstance(value, (str, int, float, np.generic)):
+            for choice in self.choices:
+                if isinstance(value, (bool, np.bool_)) == isinstance(choice, bool) and value == choice:
+                    return choice
+        return _NO_MATCH
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:
+        return self._match(value) is not _NO_MATCH
+
+    def normalize(self, value: Any) -> Any:
+        return self._match(value)
+
+    def default_what(self, low: Any, high: Any) -> str:
+        return f"one of {self.choices!r}"
+
+
+_NO_MATCH = object()
+
+
+class Boolean(Constraint):
+    """``True`` or ``False`` (NumPy booleans too, not ``0``/``1``); gives ``bool``."""
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:
+        return isinstance(value, (bool, np.bool_))
+
+    def normalize(self, value: Any) -> bool:
+        return bool(value)
+
+    def default_what(self, low: Any, high: Any) -> str:
+        return "True, False or None" if self.none else "True or False"
+
+
+class Satisfies(Constraint):
+    """The rare special case: ``predicate(value)`` is true; ``what`` or ``message`` says what it must be."""
+
+    def __init__(self, predicate: Callable[[Any], bool], what: Any = None, *,
+                 convert: Callable[[Any], Any] | None = None, **options: Any) -> None:
+        super().__init__(what=what, **options)
+        self.predicate, self.convert = predicate, convert
+
+    def accepts(self, value: Any, low: Any, high: Any) -> bool:
+        try:
+            return bool(self.predicate(value))
+        except (TypeError, ValueError):
+            return False
+
+    def normalize(self, value: Any) -> Any:
+        return value if self.convert is None else self.convert(value)
+
+    def default_what(self, low: Any, high: Any) -> str:
+        return "valid"
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def validated(**constraints: Constraint | tuple[Constraint, ...]) -> Callable[[F], F]:
+    """Check the named arguments against their constraints, in the order given, before the call.
+
+    An argument may have a tuple of constraints, checked in turn (a range, then a relation to
+    another argument). The arguments are bound with the function's signature (defaults applied), each checked value
+    is replaced by its normalized form (``int``, ``float``, the option), and the function is called
+    with them. A bound or message may depend on arguments named earlier in the table, which are
+    then already checked. The wrapper keeps the name, docstring, signature and ``__wrapped__``; its
+    table is ``wrapper.__constraints__``.
+    """
+
+    def decorate(function: F) -> F:
+        signature = inspect.signature(function)
+        unknown = sorted(set(constraints) - set(signature.parameters))
+        if unknown:
+            raise TypeError(f"{function.__qualname__} has no parameter(s) {', '.join(unknown)} to validate.")
+        table = tuple((name, rule if isinstance(rule, tuple) else (rule,)) for name, rule in constraints.items())
+
+        @functools.wraps(function)
+        def wrapper(*args: Any, **kwargs: Any) -> Any:
+            bound = signature.bind(*args, **kwargs)
+            bound.apply_defaults()
+            arguments = bound.arguments
+            for name, rules in table:
+                for rule in rules:
+                    arguments[name] = rule.check(arguments[name], name, arguments)
+            return function(*bound.args, **bound.kwargs)
+
+        wrapper.__constraints__ = dict(constraints)  # type: ignore[attr-defined]
+        return wrapper  # type: ignore[return-value]
+
+    return decorate

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validation import check_integer
+from ._validation import Integer, Number, Satisfies, validated
 from .mesh import MeshError
 from .spectrum import Spectrum
 
@@ -36,13 +36,18 @@ __all__ = ["hks", "wks", "gps", "hks_times", "wks_energies"]
 _DECADES = 4.0 * np.log(10.0)
 
 
-def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
-    if not isinstance(spectrum, Spectrum):
-        raise ValueError(
-            f"spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}."
-        )
-    if spectrum.k < minimum:
-        raise ValueError(f"this descriptor needs at least {minimum} eigenpairs; compute eigenbasis(mesh, k) with k >= {minimum}.")
+def _spectrum(minimum: int) -> tuple[Satisfies, Satisfies]:
+    """The constraints on ``spectrum``: a Spectrum with at least ``minimum`` eigenpairs."""
+    return (
+        Satisfies(lambda s: isinstance(s, Spectrum),
+                  message="spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type}."),
+        Satisfies(lambda s: s.k >= minimum, message=f"this descriptor needs at least {minimum} eigenpairs; "
+                  f"compute eigenbasis(mesh, k) with k >= {minimum}."),
+    )
+
+
+def _check_connected(spectrum: Spectrum) -> Spectrum:
+    """The data check that stays in the body: a second eigenvalue of 0 means several components."""
     if spectrum.values[1] <= 1e-9 * abs(spectrum.values[-1]):  # a zero eigenvalue up to round-off
         raise MeshError(
             "the second eigenvalue is not positive: the mesh has several connected components. "
@@ -51,17 +56,20 @@ def _check_spectrum(spectrum: Spectrum, minimum: int) -> Spectrum:
     return spectrum
 
 
-def _check_count(name: str, value: int) -> int:
-    return check_integer(value, name, 1)
+def _grid(values: ArrayLike) -> NDArray[np.float64]:
+    return np.atleast_1d(np.asarray(values, dtype=np.float64))
 
 
-def _check_grid(name: str, values: ArrayLike) -> NDArray[np.float64]:
-    arr = np.atleast_1d(np.asarray(values, dtype=np.float64))
-    if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be a non-empty 1-D sequence of finite numbers, got shape {arr.shape}.")
-    return arr
+_GRID = Satisfies(
+    lambda v: (a := _grid(v)).ndim == 1 and a.size > 0 and bool(np.all(np.isfinite(a))),
+    convert=_grid,
+    none=True,
+    message=lambda name, v: f"{name} must be a non-empty 1-D sequence of finite numbers, got shape {_grid(v).shape}.",
+)
+_POSITIVE = Number(0, open_low=True)
 
 
+@validated(spectrum=_spectrum(2), n_times=Integer(1))
 def hks_times(spectrum: Spectrum, n_times: int = 16) -> NDArray[np.float64]:
     """Default HKS times: ``n_times`` log-spaced between ``4 ln 10 / lam_max`` and ``4 ln 10 / lam_1``.
 
@@ -75,12 +83,15 @@ def hks_times(spectrum: Spectrum, n_times: int = 16) -> NDArray[np.float64]:
     >>> bool(abs(t[-1] - 4 * np.log(10) / 2) < 0.05)   # lam_1 = 2 on the unit sphere
     True
     """
-    spectrum = _check_spectrum(spectrum, 2)
-    n_times = _check_count("n_times", n_times)
+    _check_connected(spectrum)
     lam = spectrum.values
     return np.geomspace(_DECADES / lam[-1], _DECADES / lam[1], n_times)
 
 
+@validated(
+    spectrum=_spectrum(2),
+    times=(_GRID, Satisfies(lambda t: t is None or bool(np.all(t > 0)), message="HKS times must be positive.")),
+)
 def hks(spectrum: Spectrum, times: ArrayLike | None = None, *, n_times: int = 16) -> NDArray[np.float64]:
     """Heat kernel signature ``h_t(x) = sum_i exp(-lam_i t) phi_i(x)^2``, shape (n, len(times)).
 
@@ -100,14 +111,13 @@ def hks(spectrum: Spectrum, times: ArrayLike | None = None, *, n_times: int = 16
     >>> bool(abs(h / exact - 1).max() < 1e-2)
     True
     """
-    t = hks_times(spectrum, n_times) if times is None else _check_grid("times", times)
-    if np.any(t <= 0):
-        raise ValueError("HKS times must be positive.")
-    _check_spectrum(spectrum, 2)
+    t = hks_times(spectrum, n_times) if times is None else times
+    _check_connected(spectrum)
     lam = np.maximum(spectrum.values, 0.0)  # lam_0 is 0 up to round-off
     return (spectrum.vectors**2) @ np.exp(-np.outer(lam, t))
 
 
+@validated(spectrum=_spectrum(3), n_energies=Integer(1), sigma_factor=_POSITIVE)
 def wks_energies(spectrum: Spectrum, n_energies: int = 100, *, sigma_factor: float = 7.0) -> tuple[NDArray[np.float64], float]:
     """Default WKS log-energies and width: log-spaced over ``(log lam_1, log lam_max)``.
 
@@ -119,15 +129,13 @@ def wks_energies(spectrum: Spectrum, n_energies: int = 100, *, sigma_factor: flo
     energies : ndarray, shape (n_energies,)
     sigma : float
     """
-    spectrum = _check_spectrum(spectrum, 3)
-    n_energies = _check_count("n_energies", n_energies)
-    if not (np.isfinite(sigma_factor) and sigma_factor > 0):
-        raise ValueError(f"sigma_factor must be a positive number, got {sigma_factor!r}.")
+    _check_connected(spectrum)
     lo, hi = np.log(spectrum.values[1]), np.log(spectrum.values[-1])
     sigma = sigma_factor * (hi - lo) / n_energies
     return np.linspace(lo + 2 * sigma, hi - 2 * sigma, n_energies), float(sigma)
 
 
+@validated(spectrum=_spectrum(3), energies=_GRID, sigma=Number(0, open_low=True, none=True))
 def wks(
     spectrum: Spectrum,
     energies: ArrayLike | None = None,
@@ -158,22 +166,25 @@ def wks(
     >>> w.shape, bool(np.ptp(w, axis=0).max() < 0.05 * w.max())   # nearly constant on the sphere
     ((642, 8), True)
     """
-    _check_spectrum(spectrum, 3)
+    _check_connected(spectrum)
     if energies is None:
         e, default_sigma = wks_energies(spectrum, n_energies)
     else:
-        e, default_sigma = _check_grid("energies", energies), None
+        e, default_sigma = energies, None
     if sigma is None:
         if default_sigma is None:
             raise ValueError("with explicit energies pass sigma too (a few grid steps in log-energy).")
         sigma = default_sigma
-    if not (np.isfinite(sigma) and sigma > 0):
-        raise ValueError(f"sigma must be a positive number, got {sigma!r}.")
     log_lam = np.log(spectrum.values[1:])
     g = np.exp(-((e[None, :] - log_lam[:, None]) ** 2) / (2.0 * sigma**2))
     return (spectrum.vectors[:, 1:] ** 2) @ (g / g.sum(axis=0))
 
 
+@validated(
+    spectrum=_spectrum(2),
+    k=Integer(2, lambda spectrum, **_: spectrum.k, none=True,
+              what=lambda spectrum, **_: f"an integer between 2 and spectrum.k={spectrum.k}"),
+)
 def gps(spectrum: Spectrum, k: int | None = None) -> NDArray[np.float64]:
     """Global point signature ``(phi_1/sqrt(lam_1), ..., phi_{k-1}/sqrt(lam_{k-1}))``, shape (n, k-1).
 
@@ -184,8 +195,7 @@ def gps(spectrum: Spectrum, k: int | None = None) -> NDArray[np.float64]:
     >>> gps(s, 4).shape
     (642, 3)
     """
-    _check_spectrum(spectrum, 2)
+    _check_connected(spectrum)
     if k is None:
         k = spectrum.k
-    check_integer(k, "k", 2, spectrum.k, what=f"an integer between 2 and spectrum.k={spectrum.k}")
     return spectrum.vectors[:, 1:k] / np.sqrt(spectrum.values[1:k])

@@ -12,13 +12,14 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ._validation import check_integer
+from ._validation import Integer, validated
 from .geodesics import farthest_point_sampling
 from .mesh import Mesh
 
 __all__ = ["pose_distortion", "vertex_strain"]
 
 
+@validated(n_samples=Integer(2, lambda rest, **_: rest.n_vertices))
 def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, float]:
     """How far ``posed`` is from an isometry of ``rest`` (two meshes with the same faces).
 
@@ -40,7 +41,6 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
 
     if rest.n_vertices != posed.n_vertices or not np.array_equal(rest.faces, posed.faces):
         raise ValueError("rest and posed must share one triangulation (same faces); pass two poses of one creature.")
-    check_integer(n_samples, "n_samples", 2, rest.n_vertices)
     edges, n = rest.edges, rest.n_vertices
 
     def lengths(mesh: Mesh) -> NDArray[np.float64]:

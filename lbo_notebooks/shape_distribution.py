@@ -13,11 +13,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validation import check_integer
+from ._validation import Integer, Number, validated
 
 __all__ = ["shape_distribution", "shape_distribution_distances"]
 
 
+@validated(bins=Integer(1), max_ratio=Number(0, open_low=True))
 def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 3.0) -> NDArray[np.float64]:
     """Histogram (a density) of all pairwise Euclidean distances, divided by their mean.
 
@@ -54,9 +55,6 @@ def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 
         raise ValueError(f"points must be a finite (n, d) array, got shape {P.shape}.")
     if P.shape[0] < 2:
         raise ValueError(f"a shape distribution needs at least two points, got {P.shape[0]}.")
-    check_integer(bins, "bins", 1)
-    if not (np.isscalar(max_ratio) and np.isfinite(max_ratio) and max_ratio > 0):
-        raise ValueError(f"max_ratio must be a positive number, got {max_ratio!r}.")
     d = pdist(P)
     mean = d.mean()
     if mean <= 0:

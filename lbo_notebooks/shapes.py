@@ -6,25 +6,20 @@ The four-legged creatures and their poses live in :mod:`lbo_notebooks.creatures`
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import NDArray
 
-from ._validation import check_integer
+from ._validation import Integer, Number, validated
 from .mesh import Mesh
 
 __all__ = ["icosphere", "ellipsoid", "torus", "jittered_torus", "rectangle", "disk", "bumpy_sphere", "scan_like"]
 
 
-def _check_int(name: str, value: Any, low: int, high: int | None = None) -> int:
-    return check_integer(value, name, low, high, what=f"an integer >= {low}" if high is None else None)
+_POSITIVE = Number(0, open_low=True, what="a positive finite number")
 
 
-def _check_positive(name: str, value: Any) -> float:
-    if not (np.isscalar(value) and np.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}.")
-    return float(value)
+def _at_least(low: int) -> Integer:
+    return Integer(low, what="an integer >= {low}")
 
 
 def _icosahedron() -> tuple[NDArray[np.float64], NDArray[np.int64]]:
@@ -59,6 +54,7 @@ def _subdivide(v: NDArray[np.float64], f: NDArray[np.int64]) -> tuple[NDArray[np
     return np.vstack([v, mid]), new_faces
 
 
+@validated(subdivisions=Integer(0, 8), radius=_POSITIVE)
 def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
     """A sphere made by subdividing an icosahedron: ``10 * 4**subdivisions + 2`` vertices.
 
@@ -67,14 +63,13 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
     >>> icosphere(5).n_vertices
     10242
     """
-    s = _check_int("subdivisions", subdivisions, 0, 8)
-    radius = _check_positive("radius", radius)
     v, f = _icosahedron()
-    for _ in range(s):
+    for _ in range(subdivisions):
         v, f = _subdivide(v, f)
     return Mesh(radius * v, f)
 
 
+@validated(a=_POSITIVE, b=_POSITIVE, c=_POSITIVE)
 def ellipsoid(a: float = 1.0, b: float = 0.7, c: float = 0.5, subdivisions: int = 4) -> Mesh:
     """An ellipsoid with semi-axes ``a, b, c``: an icosphere stretched along x, y, z.
 
@@ -83,11 +78,19 @@ def ellipsoid(a: float = 1.0, b: float = 0.7, c: float = 0.5, subdivisions: int 
     >>> ellipsoid(2, 1, 1, subdivisions=2).bounding_box[1].round(6).tolist()
     [2.0, 1.0, 1.0]
     """
-    axes = np.array([_check_positive(n, x) for n, x in (("a", a), ("b", b), ("c", c))])
+    axes = np.array([a, b, c])
     sphere = icosphere(subdivisions)
     return Mesh(sphere.vertices * axes, sphere.faces)
 
 
+@validated(
+    major_radius=_POSITIVE,
+    minor_radius=(_POSITIVE, Number(high=lambda major_radius, **_: major_radius, open_high=True,
+                                    message="minor_radius ({value}) must be smaller than major_radius ({high}) "
+                                    "for a ring torus.")),
+    n_major=_at_least(3),
+    n_minor=_at_least(3),
+)
 def torus(major_radius: float = 1.0, minor_radius: float = 0.4, n_major: int = 64, n_minor: int = 24) -> Mesh:
     """A ring torus (genus 1) sampled on an ``n_major x n_minor`` periodic grid.
 
@@ -96,12 +99,7 @@ def torus(major_radius: float = 1.0, minor_radius: float = 0.4, n_major: int = 6
     >>> torus(n_major=32, n_minor=12).euler_characteristic
     0
     """
-    R = _check_positive("major_radius", major_radius)
-    r = _check_positive("minor_radius", minor_radius)
-    if r >= R:
-        raise ValueError(f"minor_radius ({r}) must be smaller than major_radius ({R}) for a ring torus.")
-    nu = _check_int("n_major", n_major, 3)
-    nv = _check_int("n_minor", n_minor, 3)
+    R, r, nu, nv = major_radius, minor_radius, n_major, n_minor
     u = 2 * np.pi * np.arange(nu) / nu
     w = 2 * np.pi * np.arange(nv) / nv
     U, V = np.meshgrid(u, w, indexing="ij")
@@ -115,6 +113,13 @@ def torus(major_radius: float = 1.0, minor_radius: float = 0.4, n_major: int = 6
     return Mesh(verts, faces)
 
 
+@validated(
+    n_minor=Integer(3),
+    jitter=Number(0, 1, open_high=True, what="in [0, 1) (a fraction of the grid step; 1 could fold triangles)"),
+    major_radius=Number(),
+    minor_radius=(Number(), Number(0, lambda major_radius, **_: major_radius, open_low=True, open_high=True,
+                                   message="need 0 < minor_radius < major_radius, got {value} and {high}.")),
+)
 def jittered_torus(
     n_minor: int, jitter: float = 0.0, *, major_radius: float = 1.0, minor_radius: float = 0.4, seed: int = 0
 ) -> tuple[Mesh, NDArray[np.float64]]:
@@ -133,13 +138,8 @@ def jittered_torus(
     >>> mesh.n_vertices, mesh.euler_characteristic, bool(np.isclose(K.max(), 1 / (0.4 * 1.4)))
     (160, 0, True)
     """
-    check_integer(n_minor, "n_minor", 3)
-    if not (np.isscalar(jitter) and np.isfinite(jitter) and 0 <= jitter < 1):
-        raise ValueError(f"jitter must be in [0, 1) (a fraction of the grid step; 1 could fold triangles), got {jitter!r}.")
-    R, r = float(major_radius), float(minor_radius)
-    if not (0 < r < R):
-        raise ValueError(f"need 0 < minor_radius < major_radius, got {r} and {R}.")
-    nv, nu = int(n_minor), int(round(2.5 * n_minor))
+    R, r = major_radius, minor_radius
+    nv, nu = n_minor, int(round(2.5 * n_minor))
     # the same (u-major, v-minor) vertex order and faces as torus
     faces = torus(R, r, nu, nv).faces
     rng = np.random.default_rng(seed)
@@ -150,6 +150,7 @@ def jittered_torus(
     return Mesh(vertices, faces), np.cos(v) / (r * ring)
 
 
+@validated(a=_POSITIVE, b=_POSITIVE, nx=_at_least(1), ny=_at_least(1))
 def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mesh:
     """The flat rectangle ``[0, a] x [0, b]`` (z = 0) as ``nx x ny`` cells, each split by one diagonal.
 
@@ -162,8 +163,6 @@ def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mes
     >>> m.n_vertices, m.n_faces, m.area
     (15, 16, 2.0)
     """
-    a, b = _check_positive("a", a), _check_positive("b", b)
-    nx, ny = _check_int("nx", nx, 1), _check_int("ny", ny, 1)
     x = np.linspace(0.0, a, nx + 1)
     y = np.linspace(0.0, b, ny + 1)
     X, Y = np.meshgrid(x, y, indexing="ij")
@@ -177,6 +176,7 @@ def rectangle(a: float = 1.0, b: float = 1.0, nx: int = 10, ny: int = 10) -> Mes
     return Mesh(verts, faces)
 
 
+@validated(radius=_POSITIVE, n_rings=_at_least(1))
 def disk(radius: float = 1.0, n_rings: int = 16) -> Mesh:
     """A flat disk (z = 0) of near-equilateral triangles: ring ``i`` carries ``6 i`` vertices.
 
@@ -185,8 +185,6 @@ def disk(radius: float = 1.0, n_rings: int = 16) -> Mesh:
     >>> disk(n_rings=4).n_vertices
     61
     """
-    radius = _check_positive("radius", radius)
-    n_rings = _check_int("n_rings", n_rings, 1)
     pts = [np.zeros((1, 2))]
     for i in range(1, n_rings + 1):
         t = 2 * np.pi * (np.arange(6 * i) / (6 * i)) + (0.5 * np.pi / (6 * i)) * (i % 2)
@@ -202,6 +200,7 @@ def disk(radius: float = 1.0, n_rings: int = 16) -> Mesh:
     return Mesh(np.column_stack([xy, np.zeros(len(xy))]), faces)
 
 
+@validated(n_bumps=_at_least(0), height=Number(-0.9, 2, open_low=True, open_high=True))
 def bumpy_sphere(subdivisions: int = 4, n_bumps: int = 7, height: float = 0.35, seed: int = 0) -> Mesh:
     """A closed, genus-0, non-symmetric blob: an icosphere pushed out by Gaussian bumps.
 
@@ -214,10 +213,6 @@ def bumpy_sphere(subdivisions: int = 4, n_bumps: int = 7, height: float = 0.35, 
     >>> m.n_vertices, m.euler_characteristic
     (642, 2)
     """
-    n_bumps = _check_int("n_bumps", n_bumps, 0)
-    height = float(height)
-    if not np.isfinite(height) or not -0.9 < height < 2.0:
-        raise ValueError(f"height must be a number in (-0.9, 2), got {height!r}.")
     rng = np.random.default_rng(seed)
     sphere = icosphere(subdivisions)
     u = sphere.vertices
@@ -231,6 +226,7 @@ def bumpy_sphere(subdivisions: int = 4, n_bumps: int = 7, height: float = 0.35, 
     return Mesh(u * radius[:, None] * np.array([1.25, 1.0, 0.85]), sphere.faces)
 
 
+@validated(subdivisions=Integer(0, 7), n_holes=_at_least(0))
 def scan_like(subdivisions: int = 6, n_holes: int = 12, seed: int = 0) -> Mesh:
     """A mesh shaped like a raw scan's: three pieces, two of them holed spheres, one a torus.
 
@@ -245,8 +241,6 @@ def scan_like(subdivisions: int = 6, n_holes: int = 12, seed: int = 0) -> Mesh:
     >>> m.n_components, len(m.boundary_edges) > 0
     (3, True)
     """
-    subdivisions = _check_int("subdivisions", subdivisions, 0, 7)
-    n_holes = _check_int("n_holes", n_holes, 0)
     rng = np.random.default_rng(seed)
     sphere = icosphere(subdivisions)
     ring = max(8, 2 ** (subdivisions + 1))

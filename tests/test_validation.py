@@ -53,3 +53,73 @@ def test_no_hand_written_bool_checks_are_left():
         if path.name != "_validation.py" and "exercises" not in path.parts and pattern.search(path.read_text())
     ]
     assert not left, left
+
+
+# --- the declared constraints (issue 42, item 7) --------------------------------------------------
+
+import inspect as _inspect
+
+from lbo_notebooks._validation import Boolean, Integer, Number, Options, Satisfies, validated
+
+
+@validated(
+    n=Integer(1),
+    k=Integer(1, lambda n, **_: n, what="an integer between 1 and n ({high})"),
+    tol=Number(0, 1, open_low=True, none=True),
+    method=Options("cotan", "robust", 3),
+    flag=Boolean(),
+    name=Satisfies(lambda s: isinstance(s, str) and s.isidentifier(),
+                   message="{name} must be an identifier, got {value!r}."),
+)
+def _pick(n: int, k: int = 1, *, tol: float | None = None, method: str = "cotan", flag: bool = False, name: str = "x"):
+    """Pick k of n."""
+    return n, k, tol, method, flag, name
+
+
+def test_dependent_bounds():
+    assert _pick(5, 5)[1] == 5
+    with pytest.raises(ValueError, match=r"^k must be an integer between 1 and n \(5\), got 6\.$"):
+        _pick(5, 6)
+
+
+def test_none_allowed_and_values_normalized():
+    n, k, tol, _, flag, _ = _pick(np.int64(4), np.int16(2), tol=np.float32(0.5), flag=np.bool_(True))
+    assert (type(n), type(k), type(tol), type(flag)) == (int, int, float, bool)
+    assert _pick(3)[2] is None
+    with pytest.raises(ValueError, match=r"^tol must be a number in \(0, 1\], got 0\.$"):
+        _pick(3, tol=0)
+
+
+def test_options_and_booleans():
+    assert _pick(3, method="robust")[3] == "robust" and _pick(3, method=np.int64(3))[3] == 3
+    with pytest.raises(ValueError, match=r"^method must be one of \('cotan', 'robust', 3\), got 'fem'\.$"):
+        _pick(3, method="fem")
+    with pytest.raises(ValueError, match=r"^flag must be True or False, got 1\.$"):
+        _pick(3, flag=1)
+    with pytest.raises(ValueError, match=r"^name must be an identifier, got '1x'\.$"):
+        _pick(3, name="1x")
+
+
+def test_bool_is_not_an_integer_and_nan_is_not_a_number():
+    with pytest.raises(ValueError, match=r"^n must be a positive integer, got True\.$"):
+        _pick(True)
+    with pytest.raises(ValueError, match=r"^method must be one of .*, got True\.$"):
+        _pick(3, method=True)  # True == 1 == 3 - 2 must not slip through an integer option
+    with pytest.raises(ValueError, match=r"^tol must be a number in \(0, 1\], got nan\.$"):
+        _pick(3, tol=float("nan"))
+
+
+def test_signature_and_docstring_preserved():
+    assert _pick.__name__ == "_pick" and _pick.__doc__ == "Pick k of n." and _pick.__wrapped__ is not None
+    assert str(_inspect.signature(_pick)) == str(_inspect.signature(_pick.__wrapped__))
+    assert lbo.shapes.icosphere.__wrapped__ and "icosahedron" in lbo.shapes.icosphere.__doc__
+    with pytest.raises(TypeError, match="no parameter"):
+        validated(nope=Integer())(_pick.__wrapped__)
+
+
+@pytest.mark.timing
+def test_per_call_overhead_is_small():
+    import timeit
+
+    seconds = min(timeit.repeat(lambda: _pick(5, 2, tol=0.5), number=2000, repeat=3)) / 2000
+    assert seconds < 1e-4, seconds
