@@ -131,7 +131,10 @@ def rebuild_thread_pools() -> None:
 
     Examples
     --------
-    >>> rebuild_thread_pools()  # the counts are as they were
+    >>> rebuild_thread_pools()  # doctest: +SKIP
+
+    Meant for a forked child (it is tested there, through ``measure_in_fresh_process``): afterwards
+    the owner thread controls OpenBLAS's count, and threadpoolctl ignores a limit set in another thread.
     """
     from threadpoolctl import ThreadpoolController
 
