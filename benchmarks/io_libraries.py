@@ -267,18 +267,17 @@ def corpus(folder: Path):
         for mutant, damaged, truncated in fz.mutants(name, data, index):
             (folder / mutant).write_bytes(damaged)
             files.append((mutant, name, _expectation(name, data, mutant[: -len(name) - 1], damaged, truncated), "fuzz"))
-    for base in fz.SHIFT_BASES:  # issue 41 (b)
-        rng = np.random.default_rng([fz.SEED, 41, 2, fz.SHIFT_BASES.index(base)])
-        for k in range(fz.SHIFTS_PER_BASE):
-            name = f"shift{k}_{base}"
-            (folder / name).write_bytes(fz._shift_a_number(bases[base], base, rng)[0])
-            files.append((name, base, "refuse", "issue 41"))
-    for base in fz.TRAILING_BASES:  # issue 41 (c)
-        rng = np.random.default_rng([fz.SEED, 41, 3, fz.TRAILING_BASES.index(base)])
-        for k in range(fz.TRAILERS_PER_BASE):
-            name = f"trailing{k}_{base}"
-            (folder / name).write_bytes(fz._append_trailing_data(bases[base], base, rng)[0])
-            files.append((name, base, "refuse", "issue 41"))
+    families = (  # issue 41 (b) and (c): (prefix, bases, stream, copies per base, damage)
+        ("shift", fz.SHIFT_BASES, 2, fz.SHIFTS_PER_BASE, fz._shift_a_number),
+        ("trailing", fz.TRAILING_BASES, 3, fz.TRAILERS_PER_BASE, fz._append_trailing_data),
+    )
+    for prefix, family, stream, copies, damage in families:
+        for base in family:
+            rng = np.random.default_rng([fz.SEED, 41, stream, family.index(base)])
+            for k in range(copies):
+                name = f"{prefix}{k}_{base}"
+                (folder / name).write_bytes(damage(bases[base], base, rng)[0])
+                files.append((name, base, "refuse", "issue 41"))
     for base in fz.PLY_BASES:  # issue 41 (a)
         rng = np.random.default_rng([fz.SEED, 41, 1, fz.PLY_BASES.index(base)])
         binary = b"format binary" in bases[base][:60]

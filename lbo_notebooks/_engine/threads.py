@@ -154,11 +154,15 @@ def default_workers() -> int:
     >>> default_workers() in (1, 2)
     True
     """
+    return max(1, min(2, _affinity()))
+
+
+def _affinity() -> int:
+    """The cores this process may run on (its CPU affinity; all of them where there is none)."""
     try:
-        cores = len(os.sched_getaffinity(0))
+        return len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
-        cores = os.cpu_count() or 1
-    return max(1, min(2, cores))
+        return os.cpu_count() or 1
 
 
 def usable_cores() -> float:
@@ -169,10 +173,7 @@ def usable_cores() -> float:
     >>> usable_cores() >= 1
     True
     """
-    try:
-        cores: float = len(os.sched_getaffinity(0))
-    except AttributeError:  # not on Linux
-        cores = float(os.cpu_count() or 1)
+    cores = float(_affinity())
     try:
         with open("/sys/fs/cgroup/cpu.max") as fh:
             quota, period = fh.read().split()[:2]
