@@ -1,10 +1,10 @@
-"""The benchmarks' spellings of :mod:`lbo_notebooks.cost`'s fresh-process measurements (the code lives there)."""
+"""The benchmarks' spellings of :mod:`lbo_notebooks.analyses._cost`'s fresh-process measurements (the code lives there)."""
 
 from __future__ import annotations
 
 from typing import Any, Callable
 
-from lbo_notebooks.cost import least_wall_time, measure_in_fresh_process
+from lbo_notebooks.analyses._cost import least_wall_time, measure_in_fresh_process
 
 
 def measure(fn: Callable[..., Any], *args: Any) -> tuple[float, float, float, Any]:
@@ -14,5 +14,5 @@ def measure(fn: Callable[..., Any], *args: Any) -> tuple[float, float, float, An
 
 
 def best_time(fn: Callable[[], object], repeat: int = 3) -> float:
-    """Best wall time of ``repeat`` calls of ``fn`` (:func:`lbo_notebooks.cost.least_wall_time`)."""
+    """Best wall time of ``repeat`` calls of ``fn`` (:func:`lbo_notebooks.analyses._cost.least_wall_time`)."""
     return least_wall_time(repeat, fn)

@@ -19,9 +19,9 @@ Run (2 cores; other helpers were running too, so read the ratios)::
 
 Calls and sizes (``--n`` scales the meshes):
 
-* ``rpca``: :class:`~lbo_notebooks.rpca.RegularizedPCA` of two poses (6 columns) of a 25k-vertex
+* ``rpca``: :class:`~lbo_notebooks.analyses._rpca.RegularizedPCA` of two poses (6 columns) of a 25k-vertex
   torus, ``solve(100, beta=0.5)``;
-* ``smds``: :func:`~lbo_notebooks.mds.spectral_mds` with its defaults, deformed torus of 25k;
+* ``smds``: :func:`~lbo_notebooks.analyses._mds.spectral_mds` with its defaults, deformed torus of 25k;
 * ``match``: :func:`~lbo_notebooks.match` with its defaults, dog standing -> walking, 12k, target shuffled;
 * ``eigenbasis``: ``eigenbasis(mesh, 100)`` on the 25k dog;
 * ``distances``: ``geodesic_distances`` from every vertex of a 4k dog (a 4k x 4k matrix).
@@ -89,7 +89,7 @@ def _setup(call: str, n: int):
     if call == "rpca":
         from rpca import two_poses
 
-        from lbo_notebooks.rpca import RegularizedPCA
+        from lbo_notebooks.analyses import RegularizedPCA
 
         mesh, X = two_poses(n)
         W, A = lbo.stiffness_matrix(mesh), lbo.mass_matrix(mesh)

@@ -25,7 +25,7 @@ import numpy as np
 
 from lbo_notebooks import Mesh
 from lbo_notebooks.operators import corner_angles
-from lbo_notebooks import creatures as C
+from lbo_notebooks.shapes import _creatures as C
 
 
 def _min_angles(mesh: Mesh) -> np.ndarray:

@@ -26,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time as _best  # noqa: E402
 
 from lbo_notebooks import Mesh, creature, eigenbasis, shapes  # noqa: E402
-from lbo_notebooks.curvature import metric_mass_matrix
+from lbo_notebooks.operators import metric_mass_matrix
 from lbo_notebooks.operators import mass_matrix
 
 

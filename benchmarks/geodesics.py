@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from lbo_notebooks.heat_method import HeatMethod
+from lbo_notebooks.analyses import HeatMethod
 
 from mds import deformed_torus  # type: ignore[import-not-found]  # benchmarks/ is the script's directory
 

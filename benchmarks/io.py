@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time as _best  # noqa: E402
 
 from lbo_notebooks import Mesh, shapes  # noqa: E402
-from lbo_notebooks.io import load_mesh, read_mesh_arrays, save_mesh
+from lbo_notebooks.geometry._files import load_mesh, read_mesh_arrays, save_mesh
 
 
 def main() -> None:

@@ -77,7 +77,7 @@ def _fan(polygons) -> np.ndarray:
 
 def _load_lbo(path: Path, role: str):
     from lbo_notebooks import MeshError
-    from lbo_notebooks.io import load_mesh, load_points
+    from lbo_notebooks.geometry import load_mesh, load_points
 
     if role == "points":
         return load_points(path).points, None
@@ -390,7 +390,7 @@ def timing(libs: list[str]) -> list[str]:
     from _measure import best_time
 
     from lbo_notebooks import shapes
-    from lbo_notebooks.io import save_mesh
+    from lbo_notebooks.geometry import save_mesh
 
     mesh = shapes.scan_like()
     folder = Path(tempfile.mkdtemp())

@@ -245,7 +245,7 @@ def tolerance_check() -> None:
     Prints, per pair, the share of target vertices mapped to the same source vertex and the mean
     errors (over 2000 random target vertices) of both, with both runs' wall times.
     """
-    import lbo_notebooks.matching as matching
+    import lbo_notebooks.analyses._matching as matching
 
     print(f"match with eigenbases at EIGEN_TOL = {matching.EIGEN_TOL:g} against the default tolerance; unseen pairs, targets shuffled")
     print(f"{'pair':52s} {'n':>6s} {'alpha':>5s} {'same map':>9s} {'err tol':>8s} {'err dflt':>9s} {'s tol':>6s} {'s dflt':>7s}")

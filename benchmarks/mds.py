@@ -135,11 +135,11 @@ import numpy as np
 
 from lbo_notebooks import Mesh, shapes
 try:
-    from lbo_notebooks.embedding_error import gram_error, procrustes_error
-    from lbo_notebooks.fast_scaling import FCS_DEFAULTS, fast_classical_scaling
+    from lbo_notebooks.analyses import gram_error, procrustes_error
+    from lbo_notebooks.analyses import FCS_DEFAULTS, fast_classical_scaling
 except ImportError:  # --speed imports this file beside an older tree, where these lived in mds
-    from lbo_notebooks.mds import FCS_DEFAULTS, fast_classical_scaling, gram_error, procrustes_error
-from lbo_notebooks.mds import SMDS_DEFAULTS, classical_mds, landmark_mds, spectral_mds
+    from lbo_notebooks.analyses import FCS_DEFAULTS, fast_classical_scaling, gram_error, procrustes_error
+from lbo_notebooks.analyses import SMDS_DEFAULTS, classical_mds, landmark_mds, spectral_mds
 
 
 # --- shapes ------------------------------------------------------------------------------------
@@ -176,7 +176,7 @@ def accuracy_shapes(quick: bool) -> dict[str, Mesh]:
         "deformed torus": deformed_torus(n),
     }
     try:  # the four-legged creatures, where that module exists
-        from lbo_notebooks.creatures import creature
+        from lbo_notebooks.shapes import creature
 
         for species in ("dog", "horse"):
             out[species] = creature(species, n_vertices=n)
@@ -245,7 +245,7 @@ def saddle_disk(n_vertices: int) -> Mesh:
 
 def holed_horse(n_vertices: int) -> Mesh:
     """A walking horse with three holes (a hoof, the muzzle, the belly): boundaries and thin legs."""
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     horse = creature("horse", "walking", n_vertices=n_vertices)
     V = horse.vertices
@@ -253,7 +253,7 @@ def holed_horse(n_vertices: int) -> Mesh:
 
 
 def _creature(species: str, pose: str, parts: dict | None = None):
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     return lambda n: creature(species, pose, parts, n_vertices=n)
 
@@ -319,7 +319,7 @@ def lean_classical_mds(mesh: Mesh, dim: int = 3, block: int = 1024) -> np.ndarra
     """
     import scipy.sparse.linalg as spla
 
-    from lbo_notebooks.geodesics import geodesic_solver
+    from lbo_notebooks.analyses._geodesics import geodesic_solver
 
     n = mesh.n_vertices
     solver = geodesic_solver(mesh, "heat")
@@ -352,8 +352,8 @@ def part_growth(sizes: list[int]) -> list[dict]:
     Where two ``n x n`` float64 matrices do not fit in a third of the memory, the classical
     reference is :func:`lean_classical_mds`; at the first size both are computed and compared.
     """
-    from lbo_notebooks.creatures import creature
-    from lbo_notebooks.geodesics import available_memory
+    from lbo_notebooks.shapes import creature
+    from lbo_notebooks.analyses._geodesics import available_memory
 
     print(f"\nOne shape at growing resolution: walking dog, SMDS defaults {SMDS_DEFAULTS} and the previous {OLD_DEFAULTS}")
     print(f"{'n':>6s} {'Gram err':>9s} {'previous':>9s}  reference")
@@ -395,7 +395,7 @@ def part_resolution(n_ref: int = 12000, n_smds: int = 6000) -> dict:
     (``2 n_c^2 = n (k + q)`` floats: two n_c x n_c matrices against the n x (k + q) arrays of
     SMDS) and at larger sizes, with their CPU times, so that equal time can be read off too.
     """
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     ref = creature("dog", "walking", n_vertices=n_ref)
     cpu = time.process_time()
@@ -429,7 +429,7 @@ SPEED_CHILD = """
 import sys, time
 sys.path[:0] = [sys.argv[1], sys.argv[2]]
 import lbo_notebooks as lbo
-from lbo_notebooks.mds import spectral_mds
+from lbo_notebooks.analyses import spectral_mds
 from mds import deformed_torus
 assert lbo.__file__.startswith(sys.argv[1]), lbo.__file__
 spectral_mds(lbo.shapes.icosphere(3), k=60, n_samples=60, progress=False)   # warm-up: imports, lazy set-up
@@ -563,7 +563,7 @@ def part_accuracy(quick: bool) -> list[dict]:
 
 def tuning_shapes(quick: bool) -> dict[str, Mesh]:
     """Shapes the SMDS defaults were chosen on: none of them is reported by notebooks 09 and 10."""
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     scale = 0.4 if quick else 1.0
     return {
@@ -578,7 +578,7 @@ def tuning_shapes(quick: bool) -> dict[str, Mesh]:
 def part_energies(quick: bool) -> list[dict]:
     """Gram error of the Dirichlet and biharmonic interpolations over mu, at the default k and q."""
     from lbo_notebooks import eigenbasis
-    from lbo_notebooks.geodesics import farthest_point_sampling
+    from lbo_notebooks.analyses import farthest_point_sampling
 
     mus = (0.002, 0.01, 0.05, 0.2, 1.0)
     print(f"\nInterpolation energy: Gram error vs classical MDS at k = {SMDS_DEFAULTS['k']}, "
@@ -601,7 +601,7 @@ def part_energies(quick: bool) -> list[dict]:
 def part_smds_tuning(quick: bool) -> list[dict]:
     """Gram error of SMDS over (k, q), interpolating whole sampled rows or the pairs among the samples."""
     from lbo_notebooks import eigenbasis
-    from lbo_notebooks.geodesics import farthest_point_sampling
+    from lbo_notebooks.analyses import farthest_point_sampling
 
     grid = [(400, 800), (400, 400), (300, 600), (300, 400), (300, 300), (250, 400), (250, 300), (200, 400), (200, 300),
             (200, 200), (150, 300)]
@@ -626,7 +626,7 @@ def part_smds_tuning(quick: bool) -> list[dict]:
 
 def part_fcs_tuning(quick: bool) -> list[dict]:
     """Gram error of fast classical scaling over the number of samples and mu, on the tuning shapes."""
-    from lbo_notebooks.geodesics import farthest_point_sampling
+    from lbo_notebooks.analyses import farthest_point_sampling
 
     qs, mus = (50, 100, 150, 200), (1e-4, 1e-3, 1e-2, 1e-1)
     print(f"\nFast classical scaling: Gram error vs classical MDS over q and mu, tuning shapes (defaults {FCS_DEFAULTS})")

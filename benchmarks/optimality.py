@@ -2,7 +2,7 @@
 
 Run: ``.venv/bin/python benchmarks/optimality.py``. For meshes from 642 to 20,000 vertices and a
 basis of n = 100 functions (the constant plus Legendre polynomials in the coordinates,
-:func:`lbo_notebooks.bases.polynomial_basis`), prints the wall time of
+:func:`lbo_notebooks.analyses._competitor_bases.polynomial_basis`), prints the wall time of
 ``worst_case_ratio(..., method="dense")`` and ``method="sparse"`` (each in a fresh process; the
 mesh and basis are built before the clock starts), the growth of peak memory, their ratio, and the
 relative difference of the two answers. The dense path is skipped above 2,562 vertices (an
@@ -22,8 +22,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import measure  # noqa: E402
 
 import lbo_notebooks as lbo  # noqa: E402
-from lbo_notebooks import bases, shapes  # noqa: E402
-from lbo_notebooks.optimality import worst_case_ratio  # noqa: E402
+from lbo_notebooks import shapes  # noqa: E402
+from lbo_notebooks.analyses import _competitor_bases as bases
+from lbo_notebooks.analyses import worst_case_ratio  # noqa: E402
 
 N = 100
 DENSE_MAX = 2562

@@ -17,7 +17,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _measure import best_time  # noqa: E402
 
 from lbo_notebooks import shapes  # noqa: E402
-from lbo_notebooks.io import read_mesh_arrays, save_mesh  # noqa: E402
+from lbo_notebooks.geometry._files import read_mesh_arrays, save_mesh  # noqa: E402
 
 
 def main() -> None:

@@ -5,7 +5,7 @@ Run: ``.venv/bin/python benchmarks/rpca.py [--sizes 5000 20000] [--m 100]``
 For each mesh size it times (wall clock, best of ``--repeat``):
 
 * ``eigenbasis``: the first m Laplace–Beltrami eigenpairs (shift-invert Lanczos), the baseline;
-* ``rpca first``: a fresh :class:`~lbo_notebooks.rpca.RegularizedPCA` solve at a balanced weight
+* ``rpca first``: a fresh :class:`~lbo_notebooks.analyses._rpca.RegularizedPCA` solve at a balanced weight
   (includes the one-off factorisation of ``W + t0 A``);
 * ``rpca sweep``: each further weight of a sweep (the factorisation reused), at three betas.
 
@@ -23,9 +23,9 @@ import numpy as np
 import scipy.linalg
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.mesh import Mesh
-from lbo_notebooks.inner_product import principal_angles
-from lbo_notebooks.rpca import RegularizedPCA
+from lbo_notebooks.geometry import Mesh
+from lbo_notebooks.spectral import principal_angles
+from lbo_notebooks.analyses import RegularizedPCA
 
 
 def two_poses(n_vertices: int) -> tuple[Mesh, np.ndarray]:

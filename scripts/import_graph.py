@@ -31,21 +31,18 @@ from pathlib import Path
 #: own layer and from the layers under it, never from a layer above.
 LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
     ("support", "tools every layer uses: warnings, argument checks, optional open3d, progress bars",
-     ("_warnings", "_validation", "_open3d", "_progress")),
-    ("data", "the mesh and point cloud, units, files in and out, repair",
-     ("mesh", "units", "io", "formats", "formats.*", "repair", "pointcloud")),
+     ("_support", "_support.*")),
+    ("geometry", "the mesh and point cloud, files in and out, repair", ("geometry", "geometry.*")),
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
-     ("operators", "robust", "curvature", "laplacians")),
-    ("linear algebra", "A-inner products; the private engine (factorisations, Krylov, the sliced eigensolver, "
-     "the thread policy), the solver services over it that the analyses use, cost measurement",
-     ("inner_product", "_engine", "_engine.*", "solvers", "cost")),
-    ("spectrum", "the Spectrum type and eigenbasis = operators + solver", ("spectrum",)),
-    ("analyses", "what the course computes with a spectrum or a mesh (and teaching, the pictures of one lesson)",
-     ("bases", "optimality", "minmax", "teaching", "descriptors", "geodesics", "heat_method", "distortion", "mds", "scaling", "fast_scaling",
-      "embedding_error", "rpca", "rpca_pencil",
-      "functional_maps", "matching", "shape_distribution")),
+     ("operators", "operators.*")),
+    ("inner products", "the A-inner-product algebra (the first floor of the spectral folder: the engine uses it)",
+     ("spectral._inner_product",)),
+    ("engine", "the private eigensolver: factorisations, Krylov, the sliced solver, the thread policy; "
+     "sparse matrices in, never a mesh", ("_engine", "_engine.*")),
+    ("spectral", "the solver services over the engine, the Spectrum and eigenbasis", ("spectral", "spectral.*")),
+    ("analyses", "what the course computes with a spectrum or a mesh", ("analyses", "analyses.*")),
     ("shapes and pictures", "procedural test shapes, the creatures, plotting",
-     ("shapes", "creatures", "creatures.*", "plotting", "plotting.*")),
+     ("shapes", "shapes.*", "plotting", "plotting.*")),
     ("lessons", "the exercises of the notebooks; the package's lazy front door", ("exercises", "exercises.*", "__init__")),
 ]
 

@@ -1017,7 +1017,7 @@ def my_worst_case(W, A, V):
     return float(lbo.worst_case_ratio(V, W, A))
 ''',
     # --- notebook 08 ---
-    "08-angle-defects-answer": r'''from lbo_notebooks.curvature import angle_defects as library_defects
+    "08-angle-defects-answer": r'''from lbo_notebooks.operators import angle_defects as library_defects
 
 
 def my_angle_defects(mesh):
@@ -1025,14 +1025,14 @@ def my_angle_defects(mesh):
     return np.asarray(library_defects(mesh), dtype=float)
 ''',
     # --- notebook 09 ---
-    "09-classical-mds-answer": r'''from lbo_notebooks.mds import classical_mds as mds_of_the_library
+    "09-classical-mds-answer": r'''from lbo_notebooks.analyses import classical_mds as mds_of_the_library
 
 
 def my_classical_mds(D, dim):
     """Classical MDS: the n x dim embedding U Gamma^(1/2) of B = -1/2 J D^2 J."""
     return mds_of_the_library(np.asarray(D, dtype=float), dim)
 ''',
-    "09-scaling-answer": r'''from lbo_notebooks.scaling import scaling_in_span
+    "09-scaling-answer": r'''from lbo_notebooks.analyses._classical_scaling import scaling_in_span
 
 
 def my_scaling(phi, alpha, dim):
@@ -1043,7 +1043,7 @@ def my_scaling(phi, alpha, dim):
 ''',
     # --- notebook 11 ---
     "11-rpca-basis-answer": r'''import scipy.linalg
-from lbo_notebooks.rpca import RegularizedPCA
+from lbo_notebooks.analyses import RegularizedPCA
 
 
 def my_rpca_basis(X, W, A, mu, m):

@@ -3,8 +3,8 @@ import pytest
 import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks import bases
-from lbo_notebooks.optimality import worst_case_ratio
+from lbo_notebooks.analyses import _competitor_bases as bases
+from lbo_notebooks.analyses import worst_case_ratio
 
 from .strategies import wavy_sheet
 
@@ -138,8 +138,8 @@ def test_competitor_bases_and_bad_input(blob):
 
 
 def test_sample_functions_satisfy_the_bound_and_are_what_they_say():
-    from lbo_notebooks.geodesics import geodesic_distances
-    from lbo_notebooks.optimality import error_bound, representation_error
+    from lbo_notebooks.analyses import geodesic_distances
+    from lbo_notebooks.analyses import error_bound, representation_error
 
     m = shapes.icosphere(3)
     s = eigenbasis(m, 40)

@@ -1,4 +1,4 @@
-"""lbo_notebooks.cost.recorded_benchmark: recorded results found from any working directory, a clear error when absent."""
+"""lbo_notebooks.analyses._cost.recorded_benchmark: recorded results found from any working directory, a clear error when absent."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from lbo_notebooks import cost
+from lbo_notebooks.analyses import _cost as cost
 
 
 def test_recorded_results_are_found_from_the_package_not_the_working_directory(tmp_path, monkeypatch):

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh
-from lbo_notebooks import creatures as C
-from lbo_notebooks import distortion as D
+from lbo_notebooks.shapes import _creatures as C
+from lbo_notebooks.analyses import _distortion as D
 from lbo_notebooks.operators import corner_angles
 
 N = 3000  # small meshes keep the file fast; one test uses 10,000

@@ -1,4 +1,4 @@
-"""Tests for lbo_notebooks.curvature: Gauss–Bonnet, sphere curvature, and the metrics |K|^alpha g."""
+"""Tests for lbo_notebooks.operators._curvature: Gauss–Bonnet, sphere curvature, and the metrics |K|^alpha g."""
 
 from __future__ import annotations
 
@@ -10,8 +10,9 @@ import scipy.sparse.linalg as spla
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lbo_notebooks import Mesh, creatures, eigenbasis, shapes
-from lbo_notebooks.curvature import (
+from lbo_notebooks import Mesh, eigenbasis, shapes
+from lbo_notebooks.shapes import _creatures as creatures
+from lbo_notebooks.operators._curvature import (
     DEFAULT_FLOOR,
     angle_defects,
     conformal_factor,

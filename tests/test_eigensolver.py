@@ -374,7 +374,7 @@ def test_a_pair_a_set_missed_is_completed_without_redoing_the_set(monkeypatch, w
 def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(monkeypatch):
     """On a small mesh (642 vertices) no METIS run: SuperLU's minimum degree orders the first shift's
     matrix, and every later factorisation reuses that order (the same fill, no ordering step)."""
-    from lbo_notebooks import solvers
+    from lbo_notebooks.spectral import _solvers as solvers
     from lbo_notebooks._engine import eigensolver, factor as sparse_factor
 
     def no_metis(*args):

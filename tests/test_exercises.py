@@ -96,7 +96,7 @@ def test_stretch_growth_is_a_choice():
 
 
 def test_smallest_angles():
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     exact = {n: float(np.degrees(operators.corner_angles(creature("dog", n_vertices=n))).min())
              for n in (2000, 3000, 5000)}
@@ -117,7 +117,7 @@ def test_smallest_angles():
 
 
 def test_leg_area():
-    from lbo_notebooks.creatures import creature, creature_parts
+    from lbo_notebooks.shapes import creature, creature_parts
 
     n = 2000
     dog, parts = creature("dog", n_vertices=n), creature_parts("dog", n_vertices=n)
@@ -525,8 +525,9 @@ def test_energy_bound(blob_spectrum):
 
 
 def test_worst_ratio():
-    from lbo_notebooks import bases, eigenbasis
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.analyses import _competitor_bases as bases
+    from lbo_notebooks.analyses import worst_case_ratio
 
     mesh = shapes.bumpy_sphere(2)
     s = eigenbasis(mesh, 2)
@@ -679,7 +680,7 @@ def test_gauss_bonnet_and_scaling():
 
 
 def test_floor_fraction():
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
 
     mesh = shapes.bumpy_sphere(2)
     level = 4 * np.pi / mesh.area
@@ -1057,7 +1058,7 @@ def test_rpca_limits():
 @pytest.fixture(scope="module")
 def rpca_problem():
     """A small regularized-PCA problem: a bumpy sphere and a bent copy as two 'poses' (as in notebook 11, §1)."""
-    from lbo_notebooks.rpca import RegularizedPCA
+    from lbo_notebooks.analyses import RegularizedPCA
 
     small = shapes.bumpy_sphere(2)
     W, A = operators.stiffness_matrix(small), operators.mass_matrix(small)
@@ -1182,7 +1183,7 @@ def two_spectra():
 
 
 def test_hks(two_spectra):
-    from lbo_notebooks import descriptors
+    from lbo_notebooks.analyses import _descriptors as descriptors
 
     s = two_spectra[0]
     decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
@@ -1208,7 +1209,7 @@ def test_hks(two_spectra):
 def test_hks_hints_when_exp_plus_overflows(two_spectra):
     """On a long spectrum (the dog's 60 eigenpairs) e^(+λ t) overflows: an infinite candidate must not match
     every attempt, and an infinite attempt gets the exp(+λ t) hint."""
-    from lbo_notebooks.spectrum import Spectrum
+    from lbo_notebooks.spectral import Spectrum
 
     s = two_spectra[0]
     values = s.values.copy()
@@ -1216,7 +1217,7 @@ def test_hks_hints_when_exp_plus_overflows(two_spectra):
     long = Spectrum(values, s.vectors.copy(), s.stiffness, s.mass)
     decay = lambda s, t: np.exp(-np.outer(np.maximum(s.values, 0), t))  # noqa: E731
     with np.errstate(over="ignore"):
-        from lbo_notebooks.descriptors import hks_times
+        from lbo_notebooks.analyses import hks_times
         assert not np.all(np.isfinite(np.exp(np.outer(long.values, hks_times(long, 4)))))
     _status(ex.check_hks(lambda s, t: (s.vectors[:, 1:] ** 2) @ decay(s, t)[1:], long, show=False), WRONG, "starts at i = 0")
     _status(ex.check_hks(lambda s, t: s.mass @ ((s.vectors**2) @ decay(s, t)), long, show=False), WRONG, "no mass matrix")
@@ -1224,7 +1225,7 @@ def test_hks_hints_when_exp_plus_overflows(two_spectra):
 
 
 def test_functional_map(two_spectra):
-    from lbo_notebooks import functional_maps as fm
+    from lbo_notebooks.analyses import _functional_maps as fm
 
     one, two = two_spectra
     reference = lambda p2p, s1, s2, k: fm.map_from_points(p2p, s1, s2, k_source=k, k_target=k)  # noqa: E731
@@ -1312,8 +1313,9 @@ def test_messages_of_00_08_09_never_give_the_answer():
 @pytest.fixture(scope="module")
 def rows_embedding():
     """A small spectral MDS in the paper's form: (phi, alpha, X) with X the library's embedding."""
-    from lbo_notebooks import creatures, eigenbasis
-    from lbo_notebooks.mds import spectral_mds
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.shapes import _creatures as creatures
+    from lbo_notebooks.analyses import spectral_mds
 
     mesh = creatures.creature("dog", "walking", n_vertices=1000)
     s = eigenbasis(mesh, 40)
@@ -1340,7 +1342,7 @@ def _scaling(phi, alpha, dim, *, centre=True, factor=-0.5, power=0.5, smallest=F
 
 def test_small_scaling_reference_and_library(rows_embedding):
     phi, alpha, X = rows_embedding
-    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.analyses import gram_error
 
     assert gram_error(_scaling(phi, alpha, 3), X) < 1e-8    # the k x k route is the library's embedding
     _status(ex.check_small_scaling(_solution_function("09-scaling", "my_scaling"), phi, alpha, X, show=False), CORRECT, "k × k")
@@ -1396,7 +1398,7 @@ def test_classical_memory():
 
 
 def test_gram_2d(rows_embedding):
-    from lbo_notebooks.embedding_error import gram_error, procrustes_error
+    from lbo_notebooks.analyses import gram_error, procrustes_error
 
     phi, alpha, X = rows_embedding
     rng = np.random.default_rng(1)
@@ -1476,7 +1478,7 @@ def test_recap_07_cost():
 
 def test_messages_of_07_never_give_the_answer(rows_embedding):
     phi, alpha, X = rows_embedding
-    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.analyses import gram_error
 
     Z = X + 0.05 * np.abs(X).max() * np.random.default_rng(2).normal(size=X.shape)
     cases = [(ex.check_classical_memory(20.0, 50_000, show=False), 40.0),
@@ -1493,7 +1495,7 @@ def test_messages_of_07_never_give_the_answer(rows_embedding):
 def test_values_of_07_copied_from_a_printout():
     """A value right to the digits it shows but coarser than the tolerance is asked for digits, not
     for another method; one rounded to enough digits is right (10-two-d is judged within 1%)."""
-    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.analyses import gram_error
 
     rng = np.random.default_rng(5)
     X = rng.normal(size=(60, 3)) * [3.0, 2.0, 1.0]

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, classical_mds, farthest_point_sampling, fast_classical_scaling, gram_error, shapes
-from lbo_notebooks.embedding_error import procrustes_error
+from lbo_notebooks.analyses import procrustes_error
 
 
 @pytest.fixture(scope="module")
@@ -77,7 +77,7 @@ def test_spline_interpolation_equals_the_direct_biharmonic_solve():
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
 
-    from lbo_notebooks.fast_scaling import _interpolation_operator
+    from lbo_notebooks.analyses._fast_classical_scaling import _interpolation_operator
     from lbo_notebooks.operators import mass_matrix, stiffness_matrix
 
     for mesh in (shapes.bumpy_sphere(2), shapes.rectangle(2.0, 1.0, 16, 8)):

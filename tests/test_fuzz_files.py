@@ -47,8 +47,8 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, MeshError, PointCloud, eigenbasis, shapes
-from lbo_notebooks.formats import FORMATS, mesh_text
-from lbo_notebooks.io import MeshRepairWarning, load_mesh, load_points, save_mesh
+from lbo_notebooks.geometry._formats import FORMATS, mesh_text
+from lbo_notebooks.geometry import MeshRepairWarning, load_mesh, load_points, save_mesh
 
 SEED = 26
 MUTANTS_PER_BASE = 96  # six rounds of the sixteen mutations

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lbo_notebooks import Mesh, MeshError, shapes
-from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
+from lbo_notebooks.analyses import farthest_point_sampling, geodesic_distances
 
 
 def great_circle(mesh: Mesh, sources: list[int]) -> np.ndarray:
@@ -73,7 +73,7 @@ def test_scalar_source_gives_one_row(sphere3):
 
 
 def test_solver_is_cached_and_reused(monkeypatch):
-    from lbo_notebooks import geodesics
+    from lbo_notebooks.analyses import _geodesics as geodesics
 
     mesh = shapes.icosphere(2)
     built = []

@@ -27,7 +27,7 @@ def student_edition(exercise: str) -> str:
 @pytest.fixture(scope="module")
 def context():
     """What the notebook's cells define before the exercises: the imports, N, the dog and its parts."""
-    from lbo_notebooks.creatures import creature, creature_parts
+    from lbo_notebooks.shapes import creature, creature_parts
     from lbo_notebooks.operators import corner_angles
 
     return {"N": N, "creature": creature, "creature_parts": creature_parts, "corner_angles": corner_angles,
@@ -63,7 +63,7 @@ def test_edges_wrong_answers(context):
     _zero("01-edges", "edge slots", n_edges=dog.n_faces)
     _zero("01-edges", "whole number", n_edges="many")
     # The count of another size of dog (a changed N): wrong, and the message says what is graded.
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     _zero("01-edges", "N = 5000", n_edges=3 * creature("dog", n_vertices=2000).n_faces // 2)
 
@@ -156,7 +156,7 @@ def test_angles_placeholder(context, exact_angles):
 def test_angles_claims_of_the_notebook(exact_angles):
     """What the old hidden test asserted about the library: the size asked for is honoured within
     10%, and the smallest angle stays above 5° at every size."""
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     for n, angle in exact_angles.items():
         assert abs(creature("dog", n_vertices=n).n_vertices - n) <= 0.1 * n and angle >= 5
@@ -207,7 +207,7 @@ def _with(legs, changes=None):
 def test_legs_wrong_answers(context, legs):
     leg, rest = legs["all"]
     leg_any, rest_any = legs["any"]
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     built = {s: creature("dog", parts={"legs": s}, n_vertices=N).area for s in (0.7, 1.0, 1.3)}
     _zero("01-legs", "s²", predicted_area={s: leg * s + rest for s in (0.7, 1.0, 1.3)})
@@ -229,7 +229,7 @@ def test_legs_placeholder(context):
 
 def test_legs_claim_of_the_notebook(legs):
     """What the old hidden test asserted: the built shapes come within 1% of the prediction."""
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     leg, rest = legs["all"]
     for s in (0.7, 1.0, 1.3):

@@ -198,14 +198,14 @@ STIFFNESS_LIBRARY = {
             return my_from_cotangents(mesh, 1 / np.tan(corner_angles(mesh)))
     """, "corner_angles"),
     "the gradient route": ("""
-        from lbo_notebooks.heat_method import face_gradient_operator
+        from lbo_notebooks.analyses._heat_method import face_gradient_operator
 
         def my_stiffness(mesh):
             G, a = face_gradient_operator(mesh)
             return G.T @ sp.diags(np.tile(a, 3)) @ G
     """, "face_gradient_operator"),
     "laplace_beltrami": ("""
-        from lbo_notebooks.laplacians import laplace_beltrami
+        from lbo_notebooks.operators import laplace_beltrami
 
         my_stiffness = lambda mesh: laplace_beltrami(mesh)[0]
     """, "laplace_beltrami"),
@@ -380,10 +380,10 @@ MASS_LIBRARY = {
     "the function itself": ("my_mass = lbo.mass_matrix", "mass_matrix"),
     "barycentric from the library": ("my_mass = lambda m: lbo.mass_matrix(m, 'barycentric')", "mass_matrix"),
     "the eigenbasis route": ("my_mass = lambda m: lbo.eigenbasis(m, 3).mass", "laplace_beltrami"),
-    "the private helper": ("from lbo_notebooks import operators\nmy_mass = lambda m: operators._mass(m, 'voronoi')",
+    "the private helper": ("from lbo_notebooks.operators import _cotangent\nmy_mass = lambda m: _cotangent._mass(m, 'voronoi')",
                            "_mass"),
     "the curvature route": ("""
-        from lbo_notebooks.curvature import metric_mass_matrix
+        from lbo_notebooks.operators import metric_mass_matrix
 
         my_mass = lambda m: metric_mass_matrix(m, 0.0)
     """, "metric_mass_matrix"),
@@ -605,7 +605,7 @@ EIGEN_LIBRARY = {
             return nearest_eigenpairs(lu.solve, W, A, s, k, start=np.linspace(1, 2, W.shape[0]))
     """, "nearest_eigenpairs"),
     "deflation with the constrained minimum": ("""
-        from lbo_notebooks.minmax import min_rayleigh_quotient
+        from lbo_notebooks.analyses import min_rayleigh_quotient
 
         def my_eigenbasis(W, A, k):
             values, vectors = [], []

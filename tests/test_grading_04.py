@@ -104,7 +104,7 @@ def test_the_rebuilt_cloud_is_the_notebooks(notebook):
 # --- the notebook's claims, formerly in the hidden tests, as tests of the library ------------------
 
 def test_operator_claims_the_candidates_defects_and_pieces(notebook):
-    from lbo_notebooks.robust import cotan_defects
+    from lbo_notebooks.operators import cotan_defects
 
     v, faces, _ = nb04.messy_scan()
     with tempfile.TemporaryDirectory() as folder:
@@ -148,7 +148,7 @@ def test_gap_claims_the_estimate_and_the_separation():
 def test_recap_claims(notebook):
     """The scan is in 4 pieces (4 zero eigenvalues) and has a defect the cotangent Laplacian cannot serve."""
     from lbo_notebooks import eigenbasis
-    from lbo_notebooks.robust import cotan_defects
+    from lbo_notebooks.operators import cotan_defects
 
     scan = notebook["scan"]
     with warnings.catch_warnings():
@@ -164,7 +164,7 @@ def test_repair_right_answers(notebook):
     full("04-repair", repair={k: float(v) for k, v in reversed(REPAIR.items())})  # floats, another order
     full("04-repair", repair={**{k: np.int64(v) for k, v in REPAIR.items()}, "faces_flipped": 20})  # an extra count
     full("04-repair", repair={k: str(v) for k, v in REPAIR.items()})
-    code = ("from lbo_notebooks.repair import clean_mesh\n\n"
+    code = ("from lbo_notebooks.geometry._repair import clean_mesh\n\n"
             "_, report = clean_mesh((v, faces))\n"
             "repair = dict(polygons_split=report.polygons_split, vertices_welded=report.vertices_welded,\n"
             "              degenerate_faces=report.degenerate_faces, duplicate_faces=report.duplicate_faces,\n"
@@ -203,7 +203,7 @@ def test_operator_right_answers(notebook):
     full("04-operator", **answers(solution("04-operator"), "operator", **context(notebook, "candidates")))
     full("04-operator", operator={"pinched": " Robust", "fins": "ROBUST", "two_pieces": "Cotan ", "holes": "cotan"})
     code = ("operator = {}\nfor name, mesh in candidates.items():\n"
-            "    operator[name] = 'robust' if lbo.robust.cotan_defects(mesh) else 'cotan'")
+            "    operator[name] = 'robust' if lbo.operators.cotan_defects(mesh) else 'cotan'")
     full("04-operator", **answers(code, "operator", **context(notebook, "candidates")))
     full("04-operator", operator=dict(zip(["holes", "two_pieces", "fins", "pinched"], ["cotan"] * 2 + ["robust"] * 2)))
 

@@ -27,7 +27,7 @@ def student_edition(exercise: str) -> str:
 def notebook():
     """The notebook's dog and its spectrum (section 2), for the solutions that use them."""
     import lbo_notebooks as lbo
-    from lbo_notebooks.creatures import creature
+    from lbo_notebooks.shapes import creature
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -94,7 +94,7 @@ def test_projection_solution_earns_full_points():
 def test_projection_solution_satisfies_the_old_hidden_claims(notebook):
     """The claims the old hidden test made of the instructor's answer, on the notebook's dog: the
     error is A-orthogonal to φ_0..φ_9, and its squared norm is `representation_error`."""
-    from lbo_notebooks.optimality import representation_error
+    from lbo_notebooks.analyses import representation_error
 
     my_project = _project(solution("05-projection"))["my_project"]
     s, x = notebook["spectra"]["dog"], notebook["dog"].vertices[:, 0]
@@ -141,7 +141,7 @@ LIBRARY_PROJECTIONS = {
     "project": "def my_project(s, f, n):\n    return s.vectors[:, :n] @ s.project(f, n)",
     "the class's method": "def my_project(s, f, n):\n    return lbo.Spectrum.reconstruct(s, f, n)",
     "a wrapper": "def helper(s, f, n):\n    return s.reconstruct(f, n)\n\ndef my_project(s, f, n):\n    return helper(s, f, n)",
-    "inner_product.reconstruct": ("from lbo_notebooks.inner_product import reconstruct\n\n"
+    "inner_product.reconstruct": ("from lbo_notebooks.spectral._inner_product import reconstruct\n\n"
                                   "def my_project(s, f, n):\n    return reconstruct(s.vectors[:, :n], s.mass, f)"),
     "the error, caught": ("def my_project(s, f, n):\n    try:\n        s.error(f, n)\n    except Exception:\n        pass\n"
                           "    P = s.vectors[:, :n]\n    return P @ (P.T @ (s.mass @ f))"),
@@ -193,7 +193,7 @@ def test_bound_written_differently_earns_full_points(notebook, bound):
     energy, lam, _ = bound
     ref = energy / lam[20]
     code = """
-        from lbo_notebooks.optimality import dirichlet_energy
+        from lbo_notebooks.analyses import dirichlet_energy
         bound_y = dirichlet_energy(lbo.stiffness_matrix(dog), dog.vertices[:, 1]) / spectra["dog"].values[20]
     """
     _full("05-bound", **answers(code, "bound_y", **notebook))

@@ -31,9 +31,10 @@ def notebook():
     W, A, ``worst_case_ratio``, ``dirichlet_energy``, the polynomial competitor (the notebook's
     ``competitor_bases(dog, 100, ...)["polynomials"]`` is ``polynomial_basis(dog, 100)``) and a
     ``plotting`` that draws nothing."""
-    from lbo_notebooks import bases, mass_matrix, stiffness_matrix
-    from lbo_notebooks.creatures import creature
-    from lbo_notebooks.optimality import dirichlet_energy, worst_case_ratio
+    from lbo_notebooks import mass_matrix, stiffness_matrix
+    from lbo_notebooks.analyses import _competitor_bases as bases
+    from lbo_notebooks.shapes import creature
+    from lbo_notebooks.analyses import dirichlet_energy, worst_case_ratio
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -98,7 +99,7 @@ def test_consistent_solution_earns_full_points(notebook):
 
 
 def test_consistent_written_differently_earns_full_points(notebook, consistent):
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import worst_case_ratio
 
     code = """
         sc = lbo.eigenbasis(dog, 51, mass_kind="consistent")
@@ -113,7 +114,7 @@ def test_consistent_written_differently_earns_full_points(notebook, consistent):
 
 
 def test_consistent_wrong_answers_earn_nothing(notebook, consistent):
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import worst_case_ratio
 
     sc, W, A = consistent, notebook["W"], notebook["A"]
     C = worst_case_ratio(sc.vectors[:, :50], sc.stiffness, sc.mass)
@@ -129,8 +130,8 @@ def test_consistent_wrong_answers_earn_nothing(notebook, consistent):
 def test_a_competitor_stays_above_one_for_the_consistent_pair(notebook, consistent):
     """The old hidden test's claim about the notebook's data, kept as a test of the library: the
     umbrella basis (consistent mass) is not optimal for the consistent pair, the eigenbasis is."""
-    from lbo_notebooks import bases
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import _competitor_bases as bases
+    from lbo_notebooks.analyses import worst_case_ratio
 
     sc = consistent
     assert abs(worst_case_ratio(sc.vectors[:, :50], sc.stiffness, sc.mass) * sc.values[50] - 1) < 1e-8
@@ -142,7 +143,7 @@ def test_a_competitor_stays_above_one_for_the_consistent_pair(notebook, consiste
 
 @pytest.fixture(scope="module")
 def worst(notebook):
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import worst_case_ratio
 
     P, W, A = notebook["competitors"]["polynomials"][:, :20], notebook["W"], notebook["A"]
     c, f = worst_case_ratio(P, W, A, return_vector=True)
@@ -307,7 +308,7 @@ SCHUR = {
             return np.inf if mus[0] <= 1e-10 * mus[-1] else 1.0 / mus[0]
     """,
     "the library's kernel basis, a Cholesky whitening of the complement": """
-        from lbo_notebooks.optimality import kernel_basis
+        from lbo_notebooks.analyses import kernel_basis
 
         def my_worst_case(W, A, V):
             Wd, Ad = W.toarray(), A.toarray()
@@ -392,14 +393,14 @@ SCHUR_SLIPS = {
 SCHUR_LIBRARY = {
     "the library's worst-case ratio": ("my_worst_case = lambda W, A, V: worst_case_ratio(V, W, A)", "worst_case_ratio"),
     "its dense route": ("""
-        from lbo_notebooks import optimality
+        from lbo_notebooks.analyses import _optimality as optimality
 
         def my_worst_case(W, A, V):
             Q = lbo.a_orthonormalize(V, A)
             return optimality._worst_case_dense(Q, W, A, optimality.kernel_basis(W))[0]
     """, "_worst_case_dense"),
     "the constrained minimum of S": ("""
-        from lbo_notebooks.minmax import min_rayleigh_quotient
+        from lbo_notebooks.analyses import min_rayleigh_quotient
 
         def my_worst_case(W, A, V):
             Wd, Ad = W.toarray(), A.toarray()
@@ -412,7 +413,7 @@ SCHUR_LIBRARY = {
 
 
 def _schur(code):
-    given = answers("from lbo_notebooks.optimality import worst_case_ratio\n" + SCHUR_HELPERS + textwrap.dedent(code),
+    given = answers("from lbo_notebooks.analyses._optimality import worst_case_ratio\n" + SCHUR_HELPERS + textwrap.dedent(code),
                     "my_worst_case")
     return Sent(cloudpickle.dumps(given))
 
@@ -464,7 +465,7 @@ def test_schur_placeholders_and_determinism():
 
 def test_schur_through_the_graded_run():
     assert graded("06-schur", **answers(solution("06-schur"), "my_worst_case")) == 5.0
-    given = answers("from lbo_notebooks.optimality import worst_case_ratio\n"
+    given = answers("from lbo_notebooks.analyses._optimality import worst_case_ratio\n"
                     "my_worst_case = lambda W, A, V: worst_case_ratio(V, W, A)", "my_worst_case")
     assert graded("06-schur", **given) == 0.0
 
@@ -477,7 +478,7 @@ def test_schur_graded_bases():
 
     from lbo_notebooks.exercises import theory
     from lbo_notebooks.exercises.grading import nb06
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import worst_case_ratio
 
     graded_bases, visible = nb06._unseen_bases(), theory._worst_case_problems()
     assert not {W.shape[0] for W, *_ in graded_bases} & {W.shape[0] for W, *_ in visible}
@@ -497,8 +498,8 @@ def test_schur_graded_bases():
 
 def test_schur_visible_check():
     from lbo_notebooks.exercises import theory
-    from lbo_notebooks.minmax import complement_ratio
-    from lbo_notebooks.optimality import worst_case_ratio
+    from lbo_notebooks.analyses import complement_ratio
+    from lbo_notebooks.analyses import worst_case_ratio
 
     good = answers(solution("06-schur"), "my_worst_case")["my_worst_case"]
     assert theory.check_worst_case(good, show=False).correct

@@ -28,7 +28,8 @@ def student_edition(exercise: str) -> str:
 def notebook():
     """What the answer cells use from the notebook's earlier cells (sections 2 and 3), rebuilt as there."""
     import lbo_notebooks as lbo
-    from lbo_notebooks import minmax, shapes
+    from lbo_notebooks import shapes
+    from lbo_notebooks.analyses import _minmax as minmax
 
     Q, _ = np.linalg.qr(np.random.default_rng(0).normal(size=(3, 3)))
     M = Q @ np.diag([1.0, 2.5, 4.0]) @ Q.T
@@ -112,7 +113,7 @@ def test_plane_wrong_answers(notebook):
 
 def test_plane_minimum_agrees_with_the_library(notebook):
     """The old hidden test's claim: `min_rayleigh_quotient` on that plane gives the exact value."""
-    from lbo_notebooks.minmax import min_rayleigh_quotient
+    from lbo_notebooks.analyses import min_rayleigh_quotient
 
     M, u = notebook["M"], notebook["v0"] + 2 * notebook["v1"]
     assert abs(min_rayleigh_quotient(M, np.eye(3), u) - 1.3) < 1e-12 * 4
@@ -204,7 +205,7 @@ def test_interlacing_claims_of_the_old_hidden_test(notebook):
 def test_consistent(notebook):
     _full("07-consistent", **answers(solution("07-consistent"), "consistent_minmax", **notebook))
     code = """
-        from lbo_notebooks.minmax import min_rayleigh_quotient
+        from lbo_notebooks.analyses import min_rayleigh_quotient
         spec = lbo.eigenbasis(blob, 12, mass_kind="consistent")
         low = min_rayleigh_quotient(spec.stiffness, spec.mass, orthogonal_to=spec.vectors[:, :10])
         consistent_minmax = low / spec.values[10]
@@ -217,7 +218,7 @@ def test_consistent(notebook):
 def test_consistent_wrong_answers(notebook):
     blob, s = notebook["blob"], notebook["s"]
     import lbo_notebooks as lbo
-    from lbo_notebooks.minmax import ConstrainedRayleigh, optimal_subspace
+    from lbo_notebooks.analyses import ConstrainedRayleigh, optimal_subspace
 
     sc = lbo.eigenbasis(blob, 12, mass_kind="consistent")
     low = ConstrainedRayleigh(sc.stiffness, sc.mass).minimum(optimal_subspace(sc, 10))
@@ -234,7 +235,7 @@ def test_consistent_wrong_answers(notebook):
 def test_consistent_claims_of_the_old_hidden_test(notebook):
     """Courant–Fischer with the consistent mass: a random codimension-10 subspace stays below λ_10."""
     import lbo_notebooks as lbo
-    from lbo_notebooks.minmax import ConstrainedRayleigh, random_subspace
+    from lbo_notebooks.analyses import ConstrainedRayleigh, random_subspace
 
     blob = notebook["blob"]
     sc = lbo.eigenbasis(blob, 12, mass_kind="consistent")
@@ -280,7 +281,7 @@ def test_recap_all_wrong_and_placeholders():
 
 def test_recap_claim_of_the_old_hidden_test(notebook):
     """The tilt of section 2 on eigenvalues 1, 2, 4: the minimum stays λ_1 = 2 up to t*, falls after."""
-    from lbo_notebooks.minmax import min_rayleigh_quotient
+    from lbo_notebooks.analyses import min_rayleigh_quotient
 
     Q = notebook["Q"]
     M3 = Q @ np.diag([1.0, 2.0, 4.0]) @ Q.T

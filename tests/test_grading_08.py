@@ -39,7 +39,7 @@ def horse():
 
 @pytest.fixture(scope="module")
 def floor_count(horse):
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
 
     at_floor = curvature.metric_curvature(horse, floor=1.0) <= 4 * np.pi / horse.area * (1 + 1e-12)
     return int(at_floor.sum()), horse.n_vertices
@@ -194,13 +194,12 @@ def test_best():
 
 def test_floor_solution(horse):
     import lbo_notebooks as lbo
-    from lbo_notebooks import curvature
 
-    _full("08-floor", **answers(solution("08-floor"), "floor_fraction", horse=horse, curvature=curvature, lbo=lbo))
+    _full("08-floor", **answers(solution("08-floor"), "floor_fraction", horse=horse, operators=lbo.operators, lbo=lbo))
 
 
 def test_floor_written_differently(horse, floor_count):
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
 
     count, n = floor_count
     code = """
@@ -219,7 +218,7 @@ def test_floor_written_differently(horse, floor_count):
 
 
 def test_floor_wrong_answers(horse, floor_count):
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
 
     count, n = floor_count
     _zero("08-floor", "percentage", floor_fraction=100 * count / n)
@@ -429,7 +428,7 @@ DEFECT_LIBRARY = {
             return my_full(mesh) - np.bincount(mesh.faces.ravel(), theta.ravel(), mesh.n_vertices)
     """, "face_cotangents"),
     "the private defects": ("""
-        from lbo_notebooks import curvature
+        from lbo_notebooks.operators import _curvature as curvature
 
         my_angle_defects = lambda mesh: curvature._angle_defects(mesh)
     """, "_angle_defects"),
@@ -518,7 +517,7 @@ def test_angle_defects_unseen_meshes():
 
 
 def test_angle_defects_visible_check():
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
     from lbo_notebooks.exercises import minmax_and_metrics as mm
 
     assert mm.check_angle_defects(curvature.angle_defects, show=False).correct
@@ -535,7 +534,7 @@ def test_angle_defects_visible_check():
 def test_gauss_bonnet_on_the_grader_meshes():
     """Σ δ = 2πχ, with the boundary's turning on the open patch: the identity the notebook's cell
     checks on the student's defects."""
-    from lbo_notebooks import curvature
+    from lbo_notebooks.operators import _curvature as curvature
     from lbo_notebooks.exercises.grading import nb08
 
     for mesh, _ in nb08._unseen_meshes():

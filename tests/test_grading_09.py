@@ -48,10 +48,10 @@ def test_memory_right_answers():
 def test_memory_the_librarys_count_is_the_answer():
     """The claim the hidden test used to make: the library's count of an n x n matrix gives the answer
     (0.8 GB per matrix at 10,000 vertices is asserted in the notebook itself)."""
-    from lbo_notebooks.geodesics import distance_matrix_bytes
+    from lbo_notebooks.analyses import distance_matrix_bytes
 
     assert 2 * distance_matrix_bytes(50_000, 50_000) / 1e9 == pytest.approx(40.0, rel=1e-12)
-    code = ("from lbo_notebooks.geodesics import distance_matrix_bytes\n"
+    code = ("from lbo_notebooks.analyses._geodesics import distance_matrix_bytes\n"
             "classical_gb = 2 * distance_matrix_bytes(50_000, 50_000) / 1e9")
     full("09-memory", **answers(code, "classical_gb"))
 
@@ -214,17 +214,17 @@ def my_classical_mds(D, dim):
 MDS_LIBRARY = {
     "classical_mds itself": ("my_classical_mds = lbo.classical_mds", "classical_mds"),
     "a wrapper": ("""
-from lbo_notebooks.mds import classical_mds
+from lbo_notebooks.analyses import classical_mds
 
 def my_classical_mds(D, dim):
     return np.array(classical_mds(D, dim=dim))
 """, "classical_mds"),
     "landmark MDS with every point a landmark": ("""
 def my_classical_mds(D, dim):
-    return lbo.mds.landmark_mds(D, dim, landmarks=np.arange(len(D)))
+    return lbo.analyses.landmark_mds(D, dim, landmarks=np.arange(len(D)))
 """, "landmark_mds"),
     "the library's top eigenpairs": ("""
-from lbo_notebooks.scaling import top_eigenpairs
+from lbo_notebooks.analyses._classical_scaling import top_eigenpairs
 
 def my_classical_mds(D, dim):
     n = len(D)
@@ -233,7 +233,7 @@ def my_classical_mds(D, dim):
     return U * np.sqrt(np.maximum(w, 0))
 """, "top_eigenpairs"),
     "scaling in a span": ("""
-from lbo_notebooks import scaling
+from lbo_notebooks.analyses import _classical_scaling as scaling
 
 def my_classical_mds(D, dim):
     n = len(D)
@@ -303,10 +303,10 @@ def test_classical_mds_cases_are_determined_and_the_librarys():
     """Every graded case ends each dim below a gap (or among clipped eigenvalues), has the promised
     kinds (exactly embeddable, negative eigenvalues, repeated eigenvalues), and the reference is the
     library's classical MDS; every blocked function resolves."""
-    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.analyses import gram_error
     from lbo_notebooks.exercises import canonical_forms
     from lbo_notebooks.exercises.grading import _registry, load_graders, nb09
-    from lbo_notebooks.mds import classical_mds
+    from lbo_notebooks.analyses import classical_mds
 
     negative = repeated = 0
     for D, dims, _ in nb09._mds_cases():
@@ -334,7 +334,7 @@ def test_classical_mds_graded_run():
 
 def test_classical_mds_visible_check():
     from lbo_notebooks.exercises import canonical_forms
-    from lbo_notebooks.mds import classical_mds
+    from lbo_notebooks.analyses import classical_mds
 
     right = answers(solution("09-classical-mds"), "my_classical_mds")["my_classical_mds"]
     assert canonical_forms.check_classical_mds(right, show=False).correct
@@ -407,8 +407,9 @@ def my_scaling(phi, alpha, dim):
 @pytest.fixture(scope="module")
 def library_context():
     """The notebook's setting in small: the paper's form on a 1,000-vertex dog (phi, alpha, X_rows)."""
-    from lbo_notebooks import creatures, eigenbasis
-    from lbo_notebooks.mds import spectral_mds
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.shapes import _creatures as creatures
+    from lbo_notebooks.analyses import spectral_mds
 
     dog = creatures.creature("dog", "walking", n_vertices=1000)
     spectrum = eigenbasis(dog, 40)
@@ -419,10 +420,10 @@ def library_context():
 def test_scaling_solution_is_the_librarys_embedding(library_context):
     """The claim the hidden test used to make (the solution reproduces the library's X_rows), and the
     grader's references are the library's embeddings on its unseen inputs."""
-    from lbo_notebooks.embedding_error import gram_error
+    from lbo_notebooks.analyses import gram_error
     from lbo_notebooks.exercises import canonical_forms
     from lbo_notebooks.exercises.grading import nb09
-    from lbo_notebooks.scaling import scaling_in_span
+    from lbo_notebooks.analyses._classical_scaling import scaling_in_span
 
     phi, alpha, X_rows = library_context
     my_scaling = answers(solution("09-scaling"), "my_scaling")["my_scaling"]
@@ -485,7 +486,7 @@ def test_scaling_placeholders():
 @pytest.mark.parametrize("code", [
     # the library's small eigenproblem, imported by name
     """
-from lbo_notebooks.scaling import scaling_in_span
+from lbo_notebooks.analyses._classical_scaling import scaling_in_span
 
 def my_scaling(phi, alpha, dim):
     m = phi.mean(axis=0)
@@ -496,12 +497,12 @@ def my_scaling(phi, alpha, dim):
     """
 def my_scaling(phi, alpha, dim):
     m = phi.mean(axis=0)
-    y, _ = lbo.mds.scaling_in_span(phi.T @ phi - len(phi) * np.outer(m, m), -0.5 * alpha, dim)
+    y, _ = lbo.analyses._classical_scaling.scaling_in_span(phi.T @ phi - len(phi) * np.outer(m, m), -0.5 * alpha, dim)
     return phi @ y
 """,
     # own QR, the library's top eigenpairs
     """
-from lbo_notebooks import scaling
+from lbo_notebooks.analyses import _classical_scaling as scaling
 
 def my_scaling(phi, alpha, dim):
     Q, R = np.linalg.qr(phi - phi.mean(axis=0))
@@ -517,7 +518,7 @@ def my_scaling(phi, alpha, dim):
 """,
     # classical MDS of the n x n matrix Phi alpha Phi^T
     """
-from lbo_notebooks.mds import classical_mds
+from lbo_notebooks.analyses import classical_mds
 
 def my_scaling(phi, alpha, dim):
     D2 = phi @ alpha @ phi.T
@@ -525,7 +526,7 @@ def my_scaling(phi, alpha, dim):
 """,
     # the library first, its own (right) code when that fails: still a library call
     """
-from lbo_notebooks.scaling import scaling_in_span
+from lbo_notebooks.analyses._classical_scaling import scaling_in_span
 
 def my_scaling(phi, alpha, dim):
     try:
@@ -553,7 +554,7 @@ def my_scaling(phi, alpha, dim):
     C = phi - phi.mean(axis=0)
     return KernelPCA(n_components=dim, kernel="precomputed").fit_transform(-0.5 * C @ alpha @ C.T)
 """,
-], ids=["scaling_in_span", "lbo.mds.scaling_in_span", "top_eigenpairs", "check's reference", "classical_mds",
+], ids=["scaling_in_span", "lbo.analyses._classical_scaling.scaling_in_span", "top_eigenpairs", "check's reference", "classical_mds",
         "caught", "sklearn ClassicalMDS", "sklearn KernelPCA"])
 def test_scaling_library_calls_earn_nothing(code):
     zero("09-scaling", "build it yourself", "not available", **answers(code, "my_scaling"))
@@ -579,7 +580,7 @@ def test_recap_prompt_matches_the_library():
     """The claim the hidden test used to make: the prompt's defaults (k = 200, q = 300, fields) are
     the library's, so the small eigenproblem has k + q rows (section 3's separation of the species
     is asserted in the notebook itself)."""
-    from lbo_notebooks.mds import SMDS_DEFAULTS
+    from lbo_notebooks.analyses import SMDS_DEFAULTS
 
     assert (SMDS_DEFAULTS["k"], SMDS_DEFAULTS["n_samples"], SMDS_DEFAULTS["sampled"]) == (200, 300, "fields")
 

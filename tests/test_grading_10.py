@@ -28,9 +28,9 @@ def solution(exercise: str) -> str:
 def notebook():
     """The names the notebook's earlier cells define that the answers use (its section 1)."""
     import lbo_notebooks as lbo
-    from lbo_notebooks.embedding_error import gram_error
-    from lbo_notebooks.geodesics import farthest_point_sampling
-    from lbo_notebooks.mds import SMDS_EIGEN_TOL, classical_mds, spectral_mds
+    from lbo_notebooks.analyses import gram_error
+    from lbo_notebooks.analyses import farthest_point_sampling
+    from lbo_notebooks.analyses import SMDS_EIGEN_TOL, classical_mds, spectral_mds
 
     dog = lbo.creature("dog", "walking", n_vertices=2000)
     spectrum = lbo.eigenbasis(dog, 300, tol=SMDS_EIGEN_TOL)
@@ -69,7 +69,7 @@ def test_equal_size_right_answers(notebook):
     dog = notebook["dog"]
     full("10-equal-size", **answers(solution("10-equal-size"), "n_c", dog=dog))
     # the old hidden test's claim: the solution is sqrt(n (k + q) / 2) with the library's defaults
-    from lbo_notebooks.mds import SMDS_DEFAULTS
+    from lbo_notebooks.analyses import SMDS_DEFAULTS
 
     assert answers(solution("10-equal-size"), "n_c", dog=dog)["n_c"] == pytest.approx(
         np.sqrt(dog.n_vertices * (SMDS_DEFAULTS["k"] + SMDS_DEFAULTS["n_samples"]) / 2), abs=1)
@@ -125,8 +125,8 @@ def test_two_d_old_hidden_claims(notebook):
     MDS, and spectral MDS, which the grader relies on)."""
     from scipy.spatial.distance import cdist
 
-    from lbo_notebooks.embedding_error import gram_error
-    from lbo_notebooks.mds import classical_mds, spectral_mds
+    from lbo_notebooks.analyses import gram_error
+    from lbo_notebooks.analyses import classical_mds, spectral_mds
 
     dog, X_classical = notebook["dog"], notebook["X_classical"]
     X2, info2 = spectral_mds(dog, dim=2, spectrum=notebook["spectrum"], sampling=notebook["sampling"],
@@ -141,7 +141,7 @@ def test_two_d_old_hidden_claims(notebook):
     ("e2 = gram_error(X_smds, X_classical)", "3-D"),                                          # not 2-D
     ("e2 = gram_error(spectral_mds(dog, dim=2, spectrum=spectrum, sampling=sampling), X_classical)",
      "3-D classical"),
-    (("from lbo_notebooks.embedding_error import procrustes_error\n"
+    (("from lbo_notebooks.analyses._embedding_error import procrustes_error\n"
       "e2 = procrustes_error(spectral_mds(dog, dim=2, spectrum=spectrum, sampling=sampling), X_classical[:, :2])"),
      "Procrustes"),
     ("e2 = 100 * gram_error(spectral_mds(dog, dim=2, spectrum=spectrum, sampling=sampling), X_classical[:, :2])",

@@ -36,8 +36,8 @@ def student_edition(exercise: str) -> str:
 def kernel():
     """The notebook's kernel after sections 2-4, restated from its cells (not the grader's rebuild)."""
     import lbo_notebooks as lbo
-    from lbo_notebooks.inner_product import reconstruction_error
-    from lbo_notebooks.rpca import RegularizedPCA
+    from lbo_notebooks.spectral import reconstruction_error
+    from lbo_notebooks.analyses import RegularizedPCA
 
     poses = lbo.creature_poses("dog", n_vertices=3000)
     reference = poses["standing"]
@@ -278,7 +278,7 @@ def test_objective_wrong_answers(name):
 @pytest.mark.parametrize("code, used", [
     ("from lbo_notebooks.exercises import regularized_pca\nmy_objective = regularized_pca._rpca_objective", "_rpca_objective"),
     ("""
-        from lbo_notebooks.inner_product import reconstruct
+        from lbo_notebooks.spectral import reconstruct
         def my_objective(P, X, W, A, mu):
             R = reconstruct(P, A, X) - X
             return np.sum(R * (A @ R)) + mu * np.sum(P * (W @ P))
@@ -410,7 +410,7 @@ def test_rpca_basis_is_judged_on_unseen_problems(kernel):
 def test_the_visible_rpca_basis_check_says_right_and_wrong():
     import lbo_notebooks as lbo
     from lbo_notebooks import exercises
-    from lbo_notebooks.rpca import RegularizedPCA
+    from lbo_notebooks.analyses import RegularizedPCA
 
     small = lbo.shapes.bumpy_sphere(3)
     Ws, As = lbo.stiffness_matrix(small), lbo.mass_matrix(small)

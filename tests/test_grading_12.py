@@ -101,7 +101,7 @@ def test_mirror_has_a_written_explanation_after_its_experiment():
 
 def test_the_recorded_benchmark_is_read_through_the_package():
     text = "\n".join("".join(c["source"]) for c in _cells() if c["cell_type"] == "code")
-    assert "../" not in text and 'lbo.cost.recorded_benchmark("matching")' in text
+    assert "../" not in text and 'lbo.analyses.recorded_benchmark("matching")' in text
 
 
 @pytest.mark.parametrize("exercise", list(EXERCISES))
@@ -154,7 +154,7 @@ def test_hks_wrong_answers(body, hint):
 
 @pytest.mark.parametrize("code, used", [
     ("my_hks = lbo.hks", "descriptors.hks"),
-    ("from lbo_notebooks import descriptors\ndef my_hks(spectrum, times):\n    return descriptors.hks(spectrum, times)",
+    ("from lbo_notebooks import analyses\ndef my_hks(spectrum, times):\n    return analyses.hks(spectrum, times)",
      "descriptors.hks"),
     ("import pyFM.signatures\ndef my_hks(s, t):\n    return pyFM.signatures.HKS(s.values, s.vectors, t)", "HKS"),
     ("from pyFM.signatures.HKS_functions import HKS\ndef my_hks(s, t):\n    return HKS(s.values, s.vectors, t)", "HKS"),
@@ -217,7 +217,7 @@ def test_fmap_wrong_answers(body, hint):
 
 
 @pytest.mark.parametrize("code, used", [
-    ("from lbo_notebooks import functional_maps as fm\n"
+    ("from lbo_notebooks import analyses as fm\n"
      "def my_functional_map(p2p, source, target, k):\n"
      "    return fm.map_from_points(p2p, source, target, k_source=k, k_target=k)", "map_from_points"),
     ("def my_functional_map(p2p, source, target, k):\n"
@@ -336,15 +336,15 @@ def test_zoomout_step_wrong_answers(body, hint):
 
 
 @pytest.mark.parametrize("code, used", [
-    ("from lbo_notebooks import functional_maps as fm\n"
+    ("from lbo_notebooks import analyses as fm\n"
      "def my_zoomout_step(C, source, target):\n"
      "    k = len(C)\n"
      "    p2p = fm.points_from_map(C, source, target)\n"
      "    return fm.map_from_points(p2p, source, target, k_source=k + 1, k_target=k + 1), p2p", "points_from_map"),
     ("def my_zoomout_step(C, source, target):\n"
-     "    C_next, _ = lbo.functional_maps.zoomout(C, source, target, k_final=len(C) + 1)\n"
+     "    C_next, _ = lbo.analyses.zoomout(C, source, target, k_final=len(C) + 1)\n"
      "    return C_next, lbo.points_from_map(C, source, target)", "zoomout"),
-    ("from lbo_notebooks.functional_maps import _nearest_rows\n"
+    ("from lbo_notebooks.analyses._functional_maps import _nearest_rows\n"
      "def my_zoomout_step(C, source, target):\n"
      "    k = len(C)\n"
      "    p2p = _nearest_rows(target.vectors[:, :k], source.vectors[:, :k] @ C.T)\n"
@@ -408,7 +408,7 @@ def test_zoomout_step_visible_check():
     and the alternatives pass, the slips get their hints, a stub is not attempted."""
     from lbo_notebooks import shapes
     from lbo_notebooks.exercises.toolbox import check_zoomout_step
-    from lbo_notebooks.spectrum import eigenbasis
+    from lbo_notebooks.spectral import eigenbasis
 
     mesh = shapes.bumpy_sphere(2, seed=3)
     one, two = eigenbasis(mesh, 14), eigenbasis(mesh.with_vertices(mesh.vertices * [1.0, 1.2, 0.9]), 14)
@@ -569,7 +569,7 @@ def test_names_imported_from_the_library_in_a_fresh_kernel_earn_nothing():
     import sys
 
     pytest.importorskip("pyFM")
-    code = ("from lbo_notebooks.descriptors import hks\n"
+    code = ("from lbo_notebooks.analyses._descriptors import hks\n"
             "from pyFM.spectral import p2p_to_FM\n"
             "def my_hks(spectrum, times):\n"
             "    return hks(spectrum, times)\n"

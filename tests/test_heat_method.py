@@ -7,8 +7,8 @@ import pytest
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, MeshError, shapes
-from lbo_notebooks.geodesics import GeodesicSolver, farthest_point_sampling, geodesic_distances
-from lbo_notebooks.heat_method import HeatMethod, face_gradient_operator, solve_poisson
+from lbo_notebooks.analyses import GeodesicSolver, farthest_point_sampling, geodesic_distances
+from lbo_notebooks.analyses._heat_method import HeatMethod, face_gradient_operator, solve_poisson
 from lbo_notebooks.operators import stiffness_matrix
 
 
@@ -58,7 +58,8 @@ def test_large_meshes_share_one_metis_order_between_poisson_and_eigenbasis(monke
     # (vertex 0 dropped), which eigenbasis reuses; the intrinsic Delaunay heat matrix, whose
     # flipped edges cross that order's separators, gets its own.
     import lbo_notebooks._engine.factor as sparse_factor
-    from lbo_notebooks import eigenbasis, solvers
+    from lbo_notebooks import eigenbasis
+    from lbo_notebooks.spectral import _solvers as solvers
 
     calls = []
     original = sparse_factor.fill_reducing_order
@@ -123,7 +124,7 @@ def test_a_block_equals_one_source_at_a_time(bumpy):
 
 
 def test_one_thread_or_two_give_the_same_bits(bumpy, monkeypatch):
-    import lbo_notebooks.heat_method as heat_method
+    import lbo_notebooks.analyses._heat_method as heat_method
 
     heat = HeatMethod(bumpy)
     src = np.arange(0, bumpy.n_vertices, 13)
@@ -186,7 +187,7 @@ def test_graph_selection_is_nested_distinct_and_covers_like_geodesic_selection(b
 def test_graph_selection_picks_the_graph_farthest_vertex(bumpy):
     from scipy.sparse.csgraph import dijkstra
 
-    from lbo_notebooks.geodesics import _edge_graph
+    from lbo_notebooks.analyses._geodesics import _edge_graph
 
     s = farthest_point_sampling(bumpy, 6, select="graph")
     d = dijkstra(_edge_graph(bumpy), indices=s)
@@ -211,7 +212,7 @@ def test_targets_keep_only_those_columns(method):
 
 
 def test_spectral_mds_defaults_equal_an_explicit_graph_sampling():
-    from lbo_notebooks.mds import spectral_mds
+    from lbo_notebooks.analyses import spectral_mds
 
     mesh = shapes.bumpy_sphere(2)
     sampling = farthest_point_sampling(mesh, 60, select="graph", return_distances=True)

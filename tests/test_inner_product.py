@@ -7,7 +7,7 @@ import pytest
 import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes
-from lbo_notebooks.inner_product import (
+from lbo_notebooks.spectral._inner_product import (
     DiagonalMass,
     a_orthonormalize,
     check_operators,

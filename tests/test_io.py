@@ -1,4 +1,4 @@
-"""Tests for lbo_notebooks.io: file formats, welding, validation of broken files, cleaning."""
+"""Tests for lbo_notebooks.geometry._files: file formats, welding, validation of broken files, cleaning."""
 
 from __future__ import annotations
 
@@ -14,10 +14,10 @@ import pytest
 
 from .strategies import corrupted_copies
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
-from lbo_notebooks import _open3d
-from lbo_notebooks.formats import FORMATS, mesh_text
-from lbo_notebooks.repair import clean_mesh
-from lbo_notebooks.io import (
+from lbo_notebooks._support import optional_open3d as _open3d
+from lbo_notebooks.geometry._formats import FORMATS, mesh_text
+from lbo_notebooks.geometry import clean_mesh
+from lbo_notebooks.geometry._files import (
     MeshRepairWarning,
     load_mesh,
     load_points,
@@ -505,7 +505,7 @@ def test_unknown_library_and_missing_open3d_messages(monkeypatch, tmp_path):
 
 
 def test_importing_the_io_module_does_not_import_open3d():
-    code = "import sys, lbo_notebooks.io, lbo_notebooks._open3d; assert 'open3d' not in sys.modules"
+    code = "import sys, lbo_notebooks.geometry._files, lbo_notebooks._support.optional_open3d; assert 'open3d' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
@@ -956,7 +956,7 @@ _PLY_HEAD = ("ply\nformat {fmt} 1.0\nelement vertex {nv}\nproperty float x\nprop
 def _run_under_a_memory_limit(code: str, limit: int = 1 << 30) -> subprocess.CompletedProcess[str]:
     """``code`` in a fresh interpreter that may allocate at most ``limit`` bytes of address space beyond its start."""
     prelude = (
-        "import resource, lbo_notebooks.io\n"
+        "import resource, lbo_notebooks.geometry._files\n"
         "used = int(open('/proc/self/statm').read().split()[0]) * resource.getpagesize()\n"
         f"resource.setrlimit(resource.RLIMIT_AS, (used + {limit}, resource.RLIM_INFINITY))\n"
     )
@@ -969,7 +969,7 @@ def test_a_propertyless_element_count_is_bounded_by_the_lines_an_ascii_file_hold
     text = _PLY_HEAD.format(fmt="ascii", nv=3, nf=1, extra="element junk 2000000000\n") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
     path = write(tmp_path / "bomb.ply", text)
     assert path.stat().st_size == 204
-    code = (f"from lbo_notebooks.io import load_mesh, MeshError\ntry:\n    load_mesh({str(path)!r})\n"
+    code = (f"from lbo_notebooks.geometry._files import load_mesh, MeshError\ntry:\n    load_mesh({str(path)!r})\n"
             "except MeshError as exc:\n    print('MeshError', exc)\n")
     result = _run_under_a_memory_limit(code)
     assert result.stdout.startswith("MeshError"), result.stdout + result.stderr
@@ -986,7 +986,7 @@ def test_a_propertyless_element_takes_no_bytes_in_a_binary_file(tmp_path, timed)
     head = _PLY_HEAD.format(fmt="binary_little_endian", nv=3, nf=1, extra="element junk 2000000000\n").encode()
     body = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2)
     path = write(tmp_path / "nothing.ply", head + body)
-    code = f"from lbo_notebooks.io import load_mesh\nprint(load_mesh({str(path)!r}).faces.tolist())\n"
+    code = f"from lbo_notebooks.geometry._files import load_mesh\nprint(load_mesh({str(path)!r}).faces.tolist())\n"
     start = time.perf_counter()
     result = _run_under_a_memory_limit(code)
     assert not timed or time.perf_counter() - start < 30  # a wall time: opt-in (tests/conftest.py)

@@ -9,8 +9,8 @@ import scipy.optimize
 import scipy.spatial
 
 import lbo_notebooks as lbo
-from lbo_notebooks import functional_maps as fm
-from lbo_notebooks.descriptors import gps, hks, hks_times, wks
+from lbo_notebooks.analyses import _functional_maps as fm
+from lbo_notebooks.analyses import gps, hks, hks_times, wks
 
 from .kernel import cell_outputs, is_widget
 
@@ -234,7 +234,7 @@ def test_match_names_the_bad_argument_before_computing_anything(dog, monkeypatch
     def computed(*args, **kw):
         raise AssertionError("match computed an eigenbasis before checking its arguments")
 
-    monkeypatch.setattr(lbo.matching, "eigenbasis", computed)
+    monkeypatch.setattr(lbo.analyses._matching, "eigenbasis", computed)
     with pytest.raises(ValueError, match=name):
         lbo.match(dog, dog, **kwargs)
 
@@ -319,14 +319,14 @@ def test_match_progress_bar_when_asked_and_silent_by_default(dog, capsys):
 
 
 def test_default_progress_shows_in_a_terminal_only_for_long_calls(dog, monkeypatch):
-    from lbo_notebooks import _progress
+    from lbo_notebooks._support import progress as _progress
 
     target, _ = shuffled(dog, 2)
     terminal = _Terminal()
     monkeypatch.setattr(sys, "stderr", terminal)
     lbo.match(dog, target, k=10, k_final=20)
     assert terminal.getvalue() == ""  # 2000 vertices: too short for a bar
-    monkeypatch.setattr(lbo.matching, "LARGE_MESH", 1000)  # as if the dog were large
+    monkeypatch.setattr(lbo.analyses._matching, "LARGE_MESH", 1000)  # as if the dog were large
     lbo.match(dog, target, k=10, k_final=20)
     assert "match" in terminal.getvalue()
     log = io.StringIO()  # stderr redirected to a file: no bar even for a long call
@@ -341,7 +341,7 @@ def test_default_progress_shows_in_a_terminal_only_for_long_calls(dog, monkeypat
 def test_default_progress_bar_shows_in_a_notebook():
     code = (
         "import lbo_notebooks as lbo\n"
-        "from lbo_notebooks import matching\n"
+        "from lbo_notebooks.analyses import _matching as matching\n"
         "matching.LARGE_MESH = 100\n"
         "dog = lbo.creature('dog', 'standing', n_vertices=2000)\n"
         "p2p = lbo.match(dog, dog, k=10, k_final=20)"

@@ -9,11 +9,11 @@ from hypothesis import strategies as st
 from scipy.spatial.distance import cdist
 
 from lbo_notebooks import Mesh, MeshError, eigenbasis, shapes
-from lbo_notebooks.geodesics import farthest_point_sampling, geodesic_distances
-from lbo_notebooks.cost import growth_exponent, least_cost, measure_cost
-from lbo_notebooks.shape_distribution import shape_distribution, shape_distribution_distances
-from lbo_notebooks.embedding_error import gram_error, procrustes_error
-from lbo_notebooks.mds import (
+from lbo_notebooks.analyses import farthest_point_sampling, geodesic_distances
+from lbo_notebooks.analyses import growth_exponent, least_cost, measure_cost
+from lbo_notebooks.analyses import shape_distribution, shape_distribution_distances
+from lbo_notebooks.analyses import gram_error, procrustes_error
+from lbo_notebooks.analyses._mds import (
     classical_mds,
     landmark_mds,
     SMDS_DEFAULTS,
@@ -248,7 +248,7 @@ def test_spectral_mds_is_rigid_and_scale_covariant(blob):
 def test_spectral_mds_own_looser_eigenbasis_changes_nothing_that_matters():
     # spectral_mds computes its eigenbasis with tol = SMDS_EIGEN_TOL (1e-6): the same embedding as
     # with the default 1e-10 basis, to far below its own (sub-percent) error.
-    from lbo_notebooks.mds import SMDS_EIGEN_TOL
+    from lbo_notebooks.analyses import SMDS_EIGEN_TOL
 
     assert SMDS_EIGEN_TOL == 1e-6
     m = shapes.bumpy_sphere(4)

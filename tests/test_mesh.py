@@ -112,7 +112,7 @@ def test_ragged_faces_are_a_mesh_error(faces):
 def test_complex_coordinates_are_refused_not_cut_to_their_real_part():
     # Issue 26, item 8: complex input was silently cast to its real part (with a ComplexWarning).
     from lbo_notebooks import PointCloud
-    from lbo_notebooks.repair import clean_mesh
+    from lbo_notebooks.geometry import clean_mesh
 
     sphere = shapes.icosphere(1)
     for build in (lambda v: Mesh(v, sphere.faces), lambda v: sphere.with_vertices(v), lambda v: clean_mesh((v, sphere.faces)),
@@ -158,7 +158,7 @@ def test_meshes_far_from_unit_size_keep_their_areas_and_pass_the_checks(scale):
 def test_a_face_index_beyond_int64_is_shown_as_given_not_wrapped(bad):
     # Issue 26, item 8: 2**63 (uint64) showed as -9223372036854775808; 2**64 was called "ragged";
     # clean_mesh raised OverflowError.
-    from lbo_notebooks.repair import clean_mesh
+    from lbo_notebooks.geometry import clean_mesh
 
     faces = [[0, 1, bad]]
     inputs = [faces] + ([np.array(faces, dtype=np.uint64)] if 0 <= bad < 2**64 else [])
@@ -171,14 +171,14 @@ def test_a_face_index_beyond_int64_is_shown_as_given_not_wrapped(bad):
 
 
 def test_clean_mesh_refuses_fractional_face_indices_instead_of_truncating_them():
-    from lbo_notebooks.repair import clean_mesh
+    from lbo_notebooks.geometry import clean_mesh
 
     with pytest.raises(MeshError, match="integer"):
         clean_mesh((TRI_V, np.array([[0, 1, 2.5]])))
 
 
 def test_out_of_range_coordinates_are_named_by_clean_mesh_too():
-    from lbo_notebooks.repair import clean_mesh
+    from lbo_notebooks.geometry import clean_mesh
 
     sphere = shapes.icosphere(1)
     with pytest.raises(MeshError, match="usable range"):

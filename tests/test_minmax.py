@@ -4,7 +4,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lbo_notebooks import eigenbasis, shapes
-from lbo_notebooks.minmax import min_rayleigh_quotient, optimal_subspace, random_subspace, rayleigh_quotient
+from lbo_notebooks.analyses import min_rayleigh_quotient, optimal_subspace, random_subspace, rayleigh_quotient
 
 from .strategies import wavy_sheet
 
@@ -136,7 +136,7 @@ def test_bad_input(blob):
 
 
 def test_solver_object_reuses_its_factorisation():
-    from lbo_notebooks.minmax import ConstrainedRayleigh
+    from lbo_notebooks.analyses import ConstrainedRayleigh
 
     m = shapes.bumpy_sphere(3, seed=5)
     s = eigenbasis(m, 12)
@@ -148,7 +148,7 @@ def test_solver_object_reuses_its_factorisation():
 
 
 def test_rotating_plane_reaches_lam2_only_at_zero():
-    from lbo_notebooks.teaching import plane_normal
+    from lbo_notebooks.plotting import plane_normal
     from lbo_notebooks.plotting import plane_slider
 
     M = random_symmetric(11)
@@ -166,7 +166,7 @@ def test_rotating_plane_reaches_lam2_only_at_zero():
 
 def test_the_teaching_plane_minimum_is_the_library_minimum():
     """teaching.plane_circle solves the 2 x 2 problem by hand; min_rayleigh_quotient is the general one."""
-    from lbo_notebooks.teaching import plane_circle, plane_normal
+    from lbo_notebooks.plotting._rayleigh_plane import plane_circle, plane_normal
 
     M = np.array([[2.0, 0.3, 0.1], [0.3, 1.0, -0.2], [0.1, -0.2, 4.0]])
     for angle in (0.0, 25.0, 60.0, 90.0):

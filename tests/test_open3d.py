@@ -10,7 +10,7 @@ import builtins, os
 class ZMQInteractiveShell: pass
 builtins.get_ipython = lambda: ZMQInteractiveShell()
 {setup}
-from lbo_notebooks._open3d import import_open3d
+from lbo_notebooks._support.optional_open3d import import_open3d
 o3d = import_open3d()
 print("env after:", os.environ.get("OPEN3D_DISABLE_WEB_VISUALIZER"))
 """
@@ -48,7 +48,7 @@ def test_dash_opens_no_comm_when_open3d_is_imported():
         "import comm\n"
         "opened = []\n"
         "comm.create_comm = lambda *a, **k: opened.append(k.get('target_name')) or object()\n"
-        "from lbo_notebooks._open3d import import_open3d\n"
+        "from lbo_notebooks._support.optional_open3d import import_open3d\n"
         "import_open3d()\n"
         "import dash._jupyter\n"
         "assert 'dash' not in opened, opened\n"

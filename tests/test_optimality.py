@@ -6,9 +6,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.inner_product import a_orthonormalize
-from lbo_notebooks.minmax import complement_ratio, min_rayleigh_quotient
-from lbo_notebooks.optimality import (
+from lbo_notebooks.spectral import a_orthonormalize
+from lbo_notebooks.analyses import complement_ratio, min_rayleigh_quotient
+from lbo_notebooks.analyses import (
     dirichlet_energy,
     error_bound,
     kernel_basis,

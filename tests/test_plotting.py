@@ -2,7 +2,8 @@ import matplotlib
 import numpy as np
 import pytest
 
-from lbo_notebooks import creatures, eigenbasis, plotting, shapes
+from lbo_notebooks import eigenbasis, plotting, shapes
+from lbo_notebooks.shapes import _creatures as creatures
 
 matplotlib.use("Agg")
 
@@ -61,7 +62,7 @@ def test_static_fallback_and_bad_scalars(sphere):
 
 # --- layout: panels, colour bars, titles, camera ------------------------------------------------
 
-from lbo_notebooks.plotting.scene import MARGIN as _MARGIN, NOMINAL_WIDTH as _NOMINAL_WIDTH  # noqa: E402  (the layout's stated assumptions)
+from lbo_notebooks.plotting._scene import MARGIN as _MARGIN, NOMINAL_WIDTH as _NOMINAL_WIDTH  # noqa: E402  (the layout's stated assumptions)
 
 
 @pytest.fixture(scope="module")
@@ -251,8 +252,8 @@ def test_slider_starts_where_asked_and_keeps_moving_vertices_in_view(sphere):
 
 
 def test_static_fallback_turns_the_mesh_upright(dog):
-    from lbo_notebooks.plotting.meshes import _view_rotation
-    from lbo_notebooks.plotting.scene import View as _View
+    from lbo_notebooks.plotting._meshes import _view_rotation
+    from lbo_notebooks.plotting._scene import View as _View
 
     y_up = dog.vertices[:, [0, 2, 1]] * [1, 1, -1]
     for vertices, up in ((dog.vertices, "auto"), (y_up, "auto"), (y_up, "y"), (dog.vertices, [1.0, 0.0, 1.0])):
@@ -326,7 +327,7 @@ def test_plot_meshes_static_and_slider_accept_point_clouds(cloud, sphere):
 
 
 # --- issue 29: figures that teach ------------------------------------------------------------------
-from lbo_notebooks.creatures import creature, creature_poses  # noqa: E402
+from lbo_notebooks.shapes import creature, creature_poses  # noqa: E402
 
 
 def _screen_up(scene, centre, up, width_px, height_px):
@@ -365,7 +366,7 @@ def test_every_pose_of_every_creature_is_drawn_upright(species):
 
 
 def test_auto_up_for_the_other_built_in_shapes_and_a_flat_scan():
-    from lbo_notebooks.plotting.scene import auto_up as _auto_up
+    from lbo_notebooks.plotting._scene import auto_up as _auto_up
 
     np.testing.assert_array_equal(_auto_up(shapes.icosphere(2).vertices), [0, 0, 1])     # a tie: z
     np.testing.assert_array_equal(_auto_up(shapes.torus().vertices), [0, 1, 0])          # flat in xy: face on

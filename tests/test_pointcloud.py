@@ -11,7 +11,7 @@ import pytest
 import lbo_notebooks as lbo
 from .strategies import corrupted_copies
 from lbo_notebooks import MeshError, PointCloud, load_points, shapes
-from lbo_notebooks.io import MeshRepairWarning, save_mesh
+from lbo_notebooks.geometry import MeshRepairWarning, save_mesh
 
 L_SPHERE = np.repeat(np.arange(4), 2 * np.arange(4) + 1)
 EXACT_SPHERE = (L_SPHERE * (L_SPHERE + 1)).astype(float)  # first 16: 0, 2 x3, 6 x5, 12 x7
@@ -219,7 +219,7 @@ def test_small_clouds_work_with_the_default_arguments(n):
     s = lbo.eigenbasis(cloud, min(n, 4))
     assert np.all(np.isfinite(s.values)) and abs(s.values[0]) < 1e-8 * max(s.values[-1], 1.0)
     np.testing.assert_allclose(s.vectors.T @ (s.mass @ s.vectors), np.eye(s.k), atol=1e-10)
-    W, _ = lbo.robust.point_cloud_operators(cloud)  # the same default there
+    W, _ = lbo.operators.point_cloud_operators(cloud)  # the same default there
     assert W.shape == (n, n)
     with pytest.raises(ValueError, match="n_neighbors"):  # any other value is still checked
         lbo.eigenbasis(cloud, 3, n_neighbors=n + 1)
@@ -252,7 +252,7 @@ def test_coordinates_out_of_range_are_named_as_such(s):
 @pytest.mark.parametrize("s", [1e-59, 1e59])
 def test_the_whole_usable_range_gives_the_same_spectrum(s):
     """robust-laplacian sees the points divided by a power of two near their size, so the far ends of
-    the usable range (lbo.units.USABLE_DIAGONAL) give lam * s^2 of a unit-size cloud."""
+    the usable range (lbo.geometry._rescaling.USABLE_DIAGONAL) give lam * s^2 of a unit-size cloud."""
     p = sphere_points(300)
     ref = lbo.eigenbasis(PointCloud(p), 10).values
     values = lbo.eigenbasis(PointCloud(p * s), 10).values * s**2

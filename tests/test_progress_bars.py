@@ -1,6 +1,6 @@
 """Progress bars of eigenbases, spectral MDS and regularized PCA sweeps (issue 30, item 2).
 
-One rule for every long call (:mod:`lbo_notebooks._progress`): ``progress=True`` always shows a
+One rule for every long call (:mod:`lbo_notebooks._support.progress`): ``progress=True`` always shows a
 bar, ``False`` never, ``None`` only for large meshes and only where someone watches (a notebook,
 or a terminal). pytest captures stderr, which is no terminal: nothing may appear there.
 (``match`` and ``zoomout`` are tested the same way in test_matching.py.)
@@ -16,7 +16,10 @@ import numpy as np
 import pytest
 
 import lbo_notebooks as lbo
-from lbo_notebooks import mds, rpca, shapes, spectrum
+from lbo_notebooks import shapes
+from lbo_notebooks.analyses import _mds as mds
+from lbo_notebooks.analyses import _rpca as rpca
+from lbo_notebooks.spectral import _spectrum as spectrum
 from lbo_notebooks._engine.eigensolver import slice_eigsh
 from lbo_notebooks._engine.slicing import plan_sets
 
@@ -151,7 +154,8 @@ def test_default_bars_show_in_a_notebook():
     code = (
         "import numpy as np\n"
         "import lbo_notebooks as lbo\n"
-        "from lbo_notebooks import mds, rpca, spectrum\n"
+        "from lbo_notebooks.analyses import _mds as mds, _rpca as rpca\n"
+        "from lbo_notebooks.spectral import _spectrum as spectrum\n"
         "mds.LARGE_MESH = rpca.LARGE_MESH = spectrum.LARGE_MESH = 100\n"
         "sphere = lbo.shapes.bumpy_sphere(2)\n"
         "X = mds.spectral_mds(sphere, n_samples=30, k=20)\n"

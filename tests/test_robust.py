@@ -1,4 +1,4 @@
-"""Tests for lbo_notebooks.robust and the laplacian= dispatch of eigenbasis: the tufted Laplacian."""
+"""Tests for lbo_notebooks.operators._robust and the laplacian= dispatch of eigenbasis: the tufted Laplacian."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import scipy.sparse as sp
 import lbo_notebooks as lbo
 from lbo_notebooks import Mesh, MeshError, shapes
 from lbo_notebooks.operators import mass_matrix, stiffness_matrix
-from lbo_notebooks.robust import (
+from lbo_notebooks.operators import (
     LaplacianWarning,
     cotan_defects,
     non_manifold_vertices,
@@ -253,7 +253,7 @@ def test_forty_pieces_give_forty_zero_eigenvalues_through_the_sparse_solver(lapl
 def test_one_owner_chooses_the_operators_and_names_mass_kind():
     """Issue 27: laplacians owns "which (W, A) for this input"; eigenbasis is those operators + the solver."""
     import lbo_notebooks as lbo
-    from lbo_notebooks.laplacians import laplace_beltrami
+    from lbo_notebooks.operators import laplace_beltrami
 
     sphere = lbo.shapes.icosphere(2)
     for options in ({}, {"mass_kind": "consistent"}, {"alpha": 0.5}, {"laplacian": "robust"}):

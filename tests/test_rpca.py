@@ -1,4 +1,4 @@
-"""Tests for lbo_notebooks.rpca: regularized PCA against its closed form and its limits.
+"""Tests for lbo_notebooks.analyses._rpca: regularized PCA against its closed form and its limits.
 
 Oracles: dense ``scipy.linalg.eigh`` of the n x n pencil (the closed form), the Laplace–Beltrami
 eigenbasis (mu -> inf), PCA of the data plus the smoothest A-orthogonal functions (mu -> 0), the
@@ -13,8 +13,8 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.inner_product import principal_angles, reconstruct, reconstruction_error
-from lbo_notebooks.rpca import (
+from lbo_notebooks.spectral import principal_angles, reconstruct, reconstruction_error
+from lbo_notebooks.analyses import (
     RegularizedPCA,
     beta_from_mu,
     mu_from_beta,

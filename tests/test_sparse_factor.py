@@ -8,7 +8,7 @@ import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
 from lbo_notebooks._engine.factor import SymmetricFactor, fill_reducing_order, symmetric_lu
-from lbo_notebooks.solvers import mesh_order
+from lbo_notebooks.spectral._solvers import mesh_order
 
 
 @pytest.fixture(scope="module")

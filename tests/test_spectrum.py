@@ -4,7 +4,7 @@ import scipy.sparse as sp
 import scipy.linalg
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.inner_product import fix_signs
+from lbo_notebooks.spectral import fix_signs
 
 # l(l+1) with multiplicity 2l+1: the first 36 eigenvalues of the unit sphere (l = 0..5).
 L = np.repeat(np.arange(6), 2 * np.arange(6) + 1)
@@ -310,7 +310,7 @@ def test_a_shift_just_under_the_limit_is_taken_and_certified():
 def test_arpacks_certificate_does_not_depend_on_the_shift():
     # ARPACK's set with one copy of the 5-fold lam = 5.97 missing (and one of 11.8 instead): the
     # count just below the top cluster must say so whatever shift ARPACK ran at.
-    from lbo_notebooks.spectrum import _arpack_is_complete
+    from lbo_notebooks.spectral._spectrum import _arpack_is_complete
 
     m = shapes.icosphere(3)
     W, A = stiffness_matrix(m), mass_matrix(m) / 16.0  # about unit area, as eigenbasis solves it
@@ -324,7 +324,7 @@ def test_arpacks_certificate_does_not_depend_on_the_shift():
 def test_an_uncertified_arpack_set_is_never_returned(monkeypatch):
     # ARPACK's set is short and slicing cannot complete it: a RuntimeError, not ARPACK's set with a warning.
     import lbo_notebooks._engine.eigensolver as eigensolver
-    import lbo_notebooks.spectrum as spectrum
+    import lbo_notebooks.spectral._spectrum as spectrum
 
     def fails(*args, **kwargs):
         raise RuntimeError("spectrum slicing could not certify (test).")

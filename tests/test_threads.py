@@ -138,9 +138,9 @@ def test_a_threadpoolctl_limit_the_user_holds_is_kept(mesh, caller_threads):
 
 def test_measure_cost_and_the_heat_method_restore_the_blas_threads(caller_threads):
     sphere = shapes.icosphere(2)
-    concurrently(lambda: lbo.cost.measure_cost(np.linalg.eigh, np.eye(50)), n_threads=4)
+    concurrently(lambda: lbo.analyses.measure_cost(np.linalg.eigh, np.eye(50)), n_threads=4)
     assert blas_threads() == caller_threads
-    concurrently(lambda: lbo.geodesics.geodesic_distances(sphere, np.arange(20)), n_threads=3)
+    concurrently(lambda: lbo.analyses.geodesic_distances(sphere, np.arange(20)), n_threads=3)
     assert blas_threads() == caller_threads
 
 
@@ -184,7 +184,7 @@ def test_a_measured_child_has_idle_blas_threads_that_the_library_can_still_limit
     threads spin for about 0.1 s: on two cores 0.2 s of CPU during this 0.1 s sleep, which slowed the
     first measured call by 10-20%. measure_in_fresh_process rebuilds the pools before timing, from
     the thread that owns the setting, so the library's limit still takes effect in the child."""
-    child = lbo.cost.measure_in_fresh_process(_blas_in_a_measured_child)["result"]
+    child = lbo.analyses._cost.measure_in_fresh_process(_blas_in_a_measured_child)["result"]
     if timed:  # a CPU time: opt-in (LBO_TIMING_TESTS=1, tests/conftest.py)
         assert child["idle_cpu"] < 0.03, child
     assert set(child["inside"]) == {1}, child

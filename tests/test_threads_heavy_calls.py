@@ -15,7 +15,11 @@ import numpy as np
 import pytest
 
 import lbo_notebooks as lbo
-from lbo_notebooks import fast_scaling, functional_maps, mds, rpca, shapes
+from lbo_notebooks import shapes
+from lbo_notebooks.analyses import _fast_classical_scaling as fast_scaling
+from lbo_notebooks.analyses import _functional_maps as functional_maps
+from lbo_notebooks.analyses import _mds as mds
+from lbo_notebooks.analyses import _rpca as rpca
 from lbo_notebooks._engine import threads as engine_threads
 from tests.test_threads import blas_threads, caller_threads  # noqa: F401 - caller_threads is a fixture
 

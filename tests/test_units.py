@@ -76,7 +76,7 @@ def test_eigenvalues_times_s_squared_do_not_depend_on_the_scale(name, s):
 @pytest.mark.parametrize("s", (1e-59, 1e59))
 @pytest.mark.parametrize("name", ["arpack", "slicing", "robust", "point-cloud", "metric-alpha-0.5"])
 def test_the_ends_of_the_usable_range_give_the_same_spectrum(name, s):
-    """The icosphere's bounding-box diagonal is 3.5 s: inside lbo.units.USABLE_DIAGONAL (1e-60, 1e60)."""
+    """The icosphere's bounding-box diagonal is 3.5 s: inside lbo.geometry._rescaling.USABLE_DIAGONAL (1e-60, 1e60)."""
     compute, power = PATHS[name]
     ref = reference(name)
     values = compute(s).values * s**power

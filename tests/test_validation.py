@@ -1,4 +1,4 @@
-"""lbo_notebooks._validation: the one argument check, and that the package uses it."""
+"""lbo_notebooks._support.validation: the one argument check, and that the package uses it."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lbo_notebooks as lbo
-from lbo_notebooks._validation import check_integer, check_number, is_integer, is_number
+from lbo_notebooks._support.validation import check_integer, check_number, is_integer, is_number
 
 
 def test_integers():
@@ -59,7 +59,7 @@ def test_no_hand_written_bool_checks_are_left():
 
 import inspect as _inspect
 
-from lbo_notebooks._validation import Boolean, Integer, Number, Options, Satisfies, validated
+from lbo_notebooks._support.validation import Boolean, Integer, Number, Options, Satisfies, validated
 
 
 @validated(

@@ -1,4 +1,4 @@
-"""Every warning the package emits goes through lbo_notebooks._warnings.warn and points at the caller's line."""
+"""Every warning the package emits goes through lbo_notebooks._support.warning.warn and points at the caller's line."""
 
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ def _warned_here(record, category):
 
 
 def test_the_robust_laplacian_warning_points_at_the_callers_line():
-    from lbo_notebooks.robust import LaplacianWarning
+    from lbo_notebooks.operators import LaplacianWarning
 
     v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [1, 1, 1]]
     fin = lbo.Mesh(v, [[0, 1, 2], [1, 0, 3], [0, 1, 4], [1, 2, 5]], check=False)  # three fins on edge 0-1
@@ -53,7 +53,7 @@ def test_a_fallback_warning_points_at_the_callers_line(sphere, monkeypatch):
 
 
 def test_every_warning_in_the_package_goes_through_the_one_helper():
-    """A fixed stacklevel goes stale when a wrapper is added; _warnings.warn walks out of the package."""
+    """A fixed stacklevel goes stale when a wrapper is added; _support.warning.warn walks out of the package."""
     import pathlib
     import re
 
@@ -61,6 +61,6 @@ def test_every_warning_in_the_package_goes_through_the_one_helper():
     direct = {
         str(path.relative_to(root))
         for path in root.rglob("*.py")
-        if path.name != "_warnings.py" and re.search(r"warnings\.warn\(", path.read_text())
+        if path.name != "warning.py" and re.search(r"warnings\.warn\(", path.read_text())
     }
     assert not direct, direct

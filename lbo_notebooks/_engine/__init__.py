@@ -1,7 +1,7 @@
 """The private eigensolver engine: sparse matrices in, eigenpairs and factorisations out.
 
 Nothing here takes a mesh, and nothing here is public: the analyses reach it through
-:mod:`lbo_notebooks.solvers`, and :mod:`lbo_notebooks.spectrum` drives the eigensolver.
+:mod:`lbo_notebooks.spectral._solvers`, and :mod:`lbo_notebooks.spectral._spectrum` drives the eigensolver.
 
 * ``policy`` -- dense or sparse, the default shift of shift-invert, the largest shift worth
   taking, the fixed Lanczos start vector;

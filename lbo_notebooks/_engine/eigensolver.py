@@ -25,8 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._validation import check_integer, check_number
-from ..inner_product import cholesky_qr
+from .._support.validation import check_integer, check_number
+from ..spectral._inner_product import cholesky_qr
 from .factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, return_freed_memory, symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .policy import default_shift
@@ -136,7 +136,7 @@ def slice_eigsh(
         result is the same, bit for bit, for any number.
     order : ndarray (n,), optional
         A fill-reducing order shared by every shift, e.g. the mesh's
-        :func:`~lbo_notebooks.solvers.mesh_order`; default: METIS on the pattern of
+        :func:`~lbo_notebooks.spectral._solvers.mesh_order`; default: METIS on the pattern of
         ``stiffness`` and ``mass`` from :data:`~lbo_notebooks._engine.factor.NESTED_DISSECTION_MIN`
         unknowns on, below that the first factorisation's own (SuperLU's minimum degree), kept
         for the others.
@@ -164,7 +164,8 @@ def slice_eigsh(
     Examples
     --------
     >>> import numpy as np
-    >>> from lbo_notebooks import count_below, shapes, stiffness_matrix, mass_matrix
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> from lbo_notebooks.spectral import count_below
     >>> m = shapes.icosphere(4)
     >>> W, A = stiffness_matrix(m), mass_matrix(m)
     >>> values, vectors, n_below = slice_eigsh(W, A, 25, v0=np.ones(m.n_vertices), shift=0.01, slice_size=8)

@@ -33,7 +33,8 @@ from numpy.typing import ArrayLike, NDArray
 
 
 __all__ = [
-    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order", "return_freed_memory",
+    "NESTED_DISSECTION_MIN", "SymmetricFactor", "SliceFactor", "count_below", "fill_reducing_order",
+    "return_freed_memory",
     "symmetric_lu",
 ]
 

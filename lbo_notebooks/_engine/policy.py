@@ -7,7 +7,7 @@
   caller may give (:data:`SHIFT_LIMIT` times a bound on the top of the spectrum);
 * :func:`start_vector` — the fixed Lanczos start vector that makes ARPACK deterministic.
 
-The A-inner-product algebra these solvers share is :mod:`lbo_notebooks.inner_product`.
+The A-inner-product algebra these solvers share is :mod:`lbo_notebooks.spectral._inner_product`.
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ def default_shift(mass: sp.spmatrix) -> float:
         raise ValueError(
             f"the mass matrix sums to {area:g}, so no default shift (1e-2 * 4 pi / area) exists: a mass matrix must "
             "have a positive, finite total. If it comes from a mesh, its coordinates are out of double precision's "
-            "usable range (see lbo_notebooks.units): rescale it to ordinary units."
+            "usable range (see lbo_notebooks.geometry._rescaling): rescale it to ordinary units."
         )
     return shift
 

@@ -20,7 +20,8 @@ from numpy.typing import NDArray
 from .factor import SliceFactor
 
 __all__ = [
-    "LOWEST_CENTRE", "MIN_SET", "OVERLAP", "REACH", "Pencil", "WindowPlan", "centred_target", "place_shift", "plan_sets",
+    "LOWEST_CENTRE", "MIN_SET", "OVERLAP", "REACH", "Pencil", "WindowPlan", "centred_target", "place_shift",
+    "plan_sets",
     "plan_window",
 ]
 

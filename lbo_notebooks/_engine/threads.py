@@ -50,7 +50,8 @@ from contextlib import AbstractContextManager, contextmanager, nullcontext
 from typing import Any, Iterator
 
 __all__ = [
-    "ENVIRONMENT", "blas_threads_for", "default_workers", "machine_is_idle", "one_blas_thread", "rebuild_thread_pools",
+    "ENVIRONMENT", "blas_threads_for", "default_workers", "machine_is_idle", "one_blas_thread",
+    "rebuild_thread_pools",
     "usable_cores", "user_chose_threads",
 ]
 
@@ -126,7 +127,7 @@ def rebuild_thread_pools() -> None:
 
     Nothing changes but this: OpenBLAS, which drops its thread pool in a forked child, builds it
     again now rather than at the child's first change of the count (see
-    :func:`lbo_notebooks.cost.measure_in_fresh_process`). Done in the owner thread, like every
+    :func:`lbo_notebooks.analyses._cost.measure_in_fresh_process`). Done in the owner thread, like every
     change here, so that threadpoolctl still lets :func:`one_blas_thread` set the count later.
 
     Examples

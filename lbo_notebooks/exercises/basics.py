@@ -246,8 +246,8 @@ def asked_sizes(angles: Any) -> dict[int, Any]:
 
 
 def smallest_angle(species: str, n_vertices: int) -> float:
-    from ..creatures import creature
-    from ..operators import corner_angles
+    from ..shapes._creatures import creature
+    from ..operators._cotangent import corner_angles
 
     return float(np.degrees(corner_angles(creature(species, n_vertices=n_vertices))).min())
 
@@ -302,7 +302,7 @@ LEG_SCALES = (0.7, 1.0, 1.3)
 def _leg_split(species: str, n_vertices: int, *, any_corner: bool = False) -> tuple[float, float]:
     """(leg area, rest area) of the standing template: the triangles whose three corners (or, the
     typical slip, any corner) lie in the legs."""
-    from ..creatures import creature, creature_parts
+    from ..shapes._creatures import creature, creature_parts
 
     template = creature(species, n_vertices=n_vertices)
     parts = creature_parts(species, n_vertices=n_vertices)
@@ -334,7 +334,7 @@ def _leg_hint(s: float, answer: Any, species: str, n_vertices: int) -> str | Non
         leg_any, rest_any = _leg_split(species, n_vertices, any_corner=True)
         if close_to(got, s**2 * leg_any + rest_any, 1e-3):
             return where + "the legs are the triangles whose *three* corners are in the legs, not any one of them."
-        from ..creatures import creature
+        from ..shapes._creatures import creature
 
         if close_to(got, creature(species, parts={"legs": s}, n_vertices=n_vertices).area, 1e-4):
             return (where + "that is the area of the built shape; the exercise asks for the prediction from the "

@@ -20,7 +20,8 @@ from .feedback import (Feedback, WRONG, Stop, run_check, require_attempt, as_num
 
 __all__ = [
     "check_classical_memory", "check_classical_mds", "check_small_scaling", "check_fmm_gap", "check_gram_2d",
-    "check_landmark_samples", "check_recap_canonical_forms", "check_mu_range", "check_equal_size", "check_recap_mds_at_scale",
+    "check_landmark_samples", "check_recap_canonical_forms", "check_mu_range", "check_equal_size",
+    "check_recap_mds_at_scale",
 ]
 
 
@@ -102,7 +103,7 @@ def _double_centred(D2: np.ndarray) -> np.ndarray:
 def mds_slips(D: np.ndarray, dim: int) -> tuple[np.ndarray, list[tuple[np.ndarray, str]]]:
     """Classical MDS of the distances ``D`` (computed here with dense ``eigh``), and the typical
     slips as (embedding, hint); a slip with the same Gram matrix as the answer on ``D`` is left out."""
-    from ..embedding_error import gram_error
+    from ..analyses._embedding_error import gram_error
 
     D = 0.5 * (D + D.T)
     B = _double_centred(D**2)
@@ -166,7 +167,7 @@ def _mds_embedding(value: Any, n: int, dim: int) -> np.ndarray:
 def judge_classical_mds(function: Any, cases: Any, call: Any = call_attempt) -> str:
     """The message of a correct ``function(D, dim)`` on every ``(D, dims, where)`` of ``cases``
     (``call(function, D, dim)`` runs it on a copy), else Stop with the hint of the first miss."""
-    from ..embedding_error import gram_error
+    from ..analyses._embedding_error import gram_error
 
     for D, dims, where in cases:
         n = len(D)
@@ -276,7 +277,7 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
     """Exercise 09-scaling: the student's ``scaling(phi, alpha, dim)``, spectral MDS's k x k step.
 
     ``phi`` (n x k, A-orthonormal eigenvectors) and ``alpha`` (k x k, ``D2 ~ Phi alpha Phi.T``)
-    are those :func:`~lbo_notebooks.mds.spectral_mds` used (``sampled="rows"``), and
+    are those :func:`~lbo_notebooks.analyses.spectral_mds` used (``sampled="rows"``), and
     ``X_library`` its embedding. The attempt is compared with it by the Gram error (no alignment
     needed), then with ``dim = 2``; a wrong one is matched against the typical slips (missing
     double centring, the −½, square roots, the order of eigenpairs, Φᵀ Φ taken for I, a transpose).
@@ -292,7 +293,7 @@ def check_small_scaling(scaling: Any, phi: Any, alpha: Any, X_library: Any, *, s
     >>> check_small_scaling(mine, phi, alpha, mine(phi, alpha, 3), show=False).correct
     True
     """
-    from ..embedding_error import gram_error
+    from ..analyses._embedding_error import gram_error
 
     def body() -> str:
         phi_, alpha_ = np.asarray(phi, dtype=np.float64), np.asarray(alpha, dtype=np.float64)
@@ -356,7 +357,7 @@ def check_gram_2d(value: Any, X_smds: Any, X_classical: Any, *, show: bool = Tru
     (the typical slips are 8% and more away on the notebook's dog); a value copied from a printout
     that is right to its digits but coarser than that is asked for more digits.
     """
-    from ..embedding_error import gram_error, procrustes_error
+    from ..analyses._embedding_error import gram_error, procrustes_error
 
     def body() -> str:
         require_attempt(value)

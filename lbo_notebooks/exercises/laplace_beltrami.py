@@ -38,7 +38,7 @@ def _test_meshes() -> tuple[Any, ...]:
     """Small meshes the build-it-yourself checks run on: a right triangle, an irregular closed
     surface and an open sheet with obtuse triangles."""
     from .. import shapes
-    from ..mesh import Mesh
+    from ..geometry._mesh import Mesh
 
     rng = np.random.default_rng(28)
     triangle = Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
@@ -112,7 +112,7 @@ def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
     >>> print(check_stiffness(lambda mesh: 2 * operators.stiffness_matrix(mesh), show=False).message)
     Twice too large: W_ij = -½ (cot a + cot b); did you drop the ½, or add each triangle twice? (first seen on the right triangle.)
     """
-    from ..operators import stiffness_matrix
+    from ..operators._cotangent import stiffness_matrix
 
     def body() -> str:
         for mesh in _test_meshes():
@@ -127,7 +127,7 @@ def check_stiffness(stiffness: Any, *, show: bool = True) -> Feedback:
 
 def _pure_voronoi(mesh: Any) -> np.ndarray:
     """Circumcentric Voronoi areas without the mixed rule for obtuse triangles (a typical attempt)."""
-    from ..operators import face_cotangents
+    from ..operators._cotangent import face_cotangents
 
     v, f = mesh.vertices, mesh.faces
     cot = face_cotangents(mesh)
@@ -143,14 +143,14 @@ LUMPED_KINDS = ("voronoi", "barycentric")
 
 def _lumped_kinds(m: np.ndarray, mesh: Any) -> set[str]:
     """The lumped mass matrices of ``mesh`` that ``m`` is (to round-off)."""
-    from ..operators import mass_matrix
+    from ..operators._cotangent import mass_matrix
 
     return {kind for kind in LUMPED_KINDS if same_values(m, mass_matrix(mesh, kind).toarray())}
 
 
 def _mass_hint(m: np.ndarray, mesh: Any, where: str) -> str:
     """Why ``m`` is not a lumped mass matrix of ``mesh`` (on ``where``, e.g. "a mesh of 42 vertices")."""
-    from ..operators import mass_matrix
+    from ..operators._cotangent import mass_matrix
 
     n = mesh.n_vertices
     if np.allclose(m, np.eye(n)):
@@ -236,7 +236,7 @@ at its default tolerance and dense ``eigh`` come within 1e-13."""
 def _two_spheres() -> Any:
     """Two disjoint pieces: a unit icosphere(1) and a bumpy, larger copy of it beside it."""
     from .. import shapes
-    from ..mesh import Mesh
+    from ..geometry._mesh import Mesh
 
     ball = shapes.icosphere(1)
     rng = np.random.default_rng(41)
@@ -250,7 +250,7 @@ def _eigen_problems() -> tuple[tuple[Any, Any, int, str], ...]:
     (an exactly threefold eigenvalue, k = 4), the irregular blob and the open sheet of
     :func:`_test_meshes`, the sheet with the *consistent* (non-diagonal) mass."""
     from .. import shapes
-    from ..operators import mass_matrix, stiffness_matrix
+    from ..operators._cotangent import mass_matrix, stiffness_matrix
 
     _, blob, sheet = _test_meshes()
     ball = shapes.icosphere(1)

@@ -306,7 +306,7 @@ def _angles_by_hand(mesh: Any) -> np.ndarray:
 def defect_slips(mesh: Any) -> tuple[np.ndarray, list[tuple[np.ndarray, str]]]:
     """The angle defects of ``mesh`` (2π − Σθ inside, π − Σθ on the boundary) and the typical
     slips, as (values, hint); a slip equal to the defects on ``mesh`` (no boundary, say) is left out."""
-    from ..operators import mass_matrix
+    from ..operators._cotangent import mass_matrix
 
     n, f = mesh.n_vertices, mesh.faces
     angles = _angles_by_hand(mesh)
@@ -386,7 +386,7 @@ def _visible_defect_meshes() -> list[tuple[Any, str]]:
     """What the visible check of 08-angle-defects runs on: a right triangle, an irregular closed
     surface and a curved open sheet."""
     from .. import shapes
-    from ..mesh import Mesh
+    from ..geometry._mesh import Mesh
 
     rng = np.random.default_rng(808)
     triangle = Mesh([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [[0, 1, 2]])
@@ -408,10 +408,10 @@ def check_angle_defects(angle_defects: Any, *, show: bool = True) -> Feedback:
 
     Examples
     --------
-    >>> from lbo_notebooks import curvature
-    >>> check_angle_defects(curvature.angle_defects, show=False).correct
+    >>> from lbo_notebooks.operators import angle_defects
+    >>> check_angle_defects(angle_defects, show=False).correct
     True
-    >>> print(check_angle_defects(lambda mesh: -curvature.angle_defects(mesh), show=False).message.split(":")[0])
+    >>> print(check_angle_defects(lambda mesh: -angle_defects(mesh), show=False).message.split(":")[0])
     Wrong sign
     """
     def body() -> str:
@@ -525,7 +525,7 @@ def check_best_alpha(answer: Any, *, show: bool = True) -> Feedback:
 
 def check_floor_fraction(fraction: Any, mesh: Any, floor: float = 1.0, *, show: bool = True) -> Feedback:
     """Exercise 08-floor: the fraction of vertices at the curvature floor ``floor``."""
-    from ..curvature import metric_curvature
+    from ..operators._curvature import metric_curvature
 
     def body() -> str:
         require_attempt(fraction)

@@ -380,7 +380,7 @@ def check_rpca_basis(basis_function: Any, X: Any, W: Any, A: Any, *, show: bool 
     >>> "ascending order" in check_rpca_basis(ascending, X, W, A, show=False).message
     True
     """
-    from ..rpca import mu_from_beta
+    from ..analyses._rpca import mu_from_beta
 
     def body() -> str:
         Xd = np.asarray(X, dtype=np.float64)

@@ -104,7 +104,7 @@ def check_mesh_size(counts: Any, mesh: Any, *, show: bool = True) -> Feedback:
 @lru_cache(maxsize=2)
 def _torus_spectrum(k: int) -> Any:
     from .. import shapes
-    from ..spectrum import eigenbasis
+    from ..spectral._spectrum import eigenbasis
 
     return eigenbasis(shapes.torus(), k)
 
@@ -174,7 +174,7 @@ def _without_path(message: str) -> str:
 
 def check_load_error(error: Any, *, show: bool = True) -> Feedback:
     """Exercise 00-missing: the exception ``load_mesh`` raised for a face naming a vertex that does not exist."""
-    from ..mesh import MeshError
+    from ..geometry._mesh import MeshError
 
     def body() -> str:
         require_attempt(error)
@@ -190,7 +190,7 @@ def check_load_error(error: Any, *, show: bool = True) -> Feedback:
 def not_a_mesh_error(error: Any) -> str:
     """The hint for an answer to 00-missing that is not a ``MeshError`` (the check and the graded
     test share it)."""
-    from ..mesh import Mesh
+    from ..geometry._mesh import Mesh
 
     if isinstance(error, type):
         return "That is an exception class; keep the exception object: `except lbo.MeshError as err: error = err`."

@@ -224,7 +224,7 @@ def check_extra_function(answer: Any, *, show: bool = True) -> Feedback:
 
 def check_worst_ratio(ratio: Any, basis: Any, stiffness: Any, mass: Any, *, show: bool = True) -> Feedback:
     """Exercise 06-worst: the error / energy of the worst function of ``basis``, which must equal C(V)."""
-    from ..optimality import worst_case_ratio
+    from ..analyses._optimality import worst_case_ratio
 
     def body() -> str:
         require_attempt(ratio)
@@ -259,7 +259,7 @@ WORST_RTOL = 1e-6
 
 def _dense_pencil_parts(V: np.ndarray, W: Any, A: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(Wd, Ad, Q, S): dense W and A, an A-orthonormal Q of span V and the Schur complement S."""
-    from ..inner_product import a_orthonormalize
+    from ..spectral._inner_product import a_orthonormalize
 
     Wd, Ad = W.toarray(), A.toarray()
     Q = a_orthonormalize(V, A)
@@ -329,7 +329,7 @@ def judge_worst_case(worst_case: Any, problems: Any, call: Any = call_attempt, s
     """The message of a correct ``worst_case(W, A, V)`` on every ``(W, A, V, where)`` of ``problems``
     (``call(worst_case, W, A, V)`` runs it, on copies), else Stop with the first miss's hint and
     ``seen`` formatted with its ``where``. The exact C(V) is ``worst_case_ratio``'s (dense)."""
-    from ..optimality import kernel_basis, worst_case_ratio
+    from ..analyses._optimality import kernel_basis, worst_case_ratio
 
     problems = list(problems)
     refs = [worst_case_ratio(V, W, A, method="dense") for W, A, V, _ in problems]
@@ -354,7 +354,7 @@ def _worst_case_problems() -> tuple[tuple[Any, Any, np.ndarray, str], ...]:
     import scipy.linalg
 
     from .. import shapes
-    from ..operators import mass_matrix, stiffness_matrix
+    from ..operators._cotangent import mass_matrix, stiffness_matrix
 
     ring = shapes.torus(n_major=16, n_minor=8)
     W, A = stiffness_matrix(ring), mass_matrix(ring)
@@ -378,7 +378,7 @@ def check_worst_case(worst_case: Any, *, show: bool = True) -> Feedback:
 
     Examples
     --------
-    >>> from lbo_notebooks.optimality import worst_case_ratio
+    >>> from lbo_notebooks.analyses._optimality import worst_case_ratio
     >>> check_worst_case(lambda W, A, V: worst_case_ratio(V, W, A), show=False).correct
     True
     >>> check_worst_case(lambda W, A, V: 1 / worst_case_ratio(V, W, A), show=False).status

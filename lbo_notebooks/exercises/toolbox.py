@@ -32,18 +32,18 @@ __all__ = [
 # --- 12 · the spectral toolbox ---------------------------------------------------------------------
 
 def check_hks(hks_function: Any, spectrum: Any, *, show: bool = True) -> Feedback:
-    """Exercise 12-hks: the student's ``hks_function(spectrum, times)`` against :func:`descriptors.hks`.
+    """Exercise 12-hks: the student's ``hks_function(spectrum, times)`` against :func:`~lbo_notebooks.analyses.hks`.
 
     Examples
     --------
-    >>> from lbo_notebooks import shapes, eigenbasis, descriptors
+    >>> from lbo_notebooks import shapes, eigenbasis, analyses
     >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
-    >>> check_hks(descriptors.hks, s, show=False).correct
+    >>> check_hks(analyses.hks, s, show=False).correct
     True
     >>> "φ_i(x)²" in check_hks(lambda s, t: s.vectors @ np.exp(-np.outer(s.values, t)), s, show=False).message
     True
     """
-    from ..descriptors import hks, hks_times
+    from ..analyses._descriptors import hks, hks_times
 
     def body() -> str:
         times = hks_times(spectrum, 4)
@@ -95,7 +95,7 @@ def check_functional_map(fmap: Any, source: Any, target: Any, k: int = 20, *, sh
     Tried on a random permutation ``p2p`` (``p2p[j]``: the source vertex of target vertex ``j``),
     so that a map used the wrong way round shows.
     """
-    from ..functional_maps import map_from_points
+    from ..analyses._functional_maps import map_from_points
 
     def body() -> str:
         k_ = min(int(k), source.k, target.k)
@@ -146,7 +146,7 @@ def fmap_hint(value: Any, p2p: np.ndarray, source: Any, target: Any, ref: np.nda
 
 def check_zoomout_step(zoomout_step: Any, source: Any, target: Any, k: int = 20, *, show: bool = True) -> Feedback:
     """Exercise 12-zoomout-step: the student's ``zoomout_step(C, source, target) -> (C_next, p2p)``, one
-    ZoomOut iteration, against ``functional_maps.points_from_map`` then ``map_from_points`` at ``k + 1``.
+    ZoomOut iteration, against ``analyses.points_from_map`` then ``map_from_points`` at ``k + 1``.
 
     Tried on a ``k × k`` map near the true one from ``source`` to ``target`` with the target's vertices
     shuffled (so that a point map read the wrong way round shows) and perturbed (so that ``C`` is
@@ -155,7 +155,7 @@ def check_zoomout_step(zoomout_step: Any, source: Any, target: Any, k: int = 20,
 
     Examples
     --------
-    >>> from lbo_notebooks import shapes, eigenbasis, functional_maps as fm
+    >>> from lbo_notebooks import shapes, eigenbasis, analyses as fm
     >>> s = eigenbasis(shapes.bumpy_sphere(2), 12)
     >>> def step(C, source, target):
     ...     k = len(C)
@@ -167,8 +167,8 @@ def check_zoomout_step(zoomout_step: Any, source: Any, target: Any, k: int = 20,
     >>> check_zoomout_step(not_grown, s, s, 8, show=False).message
     'Not grown: the next map has one more function on each side, (9, 9) here.'
     """
-    from ..functional_maps import map_from_points
-    from ..spectrum import Spectrum
+    from ..analyses._functional_maps import map_from_points
+    from ..spectral._spectrum import Spectrum
 
     def body() -> str:
         k_ = min(int(k), source.k - 1, target.k - 1)
@@ -290,7 +290,7 @@ def _typed_rounding(got: float, exact: float) -> bool:
 
 def check_truncation_bound(bound: Any, spectrum: Any, f: Any, k: int, *, show: bool = True) -> Feedback:
     """Exercise 12-bound: the optimality bound on the share of ‖f‖²_A lost by the first ``k`` eigenfunctions."""
-    from ..optimality import dirichlet_energy
+    from ..analyses._optimality import dirichlet_energy
 
     def body() -> str:
         require_attempt(bound)

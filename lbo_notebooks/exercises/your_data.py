@@ -65,7 +65,7 @@ def check_repair_counts(prediction: Any, mesh: Any, *, show: bool = True) -> Fee
         missing = [k for k in _REPAIR_PARTS if k not in prediction]
         if missing:
             raise Stop(WRONG, "Some keys are missing: " + ", ".join(missing) + ".")
-        from ..repair import clean_mesh
+        from ..geometry._repair import clean_mesh
 
         _, report = clean_mesh(mesh)
         wrong = []
@@ -89,7 +89,7 @@ def _operator_hint(name: str, mesh: Any, defects: list[str], answer: str) -> str
         if np.any(mesh.edge_face_counts == 1):
             return (f"{name}: a boundary (a hole) is no defect: an edge on it has one face, and its cotangent "
                     "weight then has one opposite angle instead of two.")
-        return f"{name}: none of the defects `lbo.robust.cotan_defects` checks is there."
+        return f"{name}: none of the defects `lbo.operators.cotan_defects` checks is there."
     text = " ".join(defects)
     if "non-manifold edge" in text:
         return (f"{name}: an edge shared by three faces has three opposite angles; the cotangent weight ½(cot a + cot b) "
@@ -104,7 +104,7 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
     """Exercise 04-operator: which Laplacian ``eigenbasis(mesh, k)`` uses for each mesh, ``"cotan"`` or ``"robust"``.
 
     ``choice`` maps each name of ``meshes`` to ``"cotan"`` or ``"robust"``; the truth is whether
-    :func:`lbo_notebooks.robust.cotan_defects` finds a defect.
+    :func:`lbo_notebooks.operators.cotan_defects` finds a defect.
 
     Examples
     --------
@@ -122,7 +122,7 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
         given = {(k.strip().lower() if isinstance(k, str) else k): v for k, v in choice.items()}
         if len(given) != len(choice) or set(given) != set(meshes):
             raise Stop(WRONG, f"Give a dict with one entry per mesh (and nothing else): {entries}.")
-        from ..robust import cotan_defects
+        from ..operators._robust import cotan_defects
 
         for name, mesh in meshes.items():
             answer = given[name]
@@ -133,7 +133,7 @@ def check_operator_choice(choice: Any, meshes: Mapping[str, Any], *, show: bool 
             if answer != ("robust" if defects else "cotan"):
                 raise Stop(WRONG, _operator_hint(name, mesh, defects, answer))
         return ("Right: what makes `eigenbasis` leave the cotangent Laplacian is local (an edge with more than two faces, "
-                "a pinched vertex, needle or zero-area triangles: what `lbo.robust.cotan_defects` checks); holes and "
+                "a pinched vertex, needle or zero-area triangles: what `lbo.operators.cotan_defects` checks); holes and "
                 "separate pieces are no defects.")
     return run_check("04-operator", show, body)
 
@@ -231,8 +231,8 @@ def check_largest_component(n_zeros: Any, worst_error: Any, path: Any, *, show: 
         worst = as_number(worst_error, "the worst relative error (a number)")
         import warnings
 
-        from ..io import load_mesh
-        from ..spectrum import eigenbasis
+        from ..geometry._files import load_mesh
+        from ..spectral._spectrum import eigenbasis
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -320,8 +320,8 @@ def check_cloud_pieces(pieces: Any, n_neighbors: int = 30, radii: tuple[float, .
             which = f"radius {missing[0]}" if len(missing) == 1 else "radii " + ", ".join(missing)
             raise Stop(WRONG, f"Missing {which}: give the number of pieces for every radius asked, {asked}.")
         from .. import shapes
-        from ..pointcloud import PointCloud
-        from ..spectrum import eigenbasis
+        from ..geometry._pointcloud import PointCloud
+        from ..spectral._spectrum import eigenbasis
 
         inner = shapes.icosphere(3).vertices
         for radius in radii:

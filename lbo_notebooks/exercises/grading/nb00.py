@@ -85,7 +85,7 @@ def _names_a_missing_vertex(body: str) -> bool:
 
 @grader("00-missing", kind="explore")
 def _missing(error: Any) -> Verdict:
-    from ...mesh import MeshError
+    from ...geometry._mesh import MeshError
 
     if is_placeholder(error):
         raise Stop(NOT_ATTEMPTED, "Replace the `...` placeholder with the exception `load_mesh` raises and run the cell again.")

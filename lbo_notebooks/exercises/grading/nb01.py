@@ -20,7 +20,7 @@ _AT_N = f" Graded on the notebook's dog, N = {N} vertices (if you changed N, set
 
 
 def _dog() -> Any:
-    from ...creatures import creature
+    from ...shapes._creatures import creature
 
     return creature("dog", n_vertices=N)
 

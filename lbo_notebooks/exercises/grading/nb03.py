@@ -34,11 +34,14 @@ def _everywhere(package: str, names: tuple[str, ...], modules: dict[str, str] | 
 # and angles it is made of, the gradient route (W = Gᵀ diag(a) G), and the other installed
 # libraries that build the same matrix (also by the submodule path a pickled reference uses).
 _STIFFNESS = (
-    "lbo_notebooks.operators:stiffness_matrix", "lbo_notebooks.operators:_stiffness",
-    "lbo_notebooks.operators:face_cotangents", "lbo_notebooks.operators:_face_cotangents",
-    "lbo_notebooks.operators:corner_angles", "lbo_notebooks.laplacians:laplace_beltrami",
-    "lbo_notebooks.robust:robust_operators", "lbo_notebooks.heat_method:face_gradient_operator",
-    "lbo_notebooks.heat_method:_gradient",
+    "lbo_notebooks.operators._cotangent:stiffness_matrix", "lbo_notebooks.operators._cotangent:_stiffness",
+    "lbo_notebooks.operators._cotangent:face_cotangents",
+    "lbo_notebooks.operators._cotangent:_face_cotangents",
+    "lbo_notebooks.operators._cotangent:corner_angles",
+    "lbo_notebooks.operators._laplace_beltrami:laplace_beltrami",
+    "lbo_notebooks.operators._robust:robust_operators",
+    "lbo_notebooks.analyses._heat_method:face_gradient_operator",
+    "lbo_notebooks.analyses._heat_method:_gradient",
     *_everywhere("igl", ("cotmatrix", "cotmatrix_entries", "cotmatrix_intrinsic", "intrinsic_delaunay_cotmatrix",
                          "grad"), {"*": "pyigl_core"}),
     *_everywhere("robust_laplacian", ("mesh_laplacian",), {"*": "core"}),
@@ -52,10 +55,12 @@ _STIFFNESS = (
 # libraries' mass matrices. Face areas (``mesh.face_areas``, a cross product) stay allowed, and so
 # do the cotangents (the mixed Voronoi rule needs them).
 _MASS = (
-    "lbo_notebooks.operators:mass_matrix", "lbo_notebooks.operators:_mass",
-    "lbo_notebooks.operators:_voronoi_corner_areas", "lbo_notebooks.curvature:_voronoi_areas",
-    "lbo_notebooks.curvature:metric_mass_matrix", "lbo_notebooks.laplacians:laplace_beltrami",
-    "lbo_notebooks.robust:robust_operators",
+    "lbo_notebooks.operators._cotangent:mass_matrix", "lbo_notebooks.operators._cotangent:_mass",
+    "lbo_notebooks.operators._cotangent:_voronoi_corner_areas",
+    "lbo_notebooks.operators._curvature:_voronoi_areas",
+    "lbo_notebooks.operators._curvature:metric_mass_matrix",
+    "lbo_notebooks.operators._laplace_beltrami:laplace_beltrami",
+    "lbo_notebooks.operators._robust:robust_operators",
     *_everywhere("igl", ("massmatrix", "massmatrix_intrinsic", "voronoi_mass"), {"*": "pyigl_core"}),
     *_everywhere("robust_laplacian", ("mesh_laplacian",), {"*": "core"}),
     *_everywhere("gpytoolbox", ("massmatrix", "massmatrix_intrinsic"), {"*": "@"}),
@@ -69,14 +74,18 @@ _MASS = (
 # solver, regularized PCA's Ritz pairs) and the other installed libraries' solvers of the same
 # pencil. SciPy's eigsh / eigh are what the exercise asks for, and stay.
 _EIGENSOLVE = (
-    "lbo_notebooks.spectrum:eigenbasis", "lbo_notebooks.spectrum:_solve_in_unit_area",
-    "lbo_notebooks._engine.eigensolver:slice_eigsh", "lbo_notebooks._engine.eigensolver:_window_set", "lbo_notebooks._engine.eigensolver:_stitch",
+    "lbo_notebooks.spectral._spectrum:eigenbasis", "lbo_notebooks.spectral._spectrum:_solve_in_unit_area",
+    "lbo_notebooks._engine.eigensolver:slice_eigsh", "lbo_notebooks._engine.eigensolver:_window_set",
+    "lbo_notebooks._engine.eigensolver:_stitch",
     "lbo_notebooks._engine.krylov:nearest_eigenpairs",
-    "lbo_notebooks.bases:lbo_basis", "lbo_notebooks.bases:_smallest_eigenvectors",
-    "lbo_notebooks.minmax:min_rayleigh_quotient", "lbo_notebooks.minmax:_min_dense",
-    "lbo_notebooks.minmax:ConstrainedRayleigh.minimum", "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",
-    "lbo_notebooks.rpca_pencil:rayleigh_ritz", "lbo_notebooks.rpca_pencil:data_eigenpairs",
-    "lbo_notebooks.rpca_pencil:complement_lanczos", "lbo_notebooks.rpca:regularized_pca",
+    "lbo_notebooks.analyses._competitor_bases:lbo_basis",
+    "lbo_notebooks.analyses._competitor_bases:_smallest_eigenvectors",
+    "lbo_notebooks.analyses._minmax:min_rayleigh_quotient", "lbo_notebooks.analyses._minmax:_min_dense",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh.minimum",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh._min_sparse",
+    "lbo_notebooks.analyses._rpca_sparse:rayleigh_ritz",
+    "lbo_notebooks.analyses._rpca_sparse:data_eigenpairs",
+    "lbo_notebooks.analyses._rpca_sparse:complement_lanczos", "lbo_notebooks.analyses._rpca:regularized_pca",
     "pyFM.mesh.laplacian:laplacian_spectrum", "lapy.solver:Solver.eigs",
 )
 
@@ -86,7 +95,7 @@ def _unseen_meshes() -> list[Any]:
     obtuse triangles and boundary edges, and a lone obtuse triangle. Fresh objects at every call,
     so no cached operator is reachable from them."""
     from ... import shapes
-    from ...mesh import Mesh
+    from ...geometry._mesh import Mesh
 
     rng = np.random.default_rng(3031)
     ring = shapes.torus()
@@ -101,7 +110,7 @@ def _unseen_meshes() -> list[Any]:
 
 def _fresh(mesh: Any) -> Any:
     """A copy of ``mesh`` with an empty operator cache, for the student's function."""
-    from ...mesh import Mesh
+    from ...geometry._mesh import Mesh
 
     return Mesh(mesh.vertices.copy(), mesh.faces.copy())
 
@@ -115,7 +124,7 @@ _UNSEEN = "three meshes the notebook does not show (a torus, an open sheet, an o
 
 @grader("03-stiffness", kind="build", replaces=_STIFFNESS)
 def _stiffness(my_stiffness: Any) -> Verdict:
-    from ...operators import stiffness_matrix
+    from ...operators._cotangent import stiffness_matrix
 
     for mesh in _unseen_meshes():
         ref = stiffness_matrix(mesh).toarray()
@@ -139,7 +148,7 @@ def _unseen_eigenproblems() -> list[tuple[Any, Any, int, str]]:
     a bumpy torus; an open sheet with the consistent (non-diagonal) mass; two disjoint pieces (a
     twofold zero eigenvalue). Each k ends below a gap of the spectrum, so the span is determined."""
     from ... import shapes
-    from ...operators import mass_matrix, stiffness_matrix
+    from ...operators._cotangent import mass_matrix, stiffness_matrix
 
     rng = np.random.default_rng(3032)
     ball = shapes.icosphere(2)
@@ -177,7 +186,7 @@ def _coefficients(coefficients: Any) -> Verdict:
     # The notebook's objects, rebuilt: blob = shapes.bumpy_sphere(4), blob_spectrum =
     # lbo.eigenbasis(blob, 50) (its signs are fixed deterministically) and f = its x coordinate.
     from ... import shapes
-    from ...spectrum import eigenbasis
+    from ...spectral._spectrum import eigenbasis
 
     require_attempt(coefficients)
     blob = shapes.bumpy_sphere(4)

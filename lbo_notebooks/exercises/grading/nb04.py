@@ -71,7 +71,7 @@ def write_scan(folder: Path, v: np.ndarray, faces: list[list[int]]) -> Path:
 
 def load_scan(path: Path) -> Any:
     """The scan as the notebook loads it, ``load_mesh(path, clean=True)``, its repair report silenced."""
-    from ...io import load_mesh
+    from ...geometry._files import load_mesh
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -81,7 +81,7 @@ def load_scan(path: Path) -> Any:
 def candidates(scan: Any) -> dict[str, Any]:
     """The four meshes of exercise 04-operator, built as in section 3 (``scan`` is the loaded scan)."""
     from ... import shapes
-    from ...mesh import Mesh
+    from ...geometry._mesh import Mesh
 
     ball = shapes.icosphere(2)
     holes = Mesh(ball.vertices, ball.faces[2:])
@@ -98,8 +98,8 @@ def candidates(scan: Any) -> dict[str, Any]:
 def cloud_values(folder: Path, rng: np.random.Generator) -> np.ndarray:
     """``cloud_spectrum.values`` of section 4: 4,000 points drawn on from ``rng`` (as :func:`messy_scan`
     leaves it), written to ``scan.xyz`` with their normals at 9 decimals, read back, 16 eigenvalues."""
-    from ...io import load_points
-    from ...spectrum import eigenbasis
+    from ...geometry._files import load_points
+    from ...spectral._spectrum import eigenbasis
 
     points = rng.standard_normal((4000, 3))
     points /= np.linalg.norm(points, axis=1, keepdims=True)

@@ -16,14 +16,15 @@ from ._registry import Verdict, from_feedback, grader, recap_verdict, student_ca
 # (`inner_product.reconstruct`, which keeps the centroid: P_n f itself when φ_0 is in the basis, and
 # the Krylov solver's `_project_out`). `a_orthonormalize` stays allowed: re-orthonormalising the
 # eigenvectors first is a legitimate (if unneeded) step, not the projection.
-_PROJECTION = ("lbo_notebooks.spectrum:Spectrum.project", "lbo_notebooks.spectrum:Spectrum.reconstruct",
-               "lbo_notebooks.spectrum:Spectrum.error", "lbo_notebooks.optimality:representation_error",
-               "lbo_notebooks.inner_product:reconstruct", "lbo_notebooks._engine.krylov:_project_out")
+_PROJECTION = ("lbo_notebooks.spectral._spectrum:Spectrum.project", "lbo_notebooks.spectral._spectrum:Spectrum.reconstruct",
+               "lbo_notebooks.spectral._spectrum:Spectrum.error",
+               "lbo_notebooks.analyses._optimality:representation_error",
+               "lbo_notebooks.spectral._inner_product:reconstruct", "lbo_notebooks._engine.krylov:_project_out")
 
 
 def notebook_dog() -> Any:
     """The notebook's dog (``creatures.creature("dog", n_vertices=2000)``), rebuilt: never the kernel's."""
-    from ...creatures import creature
+    from ...shapes._creatures import creature
 
     return creature("dog", n_vertices=2000)
 
@@ -33,7 +34,7 @@ def _unseen_spectra() -> list[tuple[str, Any, list[tuple[np.ndarray, int]]]]:
     (genus 1, 16 eigenpairs) and an open wavy sheet with boundary (12 eigenpairs), n from 1 (the
     constant alone) to all of them. Rebuilt at every call."""
     from ... import shapes
-    from ...spectrum import eigenbasis
+    from ...spectral._spectrum import eigenbasis
 
     rng = np.random.default_rng(5051)
     ring = shapes.torus(1.0, 0.35, 24, 10)
@@ -54,7 +55,7 @@ def _unseen_spectra() -> list[tuple[str, Any, list[tuple[np.ndarray, int]]]]:
 
 def _fresh(spectrum: Any) -> Any:
     """A copy of ``spectrum`` for the student's function: what it does to it reaches no reference."""
-    from ...spectrum import Spectrum
+    from ...spectral._spectrum import Spectrum
 
     return Spectrum(np.array(spectrum.values), np.array(spectrum.vectors), spectrum.stiffness.copy(), spectrum.mass.copy())
 
@@ -79,7 +80,7 @@ def _projection(my_project: Any) -> Verdict:
 
 @grader("05-bound", kind="compute")
 def _bound(bound_y: Any) -> Verdict:
-    from ...spectrum import eigenbasis
+    from ...spectral._spectrum import eigenbasis
 
     dog = notebook_dog()
     return from_feedback(theory.check_energy_bound(bound_y, eigenbasis(dog, 101), dog.vertices[:, 1], 20, show=False))

@@ -15,11 +15,14 @@ from ._registry import recap_verdict
 # Rayleigh quotient, which would do the last eigen-solve of the Schur route (1/C(V) is its value
 # for S). The trap (minmax.complement_ratio) goes through that minimum too.
 _WORST_CASE = (
-    "lbo_notebooks.optimality:worst_case_ratio", "lbo_notebooks.optimality:_worst_case_dense",
-    "lbo_notebooks.optimality:_worst_case_sparse", "lbo_notebooks.optimality:_RegularisedStiffnessSolver.solve",
-    "lbo_notebooks.optimality:_RegularisedStiffnessSolver.matvec",
-    "lbo_notebooks.minmax:min_rayleigh_quotient", "lbo_notebooks.minmax:_min_dense",
-    "lbo_notebooks.minmax:ConstrainedRayleigh.minimum", "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",
+    "lbo_notebooks.analyses._optimality:worst_case_ratio",
+    "lbo_notebooks.analyses._optimality:_worst_case_dense",
+    "lbo_notebooks.analyses._optimality:_worst_case_sparse",
+    "lbo_notebooks.analyses._optimality:_RegularisedStiffnessSolver.solve",
+    "lbo_notebooks.analyses._optimality:_RegularisedStiffnessSolver.matvec",
+    "lbo_notebooks.analyses._minmax:min_rayleigh_quotient", "lbo_notebooks.analyses._minmax:_min_dense",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh.minimum",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh._min_sparse",
 )
 
 
@@ -38,7 +41,7 @@ def _unseen_bases() -> list[tuple[object, object, np.ndarray, str]]:
     import scipy.linalg
 
     from ... import shapes
-    from ...operators import mass_matrix, stiffness_matrix
+    from ...operators._cotangent import mass_matrix, stiffness_matrix
     from .. import laplace_beltrami
 
     rng = np.random.default_rng(6060)
@@ -101,10 +104,10 @@ def _worst(worst_ratio: Any) -> Verdict:
     # columns are those of the notebook (Gram-Schmidt in column order); s = eigenbasis(dog, 101)
     # holds the dog's stiffness_matrix and mass_matrix. Building only these takes a tenth of the
     # time of all six competitors.
-    from ...bases import polynomial_basis
-    from ...operators import mass_matrix, stiffness_matrix
+    from ...analyses._competitor_bases import polynomial_basis
+    from ...operators._cotangent import mass_matrix, stiffness_matrix
 
-    from ...creatures import creature
+    from ...shapes._creatures import creature
 
     dog = creature("dog", n_vertices=2000)  # the notebook's dog, rebuilt (as in nb05)
     P = polynomial_basis(dog, 100)[:, :20]

@@ -26,7 +26,7 @@ from ._registry import Verdict, from_feedback, grader, recap_verdict, student_ca
 @functools.lru_cache(maxsize=1)
 def _horse() -> Any:
     """The notebook's horse (section 1), rebuilt in the graded run."""
-    from ...creatures import creature
+    from ...shapes._creatures import creature
 
     return creature("horse", n_vertices=4000)
 
@@ -37,12 +37,15 @@ def _horse() -> Any:
 # reference, and the other installed libraries' angles and defects (also by the submodule path a
 # pickled reference uses). The mesh's vertices, faces, face areas and boundary stay allowed.
 _DEFECTS = (
-    "lbo_notebooks.curvature:angle_defects", "lbo_notebooks.curvature:_angle_defects",
-    "lbo_notebooks.curvature:gaussian_curvature", "lbo_notebooks.curvature:_gaussian_curvature",
-    "lbo_notebooks.curvature:_kappa", "lbo_notebooks.curvature:_rho", "lbo_notebooks.curvature:metric_curvature",
-    "lbo_notebooks.curvature:conformal_factor", "lbo_notebooks.curvature:metric_mass_matrix",
-    "lbo_notebooks.operators:corner_angles", "lbo_notebooks.operators:face_cotangents",
-    "lbo_notebooks.operators:_face_cotangents",
+    "lbo_notebooks.operators._curvature:angle_defects", "lbo_notebooks.operators._curvature:_angle_defects",
+    "lbo_notebooks.operators._curvature:gaussian_curvature",
+    "lbo_notebooks.operators._curvature:_gaussian_curvature",
+    "lbo_notebooks.operators._curvature:_kappa", "lbo_notebooks.operators._curvature:_rho",
+    "lbo_notebooks.operators._curvature:metric_curvature",
+    "lbo_notebooks.operators._curvature:conformal_factor",
+    "lbo_notebooks.operators._curvature:metric_mass_matrix",
+    "lbo_notebooks.operators._cotangent:corner_angles", "lbo_notebooks.operators._cotangent:face_cotangents",
+    "lbo_notebooks.operators._cotangent:_face_cotangents",
     "lbo_notebooks.exercises.minmax_and_metrics:defect_slips",
     "lbo_notebooks.exercises.minmax_and_metrics:_angles_by_hand",
     "igl:gaussian_curvature", "igl.pyigl_core:gaussian_curvature", "igl:internal_angles",
@@ -80,7 +83,7 @@ def _unseen_meshes() -> list[tuple[Any, str]]:
 
 
 def _fresh(mesh: Any) -> Any:
-    from ...mesh import Mesh
+    from ...geometry._mesh import Mesh
 
     return Mesh(mesh.vertices.copy(), mesh.faces.copy())
 

@@ -49,10 +49,14 @@ def _fmm(fmm_verdict: Any) -> Verdict:
 # minimise the stress and reach the same points on Euclidean distances). NumPy's and SciPy's
 # eigensolvers are what the exercise asks for, and stay.
 _CLASSICAL = (
-    "lbo_notebooks.mds:classical_mds", "lbo_notebooks.mds:landmark_mds", "lbo_notebooks.mds:spectral_mds",
-    "lbo_notebooks.mds:_scaling_with_fields", "lbo_notebooks.scaling:top_eigenpairs",
-    "lbo_notebooks.scaling:scaling_in_span", "lbo_notebooks.fast_scaling:fast_classical_scaling",
-    "lbo_notebooks.exercises.canonical_forms:mds_slips", "lbo_notebooks.exercises.canonical_forms:_double_centred",
+    "lbo_notebooks.analyses._mds:classical_mds", "lbo_notebooks.analyses._mds:landmark_mds",
+    "lbo_notebooks.analyses._mds:spectral_mds",
+    "lbo_notebooks.analyses._mds:_scaling_with_fields",
+    "lbo_notebooks.analyses._classical_scaling:top_eigenpairs",
+    "lbo_notebooks.analyses._classical_scaling:scaling_in_span",
+    "lbo_notebooks.analyses._fast_classical_scaling:fast_classical_scaling",
+    "lbo_notebooks.exercises.canonical_forms:mds_slips",
+    "lbo_notebooks.exercises.canonical_forms:_double_centred",
     "lbo_notebooks.exercises.canonical_forms:scaling_slips", "lbo_notebooks.exercises.canonical_forms:_top",
     "sklearn.manifold:ClassicalMDS.fit", "sklearn.manifold:ClassicalMDS.fit_transform",
     "sklearn.manifold:MDS.fit", "sklearn.manifold:MDS.fit_transform", "sklearn.manifold:smacof",
@@ -111,10 +115,11 @@ def _classical_mds(my_classical_mds: Any) -> Verdict:
 # in them, the visible check's own reference, and scikit-learn's classical scaling (ClassicalMDS,
 # and KernelPCA, which is classical scaling of a precomputed Gram matrix).
 _SCALING = (
-    "lbo_notebooks.scaling:scaling_in_span", "lbo_notebooks.scaling:top_eigenpairs",
-    "lbo_notebooks.mds:_scaling_with_fields", "lbo_notebooks.mds:spectral_mds",
-    "lbo_notebooks.mds:classical_mds", "lbo_notebooks.mds:landmark_mds",
-    "lbo_notebooks.fast_scaling:fast_classical_scaling",
+    "lbo_notebooks.analyses._classical_scaling:scaling_in_span",
+    "lbo_notebooks.analyses._classical_scaling:top_eigenpairs",
+    "lbo_notebooks.analyses._mds:_scaling_with_fields", "lbo_notebooks.analyses._mds:spectral_mds",
+    "lbo_notebooks.analyses._mds:classical_mds", "lbo_notebooks.analyses._mds:landmark_mds",
+    "lbo_notebooks.analyses._fast_classical_scaling:fast_classical_scaling",
     "lbo_notebooks.exercises.canonical_forms:scaling_slips", "lbo_notebooks.exercises.canonical_forms:_top",
     "sklearn.manifold:ClassicalMDS.fit", "sklearn.manifold:ClassicalMDS.fit_transform",
     "sklearn.decomposition:KernelPCA.fit", "sklearn.decomposition:KernelPCA.fit_transform",
@@ -129,8 +134,8 @@ def _scaling_cases() -> tuple[tuple[str, np.ndarray, np.ndarray, tuple[int, ...]
     thin torus, with other k and q, and a plain random case (phi neither orthonormal nor with a
     constant column). Each dim is taken where the eigenvalues G[dim-1] > G[dim] are well apart."""
     from ... import shapes
-    from ...mds import spectral_mds
-    from ...spectrum import eigenbasis
+    from ...analyses._mds import spectral_mds
+    from ...spectral._spectrum import eigenbasis
 
     cases = []
     for label, mesh, k, q, dims in (
@@ -173,7 +178,7 @@ def _embedding(X: Any, n: int, k: int, dim: int) -> np.ndarray:
 
 @grader("09-scaling", kind="build", replaces=_SCALING)
 def _scaling(my_scaling: Any) -> Verdict:
-    from ...embedding_error import gram_error
+    from ...analyses._embedding_error import gram_error
 
     for label, phi, alpha, dims in _scaling_cases():
         n, k = phi.shape

@@ -16,7 +16,7 @@ from ._answers import choice, number, recap_of_choices
 def _dog() -> Any:
     """The notebook's dog, rebuilt from its definition (``lbo.creature("dog", "walking",
     n_vertices=2000)``), not taken from the kernel. A few seconds."""
-    from ... import creatures
+    from ...shapes import _creatures as creatures
 
     return creatures.creature("dog", "walking", n_vertices=2000)
 
@@ -28,7 +28,7 @@ def _embeddings() -> tuple[np.ndarray, np.ndarray]:
     (nested sampling): the same embedding up to the eigensolver's tolerance (Gram errors agree to
     1e-9), for about a second less. 2-D embeddings are their first two columns (both keep the top
     eigenpairs of one matrix; tests/test_grading_10.py checks it)."""
-    from ...mds import classical_mds, spectral_mds
+    from ...analyses._mds import classical_mds, spectral_mds
 
     dog = _dog()
     return spectral_mds(dog, progress=False), classical_mds(dog, progress=False)

@@ -38,8 +38,9 @@ BETAS = (1e-6, 1e-5, 3e-5, 1e-4, 3e-4, 1e-3, 1e-2, 0.1, 0.9)
 @functools.lru_cache(maxsize=1)
 def _dog() -> SimpleNamespace:
     """Section 2: the six poses, W and A of the standing dog, the solver of the two training poses."""
-    from ... import creatures, operators
-    from ...rpca import RegularizedPCA
+    from ...shapes import _creatures as creatures
+    from ... import operators
+    from ...analyses._rpca import RegularizedPCA
 
     poses = creatures.creature_poses("dog", n_vertices=N_VERTICES)
     reference = poses["standing"]
@@ -58,8 +59,8 @@ def _pca_limit() -> Any:
 @functools.lru_cache(maxsize=1)
 def _sweep() -> SimpleNamespace:
     """Section 4: the errors of the sweep and of the eigenbasis on the unseen poses."""
-    from ...inner_product import reconstruction_error
-    from ...spectrum import eigenbasis
+    from ...spectral._inner_product import reconstruction_error
+    from ...spectral._spectrum import eigenbasis
 
     dog = _dog()
     targets = [dog.poses[name].vertices for name in dog.unseen]
@@ -100,18 +101,18 @@ def _scale(mu_factor: Any) -> Verdict:
 # Spectrum made of P), and the regularized-PCA solvers.
 _OBJECTIVE = (
     "lbo_notebooks.exercises.regularized_pca:_rpca_objective",
-    "lbo_notebooks.inner_product:reconstruct",
-    "lbo_notebooks.inner_product:reconstruction_error",
-    "lbo_notebooks.spectrum:Spectrum.project",
-    "lbo_notebooks.spectrum:Spectrum.reconstruct",
-    "lbo_notebooks.spectrum:Spectrum.error",
-    "lbo_notebooks.optimality:representation_error",
-    "lbo_notebooks.rpca:regularized_pca",
-    "lbo_notebooks.rpca:RegularizedPCA.solve",
-    "lbo_notebooks.rpca:RegularizedPCA.sweep",
-    "lbo_notebooks.rpca_pencil:rayleigh_ritz",
-    "lbo_notebooks.rpca_pencil:data_eigenpairs",
-    "lbo_notebooks.rpca_pencil:complement_lanczos",
+    "lbo_notebooks.spectral._inner_product:reconstruct",
+    "lbo_notebooks.spectral._inner_product:reconstruction_error",
+    "lbo_notebooks.spectral._spectrum:Spectrum.project",
+    "lbo_notebooks.spectral._spectrum:Spectrum.reconstruct",
+    "lbo_notebooks.spectral._spectrum:Spectrum.error",
+    "lbo_notebooks.analyses._optimality:representation_error",
+    "lbo_notebooks.analyses._rpca:regularized_pca",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA.solve",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA.sweep",
+    "lbo_notebooks.analyses._rpca_sparse:rayleigh_ritz",
+    "lbo_notebooks.analyses._rpca_sparse:data_eigenpairs",
+    "lbo_notebooks.analyses._rpca_sparse:complement_lanczos",
 )
 
 
@@ -119,9 +120,10 @@ def _unseen_problems() -> list[tuple[str, np.ndarray, np.ndarray, Any, Any, floa
     """(what, P, X, W, A, mu) on shapes the notebook and the visible check never use. Every P is
     A-orthonormal (the objective's constraint), none is the optimum for the mu it comes with, so
     neither the closed form's shortcut through the solver nor a swapped term passes by luck."""
-    from ... import operators, shapes
-    from ...rpca import RegularizedPCA
-    from ...spectrum import eigenbasis
+    from ... import operators
+    from ... import shapes
+    from ...analyses._rpca import RegularizedPCA
+    from ...spectral._spectrum import eigenbasis
 
     rng = np.random.default_rng(1107)
     problems = []
@@ -169,29 +171,29 @@ def _objective(my_objective: Any) -> Verdict:
 # them (the detour eigenbasis((mu W - U Uᵀ, A), m)), as well as other installed libraries' ones.
 # SciPy's eigh / eigsh are what the exercise asks for, and stay.
 _RPCA_BASIS = (
-    "lbo_notebooks.rpca:regularized_pca",
-    "lbo_notebooks.rpca:RegularizedPCA.solve",
-    "lbo_notebooks.rpca:RegularizedPCA.sweep",
-    "lbo_notebooks.rpca:RegularizedPCA._solve_dense",
-    "lbo_notebooks.rpca:RegularizedPCA._solve_sparse",
-    "lbo_notebooks.rpca:RegularizedPCA._solve_pca_limit",
-    "lbo_notebooks.rpca:RegularizedPCA._solve_infinite",
-    "lbo_notebooks.rpca_pencil:rayleigh_ritz",
-    "lbo_notebooks.rpca_pencil:data_eigenpairs",
-    "lbo_notebooks.rpca_pencil:complement_lanczos",
+    "lbo_notebooks.analyses._rpca:regularized_pca",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA.solve",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA.sweep",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA._solve_dense",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA._solve_sparse",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA._solve_pca_limit",
+    "lbo_notebooks.analyses._rpca:RegularizedPCA._solve_infinite",
+    "lbo_notebooks.analyses._rpca_sparse:rayleigh_ritz",
+    "lbo_notebooks.analyses._rpca_sparse:data_eigenpairs",
+    "lbo_notebooks.analyses._rpca_sparse:complement_lanczos",
     "lbo_notebooks.exercises.regularized_pca:_pencil_eigenpairs",
-    "lbo_notebooks.spectrum:eigenbasis",
-    "lbo_notebooks.spectrum:_solve_in_unit_area",
+    "lbo_notebooks.spectral._spectrum:eigenbasis",
+    "lbo_notebooks.spectral._spectrum:_solve_in_unit_area",
     "lbo_notebooks._engine.eigensolver:slice_eigsh",
     "lbo_notebooks._engine.eigensolver:_window_set",
     "lbo_notebooks._engine.eigensolver:_stitch",
     "lbo_notebooks._engine.krylov:nearest_eigenpairs",
-    "lbo_notebooks.bases:lbo_basis",
-    "lbo_notebooks.bases:_smallest_eigenvectors",
-    "lbo_notebooks.minmax:min_rayleigh_quotient",
-    "lbo_notebooks.minmax:_min_dense",
-    "lbo_notebooks.minmax:ConstrainedRayleigh.minimum",
-    "lbo_notebooks.minmax:ConstrainedRayleigh._min_sparse",
+    "lbo_notebooks.analyses._competitor_bases:lbo_basis",
+    "lbo_notebooks.analyses._competitor_bases:_smallest_eigenvectors",
+    "lbo_notebooks.analyses._minmax:min_rayleigh_quotient",
+    "lbo_notebooks.analyses._minmax:_min_dense",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh.minimum",
+    "lbo_notebooks.analyses._minmax:ConstrainedRayleigh._min_sparse",
     "pyFM.mesh.laplacian:laplacian_spectrum",
     "lapy.solver:Solver.eigs",
 )
@@ -208,8 +210,9 @@ def _unseen_rpca_problems() -> tuple[tuple[str, np.ndarray, Any, Any, float, int
       constant, then ``−μ λ`` with the sphere's repeated eigenvalues (a 3-dimensional eigenspace
       and a 5-dimensional one that ``m = 7`` cuts), where any basis of an eigenspace is right.
     """
-    from ... import operators, shapes
-    from ...rpca import mu_from_beta
+    from ... import operators
+    from ... import shapes
+    from ...analyses._rpca import mu_from_beta
 
     problems = []
     ring = shapes.torus(n_major=20, n_minor=10)

@@ -33,7 +33,7 @@ N, K = 3000, 60  # the notebook's first cell
 # What a build of the HKS must not call: the library's and pyFM's (by its own module and by the
 # names its package re-exports).
 _HKS = (
-    "lbo_notebooks.descriptors:hks",
+    "lbo_notebooks.analyses._descriptors:hks",
     "pyFM.signatures.HKS_functions:HKS",
     "pyFM.signatures.HKS_functions:lm_HKS",
     "pyFM.signatures.HKS_functions:auto_HKS",
@@ -47,9 +47,9 @@ _HKS = (
 # What a build of the functional map must not call: the library's map (and the A-projection
 # methods of a Spectrum, Φᵀ A f in one call), pyFM's conversions.
 _FMAP = (
-    "lbo_notebooks.functional_maps:map_from_points",
-    "lbo_notebooks.spectrum:Spectrum.project",
-    "lbo_notebooks.spectrum:Spectrum.reconstruct",
+    "lbo_notebooks.analyses._functional_maps:map_from_points",
+    "lbo_notebooks.spectral._spectrum:Spectrum.project",
+    "lbo_notebooks.spectral._spectrum:Spectrum.reconstruct",
     "pyFM.spectral.convert:p2p_to_FM",
     "pyFM.spectral.convert:mesh_p2p_to_FM",
     "pyFM.spectral:p2p_to_FM",
@@ -59,12 +59,12 @@ _FMAP = (
 # What a build of one ZoomOut iteration must not call: the library's ZoomOut and both its conversions
 # (and the nearest-row search they share, the A-projection of a Spectrum), pyFM's.
 _ZOOMOUT_STEP = (
-    "lbo_notebooks.functional_maps:zoomout",
-    "lbo_notebooks.functional_maps:points_from_map",
-    "lbo_notebooks.functional_maps:map_from_points",
-    "lbo_notebooks.functional_maps:_nearest_rows",
-    "lbo_notebooks.spectrum:Spectrum.project",
-    "lbo_notebooks.spectrum:Spectrum.reconstruct",
+    "lbo_notebooks.analyses._functional_maps:zoomout",
+    "lbo_notebooks.analyses._functional_maps:points_from_map",
+    "lbo_notebooks.analyses._functional_maps:map_from_points",
+    "lbo_notebooks.analyses._functional_maps:_nearest_rows",
+    "lbo_notebooks.spectral._spectrum:Spectrum.project",
+    "lbo_notebooks.spectral._spectrum:Spectrum.reconstruct",
     "pyFM.spectral.convert:FM_to_p2p",
     "pyFM.spectral.convert:mesh_FM_to_p2p",
     "pyFM.spectral.convert:mesh_FM_to_p2p_precise",
@@ -83,7 +83,7 @@ _ZOOMOUT_STEP = (
 
 def _fresh(spectrum: Any) -> Any:
     """A copy of a spectrum for the student's function (nothing of ours reachable from it)."""
-    from ...spectrum import Spectrum
+    from ...spectral._spectrum import Spectrum
 
     return Spectrum(spectrum.values.copy(), spectrum.vectors.copy(), spectrum.stiffness.copy(), spectrum.mass.copy())
 
@@ -92,7 +92,7 @@ def _fresh(spectrum: Any) -> Any:
 def _unseen_spectra() -> tuple[tuple[str, Any], ...]:
     """Spectra no notebook cell and no visible check uses, of different sizes."""
     from ... import shapes
-    from ...spectrum import eigenbasis
+    from ...spectral._spectrum import eigenbasis
 
     rng = np.random.default_rng(1212)
     ring = shapes.torus(n_major=30, n_minor=12)
@@ -105,7 +105,7 @@ def _unseen_spectra() -> tuple[tuple[str, Any], ...]:
 
 @grader("12-hks", kind="build", replaces=_HKS)
 def _hks(my_hks: Any) -> Verdict:
-    from ...descriptors import hks
+    from ...analyses._descriptors import hks
 
     spectra = _unseen_spectra()
     for (what, spectrum), scales in zip(spectra, ([0.3, 2.0], [0.05, 0.4, 1.5, 4.0, 9.0], [0.7], [0.01, 1.0, 3.0])):
@@ -126,7 +126,7 @@ def _unseen_pairs() -> tuple[tuple[str, np.ndarray, Any, Any, int], ...]:
     """(what, p2p, source, target, k): a permutation between two poses of one torus, a many-to-one
     map onto a smaller target, a map onto a larger target."""
     from ... import shapes
-    from ...spectrum import eigenbasis
+    from ...spectral._spectrum import eigenbasis
 
     rng = np.random.default_rng(2112)
     big = eigenbasis(shapes.bumpy_sphere(3, seed=4), 16)                     # 642 vertices
@@ -144,7 +144,7 @@ def _unseen_pairs() -> tuple[tuple[str, np.ndarray, Any, Any, int], ...]:
 
 @grader("12-fmap", kind="build", replaces=_FMAP)
 def _fmap(my_functional_map: Any) -> Verdict:
-    from ...functional_maps import map_from_points
+    from ...analyses._functional_maps import map_from_points
 
     for what, p2p, source, target, k in _unseen_pairs():
         ref = map_from_points(p2p, source, target, k_source=k, k_target=k)
@@ -189,8 +189,8 @@ def _alpha(best_alpha: Any) -> Verdict:
 @functools.lru_cache(maxsize=1)
 def _standing() -> tuple[Any, np.ndarray]:
     """``ref = spectra["standing"]`` and ``f_z`` of section 5, from the notebook's definitions."""
-    from ... import creatures
-    from ...spectrum import eigenbasis
+    from ...shapes import _creatures as creatures
+    from ...spectral._spectrum import eigenbasis
 
     dog = creatures.creature("dog", "standing", n_vertices=N)  # = poses["standing"] = source
     z = dog.vertices[:, 2]

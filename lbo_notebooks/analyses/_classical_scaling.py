@@ -1,0 +1,73 @@
+"""Classical scaling's shared steps: the checks, the top eigenpairs, and scaling in a span.
+
+Every MDS variant of the package (:mod:`lbo_notebooks.analyses._mds`, :mod:`lbo_notebooks.analyses._fast_classical_scaling`)
+ends with classical scaling: the top ``dim`` eigenpairs of ``B = -1/2 J D2 J``. Classical and
+landmark MDS form ``B`` (n x n or q x q) and call :func:`top_eigenpairs`; spectral MDS and fast
+classical scaling know ``B`` only as ``C middle C.T`` for a thin ``C`` and call
+:func:`scaling_in_span`, which needs only small matrices (docs/maths.md, "Multidimensional
+scaling", scaling in a span).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+
+from .._support.validation import check_integer
+from ..spectral._solvers import start_vector, use_dense
+
+__all__ = ["check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
+
+
+def check_dim(dim: Any, limit: int, what: str) -> int:
+    """``dim`` checked to be a positive integer below ``limit`` (``what`` names the limit in the message)."""
+    dim = check_integer(dim, "dim", 1, what="a positive integer (the embedding dimension)")
+    if dim >= limit:
+        raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
+    return int(dim)
+
+
+def check_samples(count: Any, n: int, name: str = "n_samples") -> int:
+    """A number of samples checked to be an integer in ``2..n``."""
+    count = check_integer(count, name, 2)
+    if count > n:
+        raise ValueError(
+            f"{name}={count} is more than the mesh's {n} vertices; samples are distinct vertices, "
+            f"so use at most {n} (a few hundred are plenty)."
+        )
+    return int(count)
+
+
+def top_eigenpairs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Largest ``dim`` eigenpairs of a symmetric matrix, descending (dense ``eigh`` or Lanczos)."""
+    n = B.shape[0]
+    if use_dense(n) or dim + 1 >= n // 2:
+        vals, vecs = scipy.linalg.eigh(B, subset_by_index=[n - dim, n - 1])
+    else:
+        vals, vecs = spla.eigsh(B, k=dim, which="LA", v0=start_vector(n))
+    order = np.argsort(vals)[::-1]
+    return vals[order], vecs[:, order]
+
+
+def scaling_in_span(gram: NDArray[np.float64], middle: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Top ``dim`` eigenpairs of ``B = C middle C.T`` (n x n) from k x k matrices only.
+
+    ``gram = C.T C``. Any factorisation ``C = Q R`` with Q orthonormal will do: from
+    ``gram = V S V.T``, ``R = S^(1/2) V.T`` and ``Q = C V S^(-1/2)``, so ``B = Q (R middle R.T) Q.T``
+    and only the small matrix is eigendecomposed. Directions that C does not span (S at round-off
+    level) are dropped. Returns ``y`` (k x dim) with ``X = C y`` and the eigenvalues G, descending.
+    Costs one k x k Gram product instead of a Householder QR and never forms Q.
+    """
+    S, V = np.linalg.eigh(0.5 * (gram + gram.T))
+    keep = S > S.max() * len(S) * np.finfo(float).eps
+    S, V = S[keep], V[:, keep]
+    R = np.sqrt(S)[:, None] * V.T
+    small = R @ middle @ R.T
+    G, U = np.linalg.eigh(0.5 * (small + small.T))
+    G, U = G[::-1], U[:, ::-1]
+    y = V @ (U[:, :dim] * (np.sqrt(np.maximum(G[:dim], 0.0)) / np.sqrt(S)[:, None]))
+    return y, G
