@@ -79,8 +79,8 @@ def test_a_chain_of_more_than_eight_levels_fails(tmp_path):
 
 
 def test_the_engine_is_private_and_takes_no_mesh():
-    """Issue 42: at most three modules outside the engine import it; the engine imports no mesh (the
-    layers place it under geometry, so this holds by the layer check too)."""
+    """Issue 42: at most three modules outside the engine import it; the engine imports nothing
+    from geometry (no Mesh, no PointCloud), although its layer stands above it."""
     result = run()
     edges = {
         line.split("->")[0].strip(): {dep.strip() for dep in line.split("->")[1].split(",")}

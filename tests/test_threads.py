@@ -182,9 +182,11 @@ def _blas_in_a_measured_child() -> dict:
 def test_a_measured_child_has_idle_blas_threads_that_the_library_can_still_limit(caller_threads, timed):
     """OpenBLAS rebuilds its pool in a forked child at the first change of its count, and the new
     threads spin for about 0.1 s: on two cores 0.2 s of CPU during this 0.1 s sleep, which slowed the
-    first measured call by 10-20%. measure_in_fresh_process rebuilds the pools before timing, from
+    first measured call by 10-20%. The benchmarks' measure_in_fresh_process rebuilds the pools before timing, from
     the thread that owns the setting, so the library's limit still takes effect in the child."""
-    child = lbo.analyses._cost.measure_in_fresh_process(_blas_in_a_measured_child)["result"]
+    from .test_cost import benchmark_measure
+
+    child = benchmark_measure().measure_in_fresh_process(_blas_in_a_measured_child)["result"]
     if timed:  # a CPU time: opt-in (LBO_TIMING_TESTS=1, tests/conftest.py)
         assert child["idle_cpu"] < 0.03, child
     assert set(child["inside"]) == {1}, child

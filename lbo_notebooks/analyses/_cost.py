@@ -1,14 +1,11 @@
-"""Measuring what a computation costs: CPU time, traced peak memory and growth exponents.
+"""Measuring what a computation costs in a notebook: CPU time, traced peak memory, growth exponents.
 
-Two ways, for two questions. In the same process (:func:`measure_cost`, :func:`least_cost`): CPU
-time and the peak of NumPy and Python allocations, cheap enough for a notebook. In a fresh process
-(:func:`measure_in_fresh_process`, :func:`least_wall_time`): wall time and the growth of the whole
-process's peak memory (RSS, compiled libraries included), what the benchmarks (``benchmarks/README.md``)
-report against other libraries.
-
-Used by the notebooks to show live how classical and spectral MDS scale with the number of
-vertices (small sizes, measured in the same run), and by the benchmarks. Costs that take minutes
-to measure are recorded by a benchmark run instead: :func:`recorded_benchmark` reads them.
+In the same process (:func:`measure_cost`, :func:`least_cost`): CPU time and the peak of NumPy and
+Python allocations, cheap enough to show live how classical and spectral MDS scale with the number
+of vertices (small sizes, measured in the same run). Costs that take minutes to measure are
+recorded by a benchmark run instead, and :func:`recorded_benchmark` reads them; the benchmarks'
+own fresh-process measurements (wall time, whole-process memory) live with them, in
+``benchmarks/_measure.py``.
 """
 
 from __future__ import annotations
@@ -23,11 +20,7 @@ from numpy.typing import ArrayLike
 
 from .._support.validation import check_integer
 
-__all__ = [
-    "growth_exponent", "measure_cost", "least_cost", "measure_in_fresh_process", "least_wall_time",
-    "recorded_benchmark",
-    "RESULTS",
-]
+__all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
 
 #: Where ``benchmarks/*.py`` record their runs: the package's own ``recorded/`` folder (package
 #: data), so an installed package, or one notebook handed out alone, reads them too.
@@ -102,84 +95,6 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     """
     check_integer(runs, "runs", 1)
     return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
-
-
-def _settle_blas_threads(timeout: float = 1.0) -> None:
-    """Give a forked child the idle BLAS thread pools a process of its own has.
-
-    OpenBLAS tears its thread pool down across ``fork`` and builds it again at the child's first
-    change of its thread count. The new threads spin for a while before they sleep: on two cores,
-    a first call that limits BLAS to one thread (as the package's solvers do) competed with two
-    spinning pools and was timed slower than in a new interpreter, where the pools were built and
-    went idle at import. So the pools are rebuilt here, before any timing (setting each
-    library's own count again changes nothing else), and the child waits until it is idle: less
-    than a tenth of a core used over 20 ms, at most ``timeout`` seconds.
-    """
-    from .._engine.threads import rebuild_thread_pools
-
-    rebuild_thread_pools()
-    deadline = time.perf_counter() + timeout
-    while time.perf_counter() < deadline:
-        cpu = time.process_time()
-        time.sleep(0.02)
-        if time.process_time() - cpu < 0.002:
-            return
-
-
-def _in_child(function: Any, args: tuple, queue: Any) -> None:
-    import resource
-
-    _settle_blas_threads()
-    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    start = time.perf_counter()
-    result = function(*args)
-    elapsed = time.perf_counter() - start
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # KiB on Linux
-    queue.put({"wall_seconds": elapsed, "peak_rss_mib": peak / 1024.0, "rss_growth_mib": (peak - base) / 1024.0, "result": result})
-
-
-def measure_in_fresh_process(function: Any, *args: Any) -> dict[str, Any]:
-    """Run ``function(*args)`` in a forked process: ``wall_seconds``, ``peak_rss_mib``, ``rss_growth_mib``, ``result``.
-
-    The child starts as a copy of this process (``fork``, so Linux or macOS), and its peak
-    resident memory is read before and after the call: ``rss_growth_mib`` is what the call added,
-    compiled libraries included, and peaks of earlier measurements do not leak in. The result
-    comes back pickled. Before the clock starts, the child's BLAS thread pools are rebuilt and left
-    to go idle, as they are in a process of its own (OpenBLAS drops them across ``fork``; see
-    ``_settle_blas_threads``).
-
-    Examples
-    --------
-    >>> cost = measure_in_fresh_process(sum, [1, 2, 3])
-    >>> cost["result"], cost["wall_seconds"] >= 0, cost["peak_rss_mib"] > 0
-    (6, True, True)
-    """
-    import multiprocessing as mp
-
-    context = mp.get_context("fork")
-    queue = context.Queue()
-    child = context.Process(target=_in_child, args=(function, args, queue))
-    child.start()
-    out = queue.get()
-    child.join()
-    return out
-
-
-def least_wall_time(runs: int, function: Any) -> float:
-    """The least wall time, in seconds, of ``runs`` calls of ``function()`` (the least noisy single number).
-
-    Examples
-    --------
-    >>> least_wall_time(3, lambda: sum(range(1000))) >= 0
-    True
-    """
-    check_integer(runs, "runs", 1)
-    best = float("inf")
-    for _ in range(int(runs)):
-        start = time.perf_counter()
-        function()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:
