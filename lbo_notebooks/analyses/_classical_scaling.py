@@ -17,28 +17,53 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Constraint, Integer, Number, Satisfies
 from ..spectral._solvers import start_vector, use_dense
 
-__all__ = ["check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
+__all__ = ["dim_below", "sample_count", "check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
+
+#: The table entry of ``dim`` when its limit is known only from the data (then :func:`check_dim`).
+DIM = Integer(1, what="a positive integer (the embedding dimension)")
 
 
-def check_dim(dim: Any, limit: int, what: str) -> int:
-    """``dim`` checked to be a positive integer below ``limit`` (``what`` names the limit in the message)."""
-    dim = check_integer(dim, "dim", 1, what="a positive integer (the embedding dimension)")
-    if dim >= limit:
-        raise ValueError(f"dim={dim} must be smaller than {what} ({limit}).")
-    return int(dim)
+def _smaller_than(limit: Any, what: str) -> tuple[Constraint, ...]:
+    # Number for the strict bound, so that the message can name the limit itself; then back to int.
+    return (Number(high=limit, open_high=True, message=f"dim={{value}} must be smaller than {what} ({{high}})."),
+            Satisfies(lambda value: True, convert=int))
+
+
+def dim_below(limit: Any, what: str) -> tuple[Constraint, ...]:
+    """The table entry of ``dim``: a positive integer smaller than ``limit`` (``what`` names it in the message).
+
+    ``limit`` is a number or a callable of the function's arguments (``lambda k, **_: k``).
+    """
+    return (DIM, *_smaller_than(limit, what))
+
+
+def check_dim(dim: int, limit: int, what: str) -> int:
+    """``dim``, already checked by :data:`DIM`, checked to be smaller than ``limit``, a size of the data."""
+    for rule in _smaller_than(limit, what):
+        dim = rule.check(dim, "dim", {})
+    return dim
+
+
+def sample_count(n_vertices: Any, *, none: bool = False) -> tuple[Constraint, ...]:
+    """The table entry of a number of samples: an integer in ``2..n_vertices`` (a callable of the arguments).
+
+    ``none=True`` lets ``None`` (a default chosen later) through.
+    """
+    return (
+        Integer(2, none=none),
+        Integer(high=n_vertices, none=none, message=(
+            "{name}={value} is more than the mesh's {high} vertices; samples are distinct vertices, "
+            "so use at most {high} (a few hundred are plenty).")),
+    )
 
 
 def check_samples(count: Any, n: int, name: str = "n_samples") -> int:
-    """A number of samples checked to be an integer in ``2..n``."""
-    count = check_integer(count, name, 2)
-    if count > n:
-        raise ValueError(
-            f"{name}={count} is more than the mesh's {n} vertices; samples are distinct vertices, "
-            f"so use at most {n} (a few hundred are plenty)."
-        )
+    """A number of samples checked to be an integer in ``2..n``, where the table cannot (a mesh-only argument)."""
+    for rule in sample_count(n):
+        count = rule.check(count, name, {})
     return int(count)
 
 

@@ -28,10 +28,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Satisfies, validated
 from ..spectral._inner_product import a_orthonormalize, check_operators
 from ..geometry._mesh import Mesh
-from ..operators._cotangent import MassKind, check_mass_kind, mass_matrix, stiffness_matrix
+from ..operators._cotangent import MASS_KIND, MassKind, mass_matrix, stiffness_matrix
 from ..spectral._solvers import symmetric_lu
 from ..spectral._spectrum import eigenbasis
 
@@ -54,12 +54,14 @@ __all__ = [
 Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
 
 
-def _check(mesh: Mesh, k: int, mass_kind: MassKind) -> tuple[int, sp.csr_matrix]:
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    check_mass_kind(mass_kind)
-    check_integer(k, "k", 1, mesh.n_vertices - 1, what=f"an integer between 1 and n_vertices - 1 = {mesh.n_vertices - 1}")
-    return int(k), mass_matrix(mesh, mass_kind)
+_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message="mesh must be a lbo_notebooks.Mesh, got {type}.")
+
+#: The table of every basis builder: a mesh, a mass kind and a size ``k`` in 1..n_vertices - 1.
+_BASIS = dict(
+    mesh=_MESH,
+    mass_kind=MASS_KIND,
+    k=Integer(1, lambda mesh, **_: mesh.n_vertices - 1, what="an integer between 1 and n_vertices - 1 = {high}"),
+)
 
 
 def _constant_first(mesh: Mesh, A: sp.csr_matrix, functions: NDArray[np.float64], k: int) -> NDArray[np.float64]:
@@ -72,7 +74,7 @@ def _identity_mass_eigenbasis(
     mesh: Mesh, k: int, mass_kind: MassKind, operator: Callable[[Mesh], sp.spmatrix]
 ) -> NDArray[np.float64]:
     """Eigenvectors of ``operator(mesh) x = mu x`` (no area weights), then A-orthonormalised."""
-    k, A = _check(mesh, k, mass_kind)
+    A = mass_matrix(mesh, mass_kind)
     identity = sp.identity(mesh.n_vertices, format="csr")
     return _constant_first(mesh, A, _smallest_eigenvectors(operator(mesh), identity, k), k)
 
@@ -82,6 +84,7 @@ def _smallest_eigenvectors(W: sp.spmatrix, M: sp.spmatrix, k: int) -> NDArray[np
     return np.asarray(eigenbasis((W, M), k).vectors[:, 1:])
 
 
+@validated(**_BASIS)
 def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The first k Laplace–Beltrami eigenvectors (already A-orthonormal, the constant first).
 
@@ -91,10 +94,10 @@ def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray
     >>> lbo_basis(shapes.icosphere(2), 9).shape
     (162, 9)
     """
-    k, _ = _check(mesh, k, mass_kind)
     return np.array(eigenbasis(mesh, k, mass_kind=mass_kind).vectors)
 
 
+@validated(mesh=_MESH, k=Integer(0), width=Number(0, open_low=True, what="a positive fraction of sqrt(area)"))
 def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
     """Random smooth functions: white noise smoothed twice by an implicit heat step.
 
@@ -112,18 +115,14 @@ def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float =
     >>> random_smooth_functions(shapes.icosphere(2), 3, seed=1).shape
     (162, 3)
     """
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    check_integer(k, "k", 0)
-    if not (np.isscalar(width) and np.isfinite(width) and width > 0):
-        raise ValueError(f"width must be a positive fraction of sqrt(area), got {width!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)
     t = (width * np.sqrt(mesh.area)) ** 2
     lu = symmetric_lu(A + t * W)
-    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, int(k)))
+    g = np.random.default_rng(seed).normal(size=(mesh.n_vertices, k))
     return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if k else g
 
 
+@validated(mesh=_MESH, heat_time=Number(0, open_low=True, what="a positive fraction of the area"))
 def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> tuple[NDArray[np.float64], list[str]]:
     """Eight functions to test the representation bound on: smooth, kinked and random.
 
@@ -148,10 +147,6 @@ def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> 
     """
     from ._geodesics import geodesic_distances
 
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"mesh must be a lbo_notebooks.Mesh, got {type(mesh).__name__}.")
-    if not (np.isscalar(heat_time) and np.isfinite(heat_time) and heat_time > 0):
-        raise ValueError(f"heat_time must be a positive fraction of the area, got {heat_time!r}.")
     W, A = stiffness_matrix(mesh), mass_matrix(mesh)
     source = int(np.argmax(mesh.vertices[:, 0]))
     heat = np.zeros(mesh.n_vertices)
@@ -164,6 +159,7 @@ def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> 
     return F, ["x", "y", "z", "heat kernel", "geodesic distance", "random 1", "random 2", "random 3"]
 
 
+@validated(**_BASIS)
 def random_smooth_basis(
     mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", seed: int = 0, width: float = 0.15
 ) -> NDArray[np.float64]:
@@ -178,7 +174,7 @@ def random_smooth_basis(
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)) and np.ptp(B[:, 0]) < 1e-12 * B[0, 0])
     True
     """
-    k, A = _check(mesh, k, mass_kind)
+    A = mass_matrix(mesh, mass_kind)
     return _constant_first(mesh, A, random_smooth_functions(mesh, k - 1, seed=seed, width=width), k)
 
 
@@ -194,6 +190,7 @@ def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
     return out
 
 
+@validated(**_BASIS)
 def pca_basis(
     mesh: Mesh,
     k: int,
@@ -226,7 +223,7 @@ def pca_basis(
     >>> bool(np.allclose(pca_basis(m, 4, samples=m.vertices).T @ mass_matrix(m) @ pca_basis(m, 4, samples=m.vertices), np.eye(4)))
     True
     """
-    k, A = _check(mesh, k, mass_kind)
+    A = mass_matrix(mesh, mass_kind)
     X = _gaussian_bumps(mesh, 4 * k, seed) if samples is None else np.array(samples, dtype=np.float64)
     if X.ndim != 2 or X.shape[0] != mesh.n_vertices or not np.all(np.isfinite(X)):
         raise ValueError(f"samples must be a finite array of shape ({mesh.n_vertices}, m), got {X.shape}.")
@@ -250,6 +247,7 @@ def _umbrella_laplacian(mesh: Mesh) -> sp.csr_matrix:
     return (sp.diags(np.asarray(adj.sum(axis=1)).ravel()) - adj).tocsr()
 
 
+@validated(**_BASIS)
 def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the combinatorial graph Laplacian ``L = D - Adj`` (uniform "umbrella" weights).
 
@@ -267,6 +265,7 @@ def umbrella_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> ND
     return _identity_mass_eigenbasis(mesh, k, mass_kind, _umbrella_laplacian)
 
 
+@validated(**_BASIS)
 def identity_mass_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """Eigenvectors of the cotangent ``W`` with the identity as mass (``W x = mu x``, no area weights).
 
@@ -296,6 +295,7 @@ def _legendre(x: NDArray[np.float64], degree: int) -> NDArray[np.float64]:
     return out
 
 
+@validated(**_BASIS)
 def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max_degree: int = 30) -> NDArray[np.float64]:
     """Polynomials in the embedding coordinates x, y, z, by increasing total degree.
 
@@ -311,7 +311,7 @@ def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max
     >>> B.shape
     (642, 9)
     """
-    k, A = _check(mesh, k, mass_kind)
+    A = mass_matrix(mesh, mass_kind)
     lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
     extent = np.where(hi - lo > 1e-12 * mesh.diagonal, hi - lo, np.inf)
     x = 2.0 * (mesh.vertices - lo) / extent - 1.0  # a degenerate axis maps to -1: constant
@@ -333,6 +333,7 @@ def polynomial_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi", max
     )
 
 
+@validated(**_BASIS)
 def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "voronoi") -> NDArray[np.float64]:
     """The eigenbasis of a different metric, A-orthonormalised for the *regular* mass.
 
@@ -354,7 +355,7 @@ def metric_basis(mesh: Mesh, k: int, metric: Metric, *, mass_kind: MassKind = "v
     >>> bool(np.allclose(B.T @ mass_matrix(m) @ B, np.eye(6)))
     True
     """
-    k, A = _check(mesh, k, mass_kind)
+    A = mass_matrix(mesh, mass_kind)
     value = metric(mesh) if callable(metric) else metric
     if isinstance(value, tuple) and len(value) == 2:
         W2, A2 = check_operators(*value)

@@ -15,11 +15,12 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Number, Satisfies, validated
 from ..spectral._solvers import one_blas_thread
-from ._geodesics import GeodesicMethod, check_connected, check_method, farthest_point_sampling
+from ._geodesics import METHOD, GeodesicMethod, check_connected, farthest_point_sampling
 from ..spectral._inner_product import fix_signs
 from ..geometry._mesh import Mesh
-from ._classical_scaling import check_dim, check_samples, scaling_in_span
+from ._classical_scaling import dim_below, sample_count, scaling_in_span
 
 __all__ = ["fast_classical_scaling", "FCS_DEFAULTS"]
 
@@ -65,6 +66,14 @@ def _interpolation_operator(mesh: Mesh, samples: NDArray[np.int64], mu: float) -
     return Z @ coefficients[:q] + coefficients[q], mu_abs
 
 
+@validated(
+    mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), message="fast_classical_scaling takes a Mesh, got {type}."),
+    method=METHOD,
+    n_samples=sample_count(lambda mesh, **_: mesh.n_vertices),
+    dim=dim_below(lambda n_samples, **_: 2 * n_samples,
+                  "2 n_samples (the embedding lives in the span of 2q interpolants)"),
+    mu=Number(0, open_low=True, what="a positive number (dimensionless; try 1e-3)"),
+)
 def fast_classical_scaling(
     mesh: Mesh,
     *,
@@ -134,15 +143,8 @@ def fast_classical_scaling(
     True
     """
     t0 = time.perf_counter()
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"fast_classical_scaling takes a Mesh, got {type(mesh).__name__}.")
     check_connected(mesh, "fast classical scaling")
-    n = mesh.n_vertices
-    method = check_method(method)
-    q = check_samples(n_samples, n)
-    dim = check_dim(dim, 2 * q, "2 n_samples (the embedding lives in the span of 2q interpolants)")
-    if isinstance(mu, bool) or not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
-        raise ValueError(f"mu must be a positive number (dimensionless; try 1e-3), got {mu!r}.")
+    n, q = mesh.n_vertices, n_samples
 
     with one_blas_thread():  # as in spectral_mds: no BLAS threads spinning against other programs
         # 1. samples and their squared distance fields
@@ -162,7 +164,7 @@ def fast_classical_scaling(
         t1 = time.perf_counter()
 
         # 2. interpolation operator
-        M, mu_abs = _interpolation_operator(mesh, samples, float(mu))
+        M, mu_abs = _interpolation_operator(mesh, samples, mu)
         t2 = time.perf_counter()
 
         # 3. classical scaling in span[J M, J F.T]: D2 ~ (M F + F.T M.T) / 2 gives

@@ -38,7 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Satisfies, validated
 from .._support.progress import LARGE_MESH, check_progress, progress_bar
 from ..spectral._inner_product import a_norms
 from ..geometry._mesh import Mesh
@@ -56,15 +56,15 @@ __all__ = [
 ]
 
 
-def _check_spectrum(spectrum: Spectrum, name: str) -> Spectrum:
-    if not isinstance(spectrum, Spectrum):
-        raise ValueError(f"{name} must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}.")
-    return spectrum
+_SPECTRUM = Satisfies(lambda s: isinstance(s, Spectrum),
+                      message="{name} must be a Spectrum (from lbo_notebooks.eigenbasis), got {type}.")
+_WEIGHT = Number(0)
 
 
-def _check_k(k: int, spectrum: Spectrum, name: str = "k") -> int:
-    what = f"an integer between 1 and the number of eigenpairs computed ({spectrum.k})"
-    return check_integer(k, name, 1, spectrum.k, what=what, hint="compute more eigenpairs with eigenbasis(mesh, k)")
+def _eigenpairs(computed: Any, none: bool = False) -> Integer:
+    """A number of basis functions, 1..``computed(**arguments)`` (the eigenpairs of a spectrum)."""
+    return Integer(1, computed, none=none, what="an integer between 1 and the number of eigenpairs computed ({high})",
+                   hint="compute more eigenpairs with eigenbasis(mesh, k)")
 
 
 def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64]:
@@ -79,6 +79,12 @@ def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64
     return arr.astype(np.int64)
 
 
+@validated(
+    source=_SPECTRUM,
+    target=_SPECTRUM,
+    k_source=_eigenpairs(lambda source, **_: source.k, none=True),
+    k_target=_eigenpairs(lambda target, **_: target.k, none=True),
+)
 def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_source: int | None = None, k_target: int | None = None) -> NDArray[np.float64]:
     """The functional map ``C = Phi_2.T A_2 Pi Phi_1`` of a point map, shape (k_target, k_source).
 
@@ -98,9 +104,8 @@ def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_sou
     >>> bool(np.allclose(C, np.eye(6), atol=1e-10))      # identity map -> identity matrix
     True
     """
-    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
-    k1 = source.k if k_source is None else _check_k(k_source, source, "k_source")
-    k2 = target.k if k_target is None else _check_k(k_target, target, "k_target")
+    k1 = source.k if k_source is None else k_source
+    k2 = target.k if k_target is None else k_target
     p = _check_p2p(p2p, target.n_vertices, source.n_vertices)
     return target.vectors[:, :k2].T @ (target.mass @ source.vectors[p, :k1])
 
@@ -166,6 +171,7 @@ def _check_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray[np.f
     return C
 
 
+@validated(source=_SPECTRUM, target=_SPECTRUM)
 def points_from_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray[np.int64]:
     """Point map of a functional map: nearest neighbours in the spectral embedding.
 
@@ -187,7 +193,6 @@ def points_from_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray
     >>> bool((points_from_map(np.eye(10), s, s) == np.arange(s.n_vertices)).all())  # identity
     True
     """
-    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
     C = _check_map(C, source, target)
     k2, k1 = C.shape
     return _nearest_rows(target.vectors[:, :k2], source.vectors[:, :k1] @ C.T, dtype=np.float32)
@@ -209,6 +214,12 @@ def _check_samples(samples: Any, source: Spectrum, target: Spectrum) -> tuple[ND
     return s1.astype(np.int64), s2.astype(np.int64)
 
 
+@validated(
+    source=_SPECTRUM,
+    target=_SPECTRUM,
+    k_final=_eigenpairs(lambda source, target, **_: min(source.k, target.k), none=True),
+    step=Integer(1),
+)
 def zoomout(
     C: ArrayLike,
     source: Spectrum,
@@ -259,10 +270,8 @@ def zoomout(
     >>> C.shape, bool((p2p == np.arange(s.n_vertices)).all())
     ((12, 12), True)
     """
-    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
     C = _check_map(C, source, target)
-    k_final = min(source.k, target.k) if k_final is None else _check_k(k_final, source if source.k <= target.k else target, "k_final")
-    step = check_integer(step, "step", 1)
+    k_final = min(source.k, target.k) if k_final is None else k_final
     picked = None if samples is None else _check_samples(samples, source, target)
     if picked is not None and picked[1].size < k_final:
         raise ValueError(
@@ -317,6 +326,7 @@ def face_gradients(mesh: Mesh, f: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(grad)
 
 
+@validated(spectrum=_SPECTRUM, k=_eigenpairs(lambda spectrum, **_: spectrum.k))
 def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike, k: int) -> NDArray[np.float64]:
     """``O^f[i, j] = int phi_i (n x grad f) . grad phi_j dA`` for every descriptor column, (p, k, k).
 
@@ -325,8 +335,6 @@ def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike
     every metric ``|K|^alpha g`` (only ``phi`` changes). Face values are spread to the three
     corners with weight ``area / 3``, the lumped mass.
     """
-    spectrum = _check_spectrum(spectrum, "spectrum")
-    k = _check_k(k, spectrum)
     D = np.asarray(descriptors, dtype=np.float64)
     if D.ndim != 2 or D.shape[0] != mesh.n_vertices:
         raise ValueError(f"descriptors must have shape ({mesh.n_vertices}, p), got {D.shape}.")
@@ -343,10 +351,9 @@ def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike
     return out.reshape(k, p, k).transpose(1, 0, 2)
 
 
+@validated(spectrum=_SPECTRUM, k=_eigenpairs(lambda spectrum, **_: spectrum.k))
 def multiplication_operators(spectrum: Spectrum, descriptors: ArrayLike, k: int) -> NDArray[np.float64]:
     """``Omega^f = Phi.T A diag(f) Phi`` for every descriptor column, shape (p, k, k)."""
-    spectrum = _check_spectrum(spectrum, "spectrum")
-    k = _check_k(k, spectrum)
     D = np.asarray(descriptors, dtype=np.float64)
     Phi = spectrum.vectors[:, :k]
     APhi = np.asarray(spectrum.mass @ Phi)
@@ -377,6 +384,15 @@ def _unit_columns(D: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float
     return D / np.where(norms > 0, norms, 1.0)
 
 
+@validated(
+    source=_SPECTRUM,
+    target=_SPECTRUM,
+    k=(_eigenpairs(lambda source, **_: source.k), _eigenpairs(lambda target, **_: target.k)),
+    laplacian_weight=_WEIGHT,
+    commutativity_weight=_WEIGHT,
+    orientation_weight=_WEIGHT,
+    n_operators=Integer(1),
+)
 def estimate_map(
     source_mesh: Mesh,
     target_mesh: Mesh,
@@ -424,9 +440,6 @@ def estimate_map(
     >>> bool(np.abs(C - np.eye(10)).max() < 1e-6)
     True
     """
-    source, target = _check_spectrum(source, "source"), _check_spectrum(target, "target")
-    k = _check_k(k, source)
-    k = _check_k(k, target)
     D1 = np.asarray(source_descriptors, dtype=np.float64)
     D2 = np.asarray(target_descriptors, dtype=np.float64)
     if D1.ndim != 2 or D2.ndim != 2 or D1.shape[1] != D2.shape[1]:
@@ -435,10 +448,6 @@ def estimate_map(
         raise ValueError("descriptors must have one row per vertex of their shape (source first, then target).")
     if not (np.all(np.isfinite(D1)) and np.all(np.isfinite(D2))):
         raise ValueError("descriptors contain NaN or inf.")
-    for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
-        if not (np.isscalar(w) and np.isfinite(w) and w >= 0):
-            raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
-    n_operators = check_integer(n_operators, "n_operators", 1)
     D1, D2 = _unit_columns(D1, source.mass), _unit_columns(D2, target.mass)
     A = source.project(D1, k)  # (k, p)
     B = target.project(D2, k)

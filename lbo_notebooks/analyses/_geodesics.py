@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.progress import progress_bar
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Options, Satisfies, validated
 from ._heat_method import HeatMethod
 from ..geometry._mesh import Mesh, MeshError, per_mesh
 
@@ -37,7 +37,6 @@ __all__ = [
     "METHODS",
     "check_connected",
     "distance_matrix_bytes",
-    "check_method",
     "check_memory",
     "geodesic_solver",
 ]
@@ -48,6 +47,12 @@ METHODS: tuple[str, ...] = ("heat", "exact", "fmm")
 # Show a progress bar by default once a request has at least this many sources.
 PROGRESS_THRESHOLD = 500
 
+#: Table entries (:func:`~lbo_notebooks._support.validation.validated`) of a geodesic method and of
+#: a mesh whose size later entries read; whether the mesh is connected is :func:`check_connected`'s.
+METHOD = Options(*METHODS)
+_NOT_A_MESH = "expected a Mesh, got {type}; build one with lbo_notebooks.Mesh(vertices, faces)."
+A_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message=_NOT_A_MESH)
+
 
 def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
     """Raise :class:`MeshError` if ``mesh`` has more than one connected component.
@@ -56,7 +61,7 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
     built from them exist. The message says how to keep the largest component.
     """
     if not isinstance(mesh, Mesh):
-        raise ValueError(f"expected a Mesh, got {type(mesh).__name__}; build one with lbo_notebooks.Mesh(vertices, faces).")
+        raise ValueError(_NOT_A_MESH.format(type=type(mesh).__name__))
     k = mesh.n_components
     if k > 1:
         sizes = np.bincount(mesh.component_labels)
@@ -72,13 +77,6 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
 def distance_matrix_bytes(rows: int, cols: int) -> int:
     """Bytes of a float64 ``rows x cols`` distance matrix."""
     return 8 * int(rows) * int(cols)
-
-
-def check_method(method: Any) -> str:
-    """``method`` checked to be one of :data:`METHODS` (a ``ValueError`` naming them otherwise)."""
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}.")
-    return str(method)
 
 
 def _check_sources(sources: ArrayLike, n: int, what: str = "source") -> NDArray[np.int64]:
@@ -147,13 +145,12 @@ class GeodesicSolver:
     ((2, 642), True)
     """
 
+    @validated(method=METHOD, heat_time=Number(0, open_low=True, what="a positive number (a multiple of h^2)"))
     def __init__(self, mesh: Mesh, method: GeodesicMethod = "heat", *, heat_time: float = 1.0) -> None:
         check_connected(mesh)
-        self.method = check_method(method)
-        if not (np.isscalar(heat_time) and np.isfinite(heat_time) and heat_time > 0):
-            raise ValueError(f"heat_time must be a positive number (a multiple of h^2), got {heat_time!r}.")
+        self.method = method
         self.mesh = mesh
-        self.heat_time = float(heat_time)
+        self.heat_time = heat_time
         self._V = np.ascontiguousarray(mesh.vertices, dtype=np.float64)
         self._F = np.ascontiguousarray(mesh.faces, dtype=np.int64)
         self._one: Callable[[int], NDArray[np.float64]]
@@ -271,11 +268,10 @@ def check_memory(need: int, budget: float | None, what: str, hint: str = "use fe
         )
 
 
+@validated(method=METHOD,
+           mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), message="expected a Mesh, got {type}."))
 def geodesic_solver(mesh: Mesh, method: str) -> GeodesicSolver:
     """The solver of ``mesh`` for ``method``, built once and cached on the mesh."""
-    method = check_method(method)
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"expected a Mesh, got {type(mesh).__name__}.")
     return _solver(mesh, method)
 
 
@@ -366,6 +362,14 @@ def _graph_farthest_points(mesh: Mesh, k: int, start: int) -> NDArray[np.int64]:
 SampleSelection = Literal["geodesic", "graph"]
 
 
+@validated(
+    method=METHOD,
+    mesh=A_MESH,
+    k=Integer(1, lambda mesh, **_: mesh.n_vertices, what="an integer between 1 and the number of vertices ({high})",
+              hint="you cannot pick more samples than the mesh has vertices"),
+    select=Options("geodesic", "graph", message="select must be 'geodesic' or 'graph' (the distance samples are "
+                   "chosen in), got {value!r}."),
+)
 def farthest_point_sampling(
     mesh: Mesh,
     k: int,
@@ -423,17 +427,9 @@ def farthest_point_sampling(
     >>> int(s[0]), bool(np.linalg.norm(sphere.vertices[s].sum(axis=0)) < 1e-9)  # antipodes
     (0, True)
     """
-    method = check_method(method)
     check_connected(mesh)
     n = mesh.n_vertices
-    check_integer(
-        k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})",
-        hint="you cannot pick more samples than the mesh has vertices",
-    )
     start = int(_check_sources(start, n)[0])
-    k = int(k)
-    if select not in ("geodesic", "graph"):
-        raise ValueError(f"select must be 'geodesic' or 'graph' (the distance samples are chosen in), got {select!r}.")
     if select == "graph":
         # The solver factorises while the graph search runs (SuperLU releases the GIL), so
         # the two overlap instead of running one after the other.

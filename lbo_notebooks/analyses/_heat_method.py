@@ -31,6 +31,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from .._support.validation import Number, Satisfies, validated
 from ..geometry._mesh import Mesh, MeshError, per_mesh
 from ..spectral._solvers import default_workers, mesh_order_where_it_pays, one_blas_thread, symmetric_lu
 
@@ -185,17 +186,17 @@ class HeatMethod:
     ((2, 642), True)
     """
 
+    @validated(
+        mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), message="HeatMethod needs a Mesh, got {type}."),
+        t_coef=Number(0, open_low=True, what="a positive number (the diffusion time in units of h^2; try 1.0)"),
+    )
     def __init__(self, mesh: Mesh, t_coef: float = 1.0) -> None:
         from ..operators._robust import robust_operators
 
-        if not isinstance(mesh, Mesh):
-            raise ValueError(f"HeatMethod needs a Mesh, got {type(mesh).__name__}.")
-        if isinstance(t_coef, bool) or not (np.isscalar(t_coef) and np.isfinite(t_coef) and t_coef > 0):
-            raise ValueError(f"t_coef must be a positive number (the diffusion time in units of h^2; try 1.0), got {t_coef!r}.")
         self.n = mesh.n_vertices
         self._mesh = mesh
         self._G, self._divergence = _gradient(mesh)
-        t = float(t_coef) * mesh.mean_edge_length**2
+        t = t_coef * mesh.mean_edge_length**2
         W_delaunay, A_delaunay = robust_operators(mesh)
         # Both factorisations at once (SuperLU releases the GIL while it factorises). The intrinsic
         # Delaunay operators have a pattern of their own (flipped edges: on a stretched torus a

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Satisfies, validated
 from .._support.progress import LARGE_MESH, check_progress, progress_bar
 from ..spectral._solvers import one_blas_thread
 from ._functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
@@ -33,10 +33,9 @@ from ..spectral._spectrum import eigenbasis
 __all__ = ["match", "matching_error", "error_curve"]
 
 
-def _check_mesh(mesh: Mesh, name: str) -> Mesh:
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"{name} must be a Mesh, got {type(mesh).__name__}; build one with lbo_notebooks.Mesh(vertices, faces).")
-    return mesh
+_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh),
+                  message="{name} must be a Mesh, got {type}; build one with lbo_notebooks.Mesh(vertices, faces).")
+_WEIGHT = Number(0)
 
 
 def _unit_area(mesh: Mesh) -> Mesh:
@@ -54,10 +53,30 @@ N_SAMPLES = 2000
 EIGEN_TOL = 1e-6
 
 
-def _check_count(name: str, value: Any, minimum: int, hint: str | None = None) -> int:
-    return check_integer(value, name, minimum, what=f"an integer >= {minimum}", hint=hint)
+def _count(minimum: Any, hint: Any = None, none: bool = False) -> Integer:
+    """An integer >= ``minimum`` (a number or a callable of the arguments), said so even for 1."""
+    return Integer(minimum, what="an integer >= {low}", hint=hint, none=none)
 
 
+# Every argument is checked before anything is computed.
+@validated(
+    source=_MESH,
+    target=_MESH,
+    k=_count(2),
+    k_final=(_count(2), Integer(lambda k, **_: k, message="k_final ({value}) must be at least k ({low}); "
+                                                          "use k_final=k to skip ZoomOut.")),
+    alpha=Number(0, 1, what="a number in [0, 1] (the exponent of the metric |K|^alpha g)"),
+    n_descriptors=_count(1, "it is the number of WKS energies"),
+    laplacian_weight=_WEIGHT,
+    commutativity_weight=_WEIGHT,
+    orientation_weight=_WEIGHT,
+    zoomout_step=_count(1, "it is the number of functions ZoomOut adds per iteration"),
+    n_samples=_count(
+        lambda k_final, **_: 2 * k_final, none=True,
+        hint=lambda k_final, **_: f"ZoomOut fits maps of up to k_final={k_final} functions on the samples; "
+                                  "use n_samples=None for every vertex",
+    ),
+)
 def match(
     source: Mesh,
     target: Mesh,
@@ -123,27 +142,10 @@ def match(
     from ._functional_maps import estimate_map, zoomout
     from ._geodesics import farthest_point_sampling
 
-    # Every argument is checked before anything is computed.
-    source, target = _check_mesh(source, "source"), _check_mesh(target, "target")
-    k = _check_count("k", k, 2)
-    k_final = _check_count("k_final", k_final, 2)
-    if k_final < k:
-        raise ValueError(f"k_final ({k_final}) must be at least k ({k}); use k_final=k to skip ZoomOut.")
+    # The table cannot say "smaller than" with the count itself in the message (its bound would be n_min - 1).
     n_min = min(source.n_vertices, target.n_vertices)
     if k_final >= n_min:
         raise ValueError(f"k_final ({k_final}) must be smaller than the vertex count of the smaller shape ({n_min}).")
-    if isinstance(alpha, bool) or not (np.isscalar(alpha) and np.isfinite(alpha) and 0.0 <= float(alpha) <= 1.0):
-        raise ValueError(f"alpha must be a number in [0, 1] (the exponent of the metric |K|^alpha g), got {alpha!r}.")
-    n_descriptors = _check_count("n_descriptors", n_descriptors, 1, "it is the number of WKS energies")
-    for name, w in (("laplacian_weight", laplacian_weight), ("commutativity_weight", commutativity_weight), ("orientation_weight", orientation_weight)):
-        if isinstance(w, bool) or not (np.isscalar(w) and np.isfinite(w) and w >= 0):
-            raise ValueError(f"{name} must be a non-negative number, got {w!r}.")
-    zoomout_step = _check_count("zoomout_step", zoomout_step, 1, "it is the number of functions ZoomOut adds per iteration")
-    if n_samples is not None:
-        n_samples = _check_count(
-            "n_samples", n_samples, 2 * k_final,
-            f"ZoomOut fits maps of up to k_final={k_final} functions on the samples; use n_samples=None for every vertex",
-        )
     check_progress(progress)
 
     sampled = n_samples is not None and n_min > 2.5 * n_samples
@@ -186,6 +188,7 @@ def match(
     return p2p
 
 
+@validated(source=_MESH)
 def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method: str = "heat") -> NDArray[np.float64]:
     """Geodesic error of a correspondence on the source, per target vertex, divided by ``sqrt(area)``.
 
@@ -215,7 +218,6 @@ def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method:
     """
     from ._geodesics import GeodesicSolver
 
-    source = _check_mesh(source, "source")
     pred, true = np.asarray(p2p), np.asarray(true_p2p)
     n = source.n_vertices
     for name, arr in (("p2p", pred), ("true_p2p", true)):

@@ -34,21 +34,30 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Options, Satisfies, validated
 from .._support.progress import LARGE_MESH, check_progress, progress_bar
 from ..spectral._solvers import one_blas_thread
 from ._geodesics import (
+    A_MESH,
+    METHOD,
     GeodesicMethod,
     check_connected,
     check_memory,
-    check_method,
     distance_matrix_bytes,
     farthest_point_sampling,
     geodesic_solver,
 )
 from ..spectral._inner_product import DiagonalMass, fix_signs, mass_operator
 from ..geometry._mesh import Mesh
-from ._classical_scaling import check_dim, check_samples, scaling_in_span, top_eigenpairs
+from ._classical_scaling import (
+    DIM,
+    check_dim,
+    check_samples,
+    dim_below,
+    sample_count,
+    scaling_in_span,
+    top_eigenpairs,
+)
 from ..spectral._spectrum import Spectrum, eigenbasis
 
 __all__ = [
@@ -94,6 +103,7 @@ SAMPLED = ("fields", "rows", "pairs")
 
 
 # --- classical MDS ----------------------------------------------------------------------------
+@validated(dim=DIM)
 def classical_mds(
     distances: ArrayLike | Mesh,
     dim: int = 3,
@@ -141,11 +151,11 @@ def classical_mds(
         mesh = distances
         check_connected(mesh, "classical MDS on geodesic distances")
         n = mesh.n_vertices
-        check_dim(dim, n, "the number of vertices")
+        dim = check_dim(dim, n, "the number of vertices")
         check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
                       "simplify the mesh (fewer vertices)")
-        D2 = geodesic_solver(mesh, check_method(method)).distances(
+        D2 = geodesic_solver(mesh, method).distances(
             np.arange(n), progress=progress, memory_budget=float("inf")
         )
         np.square(D2, out=D2)  # our own buffer: square in place
@@ -154,7 +164,7 @@ def classical_mds(
         if D.ndim != 2 or D.shape[0] != D.shape[1]:
             raise ValueError(f"distances must be a square (n, n) matrix, got shape {D.shape}.")
         n = D.shape[0]
-        check_dim(dim, n, "the number of points")
+        dim = check_dim(dim, n, "the number of points")
         if not np.all(np.isfinite(D)):
             raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
         if np.any(D < 0):
@@ -163,7 +173,6 @@ def classical_mds(
                       f"classical MDS on {n} points (two more {n} x {n} float64 matrices)",
                       "use fewer points")
         D2 = np.square(D)  # a new buffer: the caller's matrix is never modified
-    dim = int(dim)
     # B = -1/2 J D2 J with D2 symmetrised (heat distances are not exactly symmetric).
     B = np.add(D2, D2.T)
     del D2
@@ -179,6 +188,7 @@ def classical_mds(
 
 
 # --- landmark MDS -----------------------------------------------------------------------------
+@validated(dim=DIM)
 def landmark_mds(
     mesh_or_distances: Mesh | ArrayLike,
     dim: int = 3,
@@ -268,21 +278,16 @@ def landmark_mds(
 ENERGIES: dict[str, int] = {"dirichlet": 1, "biharmonic": 2}
 
 
-def _check_sampled(sampled: Any) -> str:
-    if not isinstance(sampled, str) or sampled not in SAMPLED:
-        raise ValueError(
-            f"sampled must be 'fields' (the samples' distance fields, unprojected), 'rows' (those fields "
-            f"projected onto the eigenfunctions) or 'pairs' (the distances among the samples only), got {sampled!r}."
-        )
-    return sampled
+_ENERGY = Options(*ENERGIES, message=f"energy must be one of {sorted(ENERGIES)} (the interpolation's smoothness "
+                  "term), got {value!r}.")
 
 
-def _check_energy(energy: Any) -> int:
-    if not isinstance(energy, str) or energy not in ENERGIES:
-        raise ValueError(f"energy must be one of {sorted(ENERGIES)} (the interpolation's smoothness term), got {energy!r}.")
-    return ENERGIES[energy]
+def _or_default(name: str, value: int | None, mesh: Mesh) -> int:
+    """``k`` or ``n_samples`` as passed, or by default that of :data:`SMDS_DEFAULTS`, at most the vertex count."""
+    return min(SMDS_DEFAULTS[name], mesh.n_vertices) if value is None else value
 
 
+@validated(energy=_ENERGY)
 def scale_mu(
     mu: float, phi_s: NDArray[np.float64], eigenvalues: NDArray[np.float64], *, energy: str = "dirichlet"
 ) -> float:
@@ -299,7 +304,7 @@ def scale_mu(
     >>> scale_mu(0.5, phi_s, lam), scale_mu(0.5, phi_s, lam, energy="biharmonic")
     (0.125, 0.03125)
     """
-    power = _check_energy(energy)
+    power = ENERGIES[energy]
     top = float(np.linalg.norm(phi_s, 2)) ** 2
     return float(mu) * top / float(eigenvalues[-1]) ** power
 
@@ -337,6 +342,22 @@ def _scaling_with_fields(
     return phi @ y[:k] + fields.T @ y[k:], G
 
 
+@validated(
+    mesh=A_MESH,
+    method=METHOD,
+    k=Integer(2, lambda mesh, **_: mesh.n_vertices, none=True,
+              what="an integer between 2 and the number of vertices ({high})"),
+    dim=dim_below(lambda mesh, k, **_: _or_default("k", k, mesh),
+                  "k (the embedding lives in the span of the eigenfunctions)"),
+    n_samples=sample_count(lambda mesh, **_: mesh.n_vertices, none=True),
+    energy=_ENERGY,
+    sampled=Options(*SAMPLED, message=(
+        "sampled must be 'fields' (the samples' distance fields, unprojected), 'rows' (those fields projected onto "
+        "the eigenfunctions) or 'pairs' (the distances among the samples only), got {value!r}.")),
+    mu=Number(0, open_low=True, what="a positive number (dimensionless; try 0.05)"),
+    spectrum=Satisfies(lambda spectrum: isinstance(spectrum, Spectrum), none=True,
+                       message="spectrum must be a Spectrum (from eigenbasis), got {type}."),
+)
 def spectral_mds(
     mesh: Mesh,
     dim: int = 3,
@@ -436,18 +457,8 @@ def spectral_mds(
     t0 = time.perf_counter()
     check_connected(mesh, "spectral MDS")
     n = mesh.n_vertices
-    method = check_method(method)
-    if k is None:
-        k = min(SMDS_DEFAULTS["k"], n)
-    if n_samples is None:
-        n_samples = min(SMDS_DEFAULTS["n_samples"], n)
-    k = check_integer(k, "k", 2, n, what=f"an integer between 2 and the number of vertices ({n})")
-    dim = check_dim(dim, k, "k (the embedding lives in the span of the eigenfunctions)")
-    q = check_samples(n_samples, n)
-    power = _check_energy(energy)
-    sampled = _check_sampled(sampled)
-    if not (np.isscalar(mu) and np.isfinite(mu) and mu > 0):
-        raise ValueError(f"mu must be a positive number (dimensionless; try 0.05), got {mu!r}.")
+    k, q = _or_default("k", k, mesh), _or_default("n_samples", n_samples, mesh)
+    power = ENERGIES[energy]
     check_progress(progress)
 
     # One BLAS thread throughout (unless the user chose the count): the eigensolver and the heat
@@ -458,8 +469,6 @@ def spectral_mds(
         bar.set_postfix_str("eigenbasis", refresh=True)
         if spectrum is None:
             spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL, progress=False)
-        elif not isinstance(spectrum, Spectrum):
-            raise ValueError(f"spectrum must be a Spectrum (from eigenbasis), got {type(spectrum).__name__}.")
         elif spectrum.n_vertices != n or spectrum.k < k:
             raise ValueError(
                 f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "

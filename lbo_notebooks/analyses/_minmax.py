@@ -26,7 +26,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Options, Satisfies, validated
 from ..spectral._inner_product import (
     a_orthonormalize,
     check_functions,
@@ -46,6 +46,8 @@ __all__ = [
 ]
 
 Method = Literal["auto", "dense", "sparse"]
+
+_METHOD = Options("auto", "dense", "sparse", message="method must be 'auto', 'dense' or 'sparse', got {value!r}.")
 
 # Below this many free dimensions (n minus the codimension) Lanczos has no room: solve densely.
 _LANCZOS_ROOM = 50
@@ -182,6 +184,7 @@ def min_rayleigh_quotient(
     stiffness: ArrayLike | sp.spmatrix, mass: ArrayLike | sp.spmatrix, orthogonal_to: ArrayLike | None = ..., *,
     method: Method = ..., return_vector: Literal[True],
 ) -> tuple[float, NDArray[np.float64]]: ...
+@validated(method=_METHOD)
 def min_rayleigh_quotient(
     stiffness: ArrayLike | sp.spmatrix,
     mass: ArrayLike | sp.spmatrix,
@@ -228,6 +231,7 @@ def min_rayleigh_quotient(
     return ConstrainedRayleigh(W, A).minimum(orthogonal_to, return_vector=return_vector)
 
 
+@validated(n_vertices=Integer(1), k=Integer(0, lambda n_vertices, **_: n_vertices - 1))
 def random_subspace(
     n_vertices: int, k: int, *, seed: int = 0, pool: ArrayLike | None = None
 ) -> NDArray[np.float64]:
@@ -254,19 +258,22 @@ def random_subspace(
     >>> random_subspace(100, 5, seed=1).shape
     (100, 5)
     """
-    check_integer(n_vertices, "n_vertices", 1)
-    check_integer(k, "k", 0, n_vertices - 1)
     rng = np.random.default_rng(seed)
     if pool is None:
-        return rng.normal(size=(int(n_vertices), int(k)))
+        return rng.normal(size=(n_vertices, k))
     P = np.asarray(pool, dtype=np.float64)
     if P.ndim != 2 or P.shape[0] != n_vertices or not np.all(np.isfinite(P)):
         raise ValueError(f"pool must be a finite array of shape ({n_vertices}, m), got {P.shape}.")
     if P.shape[1] < k:
         raise ValueError(f"pool has {P.shape[1]} columns; it needs at least k = {k} to span a codimension-{k} constraint set.")
-    return P @ rng.normal(size=(P.shape[1], int(k)))
+    return P @ rng.normal(size=(P.shape[1], k))
 
 
+@validated(
+    spectrum=Satisfies(lambda s: isinstance(s, Spectrum), message="spectrum must be a Spectrum, got {type}."),
+    k=Integer(0, lambda spectrum, **_: spectrum.k - 1,
+              what=lambda spectrum, **_: f"an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known)"),
+)
 def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     """Constraints of the optimal codimension-k subspace: the first k eigenvectors.
 
@@ -280,10 +287,7 @@ def optimal_subspace(spectrum: Spectrum, k: int) -> NDArray[np.float64]:
     >>> bool(abs(min_rayleigh_quotient(s.stiffness, s.mass, C) - s.values[4]) < 1e-9 * s.values[4])
     True
     """
-    if not isinstance(spectrum, Spectrum):
-        raise ValueError(f"spectrum must be a Spectrum, got {type(spectrum).__name__}.")
-    check_integer(k, "k", 0, spectrum.k - 1, what=f"an integer with 0 <= k < spectrum.k = {spectrum.k} (lam[k] must be known)")
-    return np.array(spectrum.vectors[:, : int(k)])
+    return np.array(spectrum.vectors[:, :k])
 
 
 def complement_ratio(basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix) -> float:

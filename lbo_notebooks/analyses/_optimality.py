@@ -26,7 +26,7 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import check_integer
+from .._support.validation import Integer, Options, Satisfies, validated
 from ..spectral._inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
 from ..spectral._solvers import start_vector, symmetric_lu, use_dense
 from ..spectral._spectrum import Spectrum
@@ -44,12 +44,9 @@ Method = Literal["auto", "dense", "sparse"]
 
 
 # --- input checks ----------------------------------------------------------------------------
-def _check_spectrum(spectrum: Spectrum) -> Spectrum:
-    if not isinstance(spectrum, Spectrum):
-        raise ValueError(
-            f"spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type(spectrum).__name__}."
-        )
-    return spectrum
+_SPECTRUM = Satisfies(lambda s: isinstance(s, Spectrum),
+                      message="spectrum must be a Spectrum (from lbo_notebooks.eigenbasis), got {type}.")
+_METHOD = Options("auto", "dense", "sparse", message="method must be 'auto', 'dense' or 'sparse', got {value!r}.")
 
 
 def _check_basis(basis: ArrayLike, n_vertices: int) -> NDArray[np.float64]:
@@ -98,6 +95,7 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     return float(out) if arr.ndim == 1 else np.asarray(out)
 
 
+@validated(spectrum=_SPECTRUM)
 def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
     """Squared A-norm error ``||f - Phi_k Phi_k.T A f||_A^2`` of the k-term eigen-expansion.
 
@@ -123,10 +121,11 @@ def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np
     >>> round(representation_error(s, x, 4), 10)
     1.0
     """
-    err = _check_spectrum(spectrum).error(f, k)
+    err = spectrum.error(f, k)
     return err**2 if isinstance(err, float) else np.asarray(err) ** 2
 
 
+@validated(spectrum=_SPECTRUM, k=Integer(what="an integer number of eigenfunctions"))
 def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
     """The theorem's bound ``(f @ W @ f) / lam[k]`` on :func:`representation_error`.
 
@@ -142,14 +141,13 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64]
     >>> bool(representation_error(s, z ** 3, 9) <= error_bound(s, z ** 3, 9))
     True
     """
-    spectrum = _check_spectrum(spectrum)
-    check_integer(k, "k", what="an integer number of eigenfunctions")
+    # Inline: the message states spectrum.k, one more than the largest k allowed (a table bound).
     if not 1 <= k < spectrum.k:
         raise ValueError(
             f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "
             "Compute the spectrum with more than k eigenpairs."
         )
-    lam = float(spectrum.values[int(k)])
+    lam = float(spectrum.values[k])
     if not lam > 0:
         raise ValueError(f"lam[{k}] = {lam:.3g} is not positive: the surface has more than {k} components.")
     return dirichlet_energy(spectrum.stiffness, f) / lam
@@ -253,6 +251,7 @@ def worst_case_ratio(
 def worst_case_ratio(
     basis: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, method: Method = ..., return_vector: Literal[True]
 ) -> tuple[float, NDArray[np.float64]]: ...
+@validated(method=_METHOD)
 def worst_case_ratio(
     basis: ArrayLike,
     stiffness: sp.spmatrix,
@@ -342,6 +341,7 @@ def worst_case_ratio(
     return value, fix_signs(f / np.sqrt(float(r @ (A @ r))), A)
 
 
+@validated(spectrum=_SPECTRUM)
 def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
     """The witness argument (notebook 05, section 6): a nonzero ``f`` in span(phi_0..phi_n) A-orthogonal to V.
 
@@ -364,7 +364,6 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     >>> bool(np.abs(B.T @ s.mass @ f).max() < 1e-10 and f @ s.stiffness @ f <= s.values[8] * (1 + 1e-12))
     True
     """
-    spectrum = _check_spectrum(spectrum)
     arr = _check_basis(basis, spectrum.n_vertices)
     n = arr.shape[1]
     if n + 1 > spectrum.k:

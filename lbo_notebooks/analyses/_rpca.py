@@ -55,7 +55,7 @@ eigenbasis, and a given ``beta`` gives the same basis whatever the shape's size 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal, Sequence
+from typing import Any, Literal, Sequence
 
 import numpy as np
 import scipy.linalg
@@ -63,7 +63,7 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.progress import LARGE_MESH, check_progress, progress_bar
-from .._support.validation import check_integer
+from .._support.validation import Integer, Number, Options, Satisfies, validated
 from ..spectral._inner_product import (
     a_orthonormalize,
     check_operators,
@@ -98,32 +98,34 @@ def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
     return np.array(X, copy=True)
 
 
-def _check_k(k: int, n: int) -> int:
-    k = check_integer(k, "k", what="an integer number of basis functions")
-    if not 1 <= k <= n:
-        raise ValueError(f"k must be between 1 and the number of vertices ({n}), got {k}.")
-    return int(k)
+def _basis_size(n: Any) -> tuple[Integer, Integer]:
+    """``k``: an integer in 1..``n(**arguments)`` (the number of vertices)."""
+    return (
+        Integer(what="an integer number of basis functions"),
+        Integer(1, n, message="k must be between 1 and the number of vertices ({high}), got {value}."),
+    )
 
 
-def _check_mu(mu: float) -> float:
-    if isinstance(mu, bool) or not np.isscalar(mu) or np.isnan(mu):
-        raise ValueError(f"mu must be a number >= 0, got {mu!r}.")
-    if mu < 0:
-        raise ValueError(
-            f"mu must be >= 0, got {mu!r}: a negative weight would reward rough functions. "
-            "Use mu = 0 for the PCA end or a beta in [0, 1] (see mu_from_beta)."
-        )
-    return float(mu)
+def _mu(none: bool = False) -> tuple[Satisfies, Satisfies]:
+    """``mu``: a number >= 0, ``inf`` included (the eigenbasis end), which :class:`Number` does not allow."""
+    return (
+        Satisfies(lambda mu: not isinstance(mu, bool) and np.isscalar(mu) and not np.isnan(mu), "a number >= 0",
+                  none=none),
+        Satisfies(lambda mu: mu >= 0, convert=float, none=none,
+                  message="mu must be >= 0, got {value!r}: a negative weight would reward rough functions. "
+                          "Use mu = 0 for the PCA end or a beta in [0, 1] (see mu_from_beta)."),
+    )
 
 
-def _check_beta(beta: float) -> float:
-    if isinstance(beta, bool) or not np.isscalar(beta) or not (0.0 <= float(beta) <= 1.0):
-        raise ValueError(f"beta must be a number in [0, 1] (0: the PCA end, 1: the Laplace–Beltrami eigenbasis), got {beta!r}.")
-    return float(beta)
+def _beta(none: bool = False) -> Number:
+    return Number(0, 1, none=none, what="a number in [0, 1] (0: the PCA end, 1: the Laplace–Beltrami eigenbasis)")
+
+
+_K = _basis_size(lambda self, **_: self.n_vertices)
+_METHOD = Options("auto", "dense", "sparse", message="method must be 'auto', 'dense' or 'sparse', got {value!r}.")
 
 
 def _mu_from_beta(beta: float, s_B: float, lam_ref: float) -> float:
-    beta = _check_beta(beta)
     if beta == 1.0:
         return float("inf")
     if s_B <= 0.0:
@@ -239,17 +241,19 @@ class RegularizedPCA:
         """``s_B``: the largest eigenvalue of ``(A X X.T A, A)``, i.e. of ``X.T A X``."""
         return float(max(self.data_values[0], 0.0))
 
+    @validated(k=_K)
     def reference_eigenvalue(self, k: int) -> float:
         """Weyl's estimate ``4 pi k / area`` of the k-th Laplace–Beltrami eigenvalue."""
-        return 4.0 * np.pi * _check_k(k, self.n_vertices) / self.area
+        return 4.0 * np.pi * k / self.area
 
+    @validated(k=_K, beta=_beta())
     def mu_from_beta(self, beta: float, k: int) -> float:
         """Raw weight ``mu = beta / (1 - beta) * s_B / lam_ref`` for a dimensionless ``beta``."""
         return _mu_from_beta(beta, self.top_data_value, self.reference_eigenvalue(k))
 
+    @validated(mu=_mu())
     def beta_from_mu(self, mu: float, k: int) -> float:
         """Inverse of :meth:`mu_from_beta`."""
-        mu = _check_mu(mu)
         if np.isinf(mu):
             return 1.0
         if self.top_data_value <= 0.0:
@@ -258,6 +262,7 @@ class RegularizedPCA:
         return r / (1.0 + r)
 
     # ---- solving ----
+    @validated(k=_K, mu=_mu(none=True), beta=_beta(none=True), method=_METHOD)
     def solve(self, k: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
         """The regularized PCA basis of size ``k`` for weight ``mu`` (or dimensionless ``beta``).
 
@@ -278,10 +283,9 @@ class RegularizedPCA:
         -------
         RPCAResult
         """
-        k = _check_k(k, self.n_vertices)
         if (mu is None) == (beta is None):
             raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
-        mu = self.mu_from_beta(beta, k) if beta is not None else _check_mu(mu)
+        mu = self.mu_from_beta(beta, k) if beta is not None else mu
         n, c = self.data.shape
         method = "dense" if use_dense(n, method) else "sparse"
         if method == "sparse" and 2 * k + c + 2 > n:
@@ -458,6 +462,7 @@ def regularized_pca(
     return (basis, np.array(result.values)) if return_values else basis
 
 
+@validated(k=_basis_size(lambda mass, **_: np.shape(mass)[0]), beta=_beta())
 def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
 
@@ -483,12 +488,12 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, cen
         X = _centred(X, A)
     gram = X.T @ (A @ X)
     s_B = float(np.linalg.eigvalsh((gram + gram.T) / 2)[-1])
-    return _mu_from_beta(beta, s_B, 4.0 * np.pi * _check_k(k, A.shape[0]) / float(A.sum()))
+    return _mu_from_beta(beta, s_B, 4.0 * np.pi * k / float(A.sum()))
 
 
+@validated(mu=_mu())
 def beta_from_mu(mu: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Inverse of :func:`mu_from_beta`."""
-    mu = _check_mu(mu)
     if np.isinf(mu):
         return 1.0
     unit = mu_from_beta(0.5, data, mass, k, center=center)  # = s_B / lam_ref

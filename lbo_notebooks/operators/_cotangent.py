@@ -13,12 +13,18 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from .._support.validation import Options, validated
 from ..geometry._mesh import Mesh, per_mesh
 
-__all__ = ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "check_mass_kind"]
+__all__ = [
+    "stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "MASS_KIND",
+    "check_mass_kind",
+]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
 MASS_KINDS: tuple[str, ...] = ("voronoi", "barycentric", "consistent")
+#: The ``mass_kind`` constraint of every table that takes one (:func:`~lbo_notebooks._support.validation.validated`).
+MASS_KIND = Options(*MASS_KINDS)
 
 
 @per_mesh
@@ -144,11 +150,10 @@ def check_mass_kind(mass_kind: Any) -> str:
     >>> check_mass_kind("voronoi")
     'voronoi'
     """
-    if not isinstance(mass_kind, str) or mass_kind not in MASS_KINDS:
-        raise ValueError(f"mass_kind must be one of {MASS_KINDS}, got {mass_kind!r}.")
-    return mass_kind
+    return MASS_KIND.check(mass_kind, "mass_kind", {})
 
 
+@validated(mass_kind=MASS_KIND)
 def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
 
@@ -167,4 +172,4 @@ def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     >>> float(mass_matrix(m).sum())
     2.0
     """
-    return _mass(mesh, check_mass_kind(mass_kind)).copy()
+    return _mass(mesh, mass_kind).copy()

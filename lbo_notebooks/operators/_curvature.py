@@ -47,9 +47,9 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._support.validation import check_number
+from .._support.validation import Number, Options, Satisfies, validated
 from ..geometry._mesh import Mesh, per_mesh
-from ._cotangent import MassKind, check_mass_kind, corner_angles, mass_matrix
+from ._cotangent import MASS_KIND, MassKind, corner_angles, mass_matrix
 
 __all__ = [
     "DEFAULT_FLOOR",
@@ -64,21 +64,13 @@ __all__ = [
 DEFAULT_FLOOR = 1e-3
 
 
-def _check_alpha(alpha: float) -> float:
-    return check_number(alpha, "alpha", 0, 1, what="a number in [0, 1] (0: regular metric, 1: scale-invariant)")
-
-
-def _check_floor(floor: float) -> float:
-    return check_number(
-        floor, "floor", 0, open_low=True, what="a positive finite number (a fraction of 4 pi / area, e.g. 1e-3)",
-        hint="a zero floor would give flat regions zero mass and a singular mass matrix",
-    )
-
-
-def _check_mesh(mesh: Mesh) -> Mesh:
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"expected a lbo_notebooks.Mesh, got {type(mesh).__name__}; build one with Mesh(vertices, faces).")
-    return mesh
+_ALPHA = Number(0, 1, what="a number in [0, 1] (0: regular metric, 1: scale-invariant)")
+_FLOOR = Number(
+    0, open_low=True, what="a positive finite number (a fraction of 4 pi / area, e.g. 1e-3)",
+    hint="a zero floor would give flat regions zero mass and a singular mass matrix",
+)
+_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message=lambda name, value: (
+    f"expected a lbo_notebooks.Mesh, got {type(value).__name__}; build one with Mesh(vertices, faces)."))
 
 
 @per_mesh
@@ -117,6 +109,7 @@ def _angle_defects(m: Mesh) -> NDArray[np.float64]:
     return out
 
 
+@validated(mesh=_MESH)
 def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
     """Angle defect at each vertex: ``2 pi - sum of angles`` (``pi - sum`` on the boundary).
 
@@ -130,7 +123,6 @@ def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
     >>> bool(abs(d.sum() - 4 * np.pi) < d.size * np.finfo(float).eps * 4 * np.pi)  # Gauss-Bonnet
     True
     """
-    _check_mesh(mesh)
     return _angle_defects(mesh)
 
 
@@ -141,6 +133,7 @@ def _gaussian_curvature(m: Mesh) -> NDArray[np.float64]:
     return out
 
 
+@validated(mesh=_MESH)
 def gaussian_curvature(mesh: Mesh) -> NDArray[np.float64]:
     """Gaussian curvature per vertex: angle defect divided by the mixed Voronoi vertex area.
 
@@ -165,7 +158,6 @@ def gaussian_curvature(mesh: Mesh) -> NDArray[np.float64]:
     >>> bool(abs(np.median(K) - 0.25) < 0.01)
     True
     """
-    _check_mesh(mesh)
     return _gaussian_curvature(mesh)
 
 
@@ -194,6 +186,7 @@ def _rho(m: Mesh, floor: float) -> NDArray[np.float64]:
     return out
 
 
+@validated(mesh=_MESH, floor=_FLOOR)
 def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.float64]:
     """The regularised ``|K|`` per vertex that defines the metric, ``rho`` (see the module notes).
 
@@ -220,10 +213,13 @@ def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.
     >>> bool(np.allclose(rho, 1e-3 * 4 * np.pi / 2.0))
     True
     """
-    _check_mesh(mesh)
-    return _rho(mesh, _check_floor(floor))
+    return _rho(mesh, floor)
 
 
+@validated(
+    alpha=_ALPHA, mesh=_MESH, floor=_FLOOR,
+    where=Options("vertex", "face", message="where must be 'vertex' or 'face', got {value!r}."),
+)
 def conformal_factor(
     mesh: Mesh,
     alpha: float,
@@ -254,15 +250,13 @@ def conformal_factor(
     >>> float(conformal_factor(m, 0.0).max()), conformal_factor(m, 0.5, where="face").shape
     (1.0, (320,))
     """
-    alpha = _check_alpha(alpha)
     rho = metric_curvature(mesh, floor=floor)
     if where == "vertex":
         return rho**alpha
-    if where == "face":
-        return rho[mesh.faces].mean(axis=1) ** alpha
-    raise ValueError(f"where must be 'vertex' or 'face', got {where!r}.")
+    return rho[mesh.faces].mean(axis=1) ** alpha
 
 
+@validated(mesh=_MESH, alpha=_ALPHA, floor=_FLOOR, mass_kind=MASS_KIND)
 def metric_mass_matrix(
     mesh: Mesh,
     alpha: float,
@@ -300,10 +294,7 @@ def metric_mass_matrix(
     >>> bool(abs(a.diagonal() - b.diagonal()).max() < 1e-12 * a.diagonal().max())
     True
     """
-    _check_mesh(mesh)
-    alpha = _check_alpha(alpha)
-    floor = _check_floor(floor)
-    base = mass_matrix(mesh, check_mass_kind(mass_kind))
+    base = mass_matrix(mesh, mass_kind)
     if alpha == 0.0:
         return base
     if mass_kind == "consistent":

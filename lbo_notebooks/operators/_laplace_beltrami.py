@@ -23,10 +23,10 @@ from typing import Any
 
 import scipy.sparse as sp
 
-from .._support.validation import check_number
+from .._support.validation import Number, Options, validated
 from .._support.warning import warn
 from ..geometry._mesh import Mesh, MeshError, check_coordinate_range
-from ._cotangent import check_mass_kind, mass_matrix, stiffness_matrix
+from ._cotangent import MASS_KIND, mass_matrix, stiffness_matrix
 from ..geometry._pointcloud import PointCloud
 from ._robust import (
     LAPLACIANS,
@@ -40,6 +40,10 @@ from ._robust import (
 
 __all__ = ["laplace_beltrami", "select_operators"]
 
+_LAPLACIAN = Options(*LAPLACIANS)
+
+
+@validated(laplacian=_LAPLACIAN, mass_kind=MASS_KIND, alpha=Number(0, 1))
 
 def laplace_beltrami(
     shape: Mesh | PointCloud,
@@ -70,17 +74,16 @@ def laplace_beltrami(
     robust = select_operators(shape, laplacian, mass_kind=mass_kind, alpha=alpha, n_neighbors=n_neighbors)
     if robust is not None:
         return robust
-    check_mass_kind(mass_kind)
-    check_number(alpha, "alpha", 0, 1)
     W = stiffness_matrix(shape)
-    if float(alpha) == 0.0:
+    if alpha == 0.0:
         return W, mass_matrix(shape, mass_kind)
     from ._curvature import DEFAULT_FLOOR, metric_mass_matrix
 
     floor = DEFAULT_FLOOR if curvature_floor is None else curvature_floor
-    return W, metric_mass_matrix(shape, float(alpha), mass_kind=mass_kind, floor=floor)
+    return W, metric_mass_matrix(shape, alpha, mass_kind=mass_kind, floor=floor)
 
 
+@validated(laplacian=_LAPLACIAN)
 def select_operators(
     shape: Any,
     laplacian: str,
@@ -106,8 +109,6 @@ def select_operators(
     >>> W.shape
     (42, 42)
     """
-    if laplacian not in LAPLACIANS:
-        raise ValueError(f"laplacian must be one of {LAPLACIANS}, got {laplacian!r}.")
     if isinstance(shape, PointCloud):
         if laplacian == "cotan":
             raise ValueError("a point cloud has no triangles for the cotangent Laplacian; use laplacian='auto' or 'robust'.")

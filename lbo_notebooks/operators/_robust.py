@@ -33,7 +33,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._support.validation import check_integer, is_integer
+from .._support.validation import Integer, Number, Satisfies, is_integer, validated
 from ..geometry._mesh import Mesh, MeshError
 from ..geometry._pointcloud import PointCloud
 from ..geometry._rescaling import length_exponent
@@ -66,6 +66,8 @@ N_NEIGHBORS = 30
 #: robust-laplacian's default: edge lengths are padded by this fraction of the mean edge length
 #: wherever a triangle is (nearly) degenerate, so that every intrinsic triangle is valid.
 MOLLIFY_FACTOR = 1e-5
+
+_MOLLIFY = Number(0, what=f"a number >= 0 (default {MOLLIFY_FACTOR:g})")
 
 
 class LaplacianWarning(UserWarning):
@@ -168,6 +170,11 @@ def check_referenced(mesh: Mesh) -> None:
         )
 
 
+@validated(
+    mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), message=lambda name, value: (
+        f"robust_operators needs a Mesh, got {type(value).__name__}; for points use point_cloud_operators.")),
+    mollify_factor=_MOLLIFY,
+)
 def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """The tufted intrinsic Laplacian of ``mesh``: ``(stiffness, mass)``, CSR float64.
 
@@ -191,9 +198,6 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
     >>> bool(abs(W @ np.ones(42)).max() < 1e-12 * abs(W).max()), round(float(A.sum() / (4 * np.pi)), 2)
     (True, 0.93)
     """
-    if not isinstance(mesh, Mesh):
-        raise ValueError(f"robust_operators needs a Mesh, got {type(mesh).__name__}; for points use point_cloud_operators.")
-    _check_mollify(mollify_factor)
     check_referenced(mesh)
 
     def compute(m: Mesh) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -209,6 +213,23 @@ def robust_operators(mesh: Mesh, *, mollify_factor: float = MOLLIFY_FACTOR) -> t
     return W.copy(), A.copy()
 
 
+def _max_neighbors(cloud: PointCloud, n_neighbors: Any, **_: Any) -> int:
+    """``n_points - 1``; the default :data:`N_NEIGHBORS` is always allowed (it means ``n_points - 1`` on small clouds)."""
+    if is_integer(n_neighbors) and n_neighbors == N_NEIGHBORS:
+        return max(N_NEIGHBORS, cloud.n_points - 1)
+    return cloud.n_points - 1
+
+
+@validated(
+    cloud=Satisfies(lambda cloud: isinstance(cloud, PointCloud), message=lambda name, value: (
+        f"point_cloud_operators needs a PointCloud, got {type(value).__name__}.")),
+    n_neighbors=Integer(
+        3, _max_neighbors,
+        what=lambda cloud, **_: f"an integer between 3 and the number of points - 1 ({cloud.n_points - 1})",
+        hint="the default 30 (n_points - 1 on small clouds) suits most clouds",
+    ),
+    mollify_factor=_MOLLIFY,
+)
 def point_cloud_operators(
     cloud: PointCloud, *, n_neighbors: int = N_NEIGHBORS, mollify_factor: float = MOLLIFY_FACTOR
 ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -230,16 +251,8 @@ def point_cloud_operators(
     >>> W.shape, bool(abs(A.sum() / (4 * np.pi) - 1) < 0.05)
     ((642, 642), True)
     """
-    if not isinstance(cloud, PointCloud):
-        raise ValueError(f"point_cloud_operators needs a PointCloud, got {type(cloud).__name__}.")
-    if is_integer(n_neighbors) and n_neighbors == N_NEIGHBORS:
+    if n_neighbors == N_NEIGHBORS:
         n_neighbors = min(N_NEIGHBORS, cloud.n_points - 1)
-    check_integer(
-        n_neighbors, "n_neighbors", 3, cloud.n_points - 1,
-        what=f"an integer between 3 and the number of points - 1 ({cloud.n_points - 1})",
-        hint="the default 30 (n_points - 1 on small clouds) suits most clouds",
-    )
-    _check_mollify(mollify_factor)
 
     def compute(c: Any) -> tuple[sp.csr_matrix, sp.csr_matrix]:
         import robust_laplacian
@@ -272,11 +285,6 @@ def _in_unit_size(build: Any, points: NDArray[np.float64], name: str) -> tuple[s
         ) from None
     W, A = _as_pair(L, M)
     return W, A * np.ldexp(1.0, 2 * e)
-
-
-def _check_mollify(mollify_factor: float) -> None:
-    if isinstance(mollify_factor, bool) or not (np.isscalar(mollify_factor) and np.isfinite(mollify_factor) and mollify_factor >= 0):
-        raise ValueError(f"mollify_factor must be a number >= 0 (default {MOLLIFY_FACTOR:g}), got {mollify_factor!r}.")
 
 
 def _as_pair(L: sp.spmatrix, M: sp.spmatrix) -> tuple[sp.csr_matrix, sp.csr_matrix]:

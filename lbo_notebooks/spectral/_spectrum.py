@@ -18,7 +18,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.progress import LARGE_MESH, check_progress, progress_bar
-from .._support.validation import check_integer, check_number
+from .._support.validation import Integer, Number, Options, check_integer, validated
 from .._support.warning import warn
 from ._inner_product import (
     a_orthonormalize,
@@ -37,6 +37,13 @@ from ..geometry._rescaling import unit_area_exponent
 __all__ = ["Spectrum", "eigenbasis"]
 
 Operators = tuple[sp.spmatrix, sp.spmatrix]
+
+# k of project/reconstruct/error: None means all the eigenpairs computed.
+_N_FUNCTIONS = (
+    Integer(what="an integer number of eigenfunctions", none=True),
+    Integer(0, lambda self, **_: self.k, none=True,
+            message="k must be between 0 and k={high} (the eigenpairs computed), got {value}."),
+)
 
 
 def _is_long(n: int, k: int) -> bool:
@@ -99,28 +106,23 @@ class Spectrum:
     def _check_f(self, f: ArrayLike) -> NDArray[np.float64]:
         return check_functions(f, self.n_vertices)
 
-    def _check_n(self, k: int | None) -> int:
-        if k is None:
-            return self.k
-        check_integer(k, "k", what="an integer number of eigenfunctions")
-        if not 0 <= k <= self.k:
-            raise ValueError(f"k must be between 0 and k={self.k} (the eigenpairs computed), got {k}.")
-        return int(k)
-
+    @validated(k=_N_FUNCTIONS)
     def project(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """Coefficients ``Phi_n.T @ (A @ f)`` of ``f`` in the first ``k`` eigenfunctions.
 
         ``f`` is (n_vertices,) or (n_vertices, c); the result is (k,) or (k, c).
         """
         arr = self._check_f(f)
-        k = self._check_n(k)
+        k = self.k if k is None else k
         return self.vectors[:, :k].T @ (self.mass @ arr)
 
+    @validated(k=_N_FUNCTIONS)
     def reconstruct(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """The A-orthogonal projection of ``f`` onto the span of the first ``k`` eigenfunctions."""
-        k = self._check_n(k)
+        k = self.k if k is None else k
         return self.vectors[:, :k] @ self.project(f, k)
 
+    @validated(k=_N_FUNCTIONS)
     def error(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64] | float:
         """A-norm of ``f - reconstruct(f, k)``: a float for 1-D ``f``, an array per column for 2-D."""
         arr = self._check_f(f)
@@ -130,6 +132,13 @@ class Spectrum:
         return float(out) if arr.ndim == 1 else out
 
 
+@validated(
+    shift=Number(0, open_low=True, none=True, what="a positive finite number (shift-invert runs at sigma = -shift)",
+                 hint="leave shift out for its default, 1e-2 * 4 pi / area"),
+    solver=Options("auto", "slicing", "arpack", message="solver must be 'auto', 'slicing' or 'arpack', got {value!r}."),
+    tol=Number(0, 1, open_low=True, open_high=True, none=True,
+               what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default"),
+)
 def eigenbasis(
     mesh: Union[Mesh, Operators],
     k: int,
@@ -246,8 +255,6 @@ def eigenbasis(
     n = W.shape[0]
     check_integer(k, "k", 1, n, what=f"an integer between 1 and the number of vertices ({n})")
     if shift is not None:
-        check_number(shift, "shift", 0, open_low=True, what="a positive finite number (shift-invert runs at sigma = -shift)",
-                     hint="leave shift out for its default, 1e-2 * 4 pi / area")
         limit = max_shift(W, A)
         if shift > limit:
             raise ValueError(
@@ -256,11 +263,6 @@ def eigenbasis(
                 f"Leave shift out for its default (1e-2 * 4 pi / area = {default_shift(A):.3g}), or give one of the order of "
                 "the first nonzero eigenvalue or below."
             )
-    if solver not in ("auto", "slicing", "arpack"):
-        raise ValueError(f"solver must be 'auto', 'slicing' or 'arpack', got {solver!r}.")
-    if tol is not None:
-        check_number(tol, "tol", 0, 1, open_low=True, open_high=True,
-                     what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default")
     # A Mesh's operators have its edge pattern: on large meshes the METIS order is made once per
     # mesh and shared with the heat method's factorisations; below, the solver orders the first
     # matrix it factorises (sparse_factor).

@@ -28,7 +28,7 @@ from typing import Any, Mapping
 import numpy as np
 from numpy.typing import NDArray
 
-from ..._support.validation import check_integer
+from ..._support.validation import Integer, Options, validated
 from ...geometry._mesh import Mesh
 from .rig import JOINT_ORDER, deform, rotation_vector, template_for
 from .tables import JOINTS, PARTS, POSES, SPECIES, part_joints
@@ -39,16 +39,8 @@ __all__ = [
 ]
 
 
-def _check_n_vertices(n_vertices: Any) -> int:
-    return check_integer(
-        n_vertices, "n_vertices", 1_000, 200_000, what="an integer in 1000..200000 (honoured within 10% from 2000 to 50000)"
-    )
-
-
-def _check_species(species: Any) -> str:
-    if species not in SPECIES:
-        raise ValueError(f"unknown species {species!r}; choose one of {SPECIES}.")
-    return str(species)
+_SPECIES = Options(*SPECIES, message=lambda name, value: f"unknown species {value!r}; choose one of {SPECIES}.")
+_N_VERTICES = Integer(1_000, 200_000, what="an integer in 1000..200000 (honoured within 10% from 2000 to 50000)")
 
 
 def _parse_pose(pose: Any) -> dict[str, NDArray[np.float64]]:
@@ -95,6 +87,7 @@ def _parse_parts(parts: Any) -> dict[str, float]:
     return scales
 
 
+@validated(species=_SPECIES, n_vertices=_N_VERTICES)
 def creature(
     species: str = "dog",
     pose: str | Mapping[str, float | tuple[float, float, float]] = "standing",
@@ -144,8 +137,6 @@ def creature(
     >>> bool((big_head.faces == dog.faces).all())
     True
     """
-    species = _check_species(species)
-    n_vertices = _check_n_vertices(n_vertices)
     rotations = _parse_pose(pose)
     scales = _parse_parts(parts)
     template = template_for(species, n_vertices)
@@ -154,6 +145,7 @@ def creature(
     return template.mesh.with_vertices(deform(template, rotations, scales))
 
 
+@validated(species=_SPECIES, n_vertices=_N_VERTICES)
 def creature_poses(
     species: str = "dog", n_vertices: int = 10_000, parts: Mapping[str, float] | None = None
 ) -> dict[str, Mesh]:
@@ -180,6 +172,7 @@ def creature_poses(
     return {name: creature(species, name, parts, n_vertices) for name in POSES}
 
 
+@validated(species=_SPECIES, n_vertices=_N_VERTICES)
 def creature_parts(species: str = "dog", n_vertices: int = 10_000) -> dict[str, NDArray[np.bool_]]:
     """Vertex masks of the body parts of the template (same vertex order as :func:`creature`).
 
@@ -192,8 +185,7 @@ def creature_parts(species: str = "dog", n_vertices: int = 10_000) -> dict[str, 
     >>> int(sum(m.sum() for m in masks.values())) == creature("dog", n_vertices=3000).n_vertices
     True
     """
-    species = _check_species(species)
-    template = template_for(species, _check_n_vertices(n_vertices))
+    template = template_for(species, n_vertices)
     groups = {
         "torso": ("pelvis", "spine"),
         "neck": ("neck",),
@@ -210,6 +202,7 @@ def creature_parts(species: str = "dog", n_vertices: int = 10_000) -> dict[str, 
     return out
 
 
+@validated(species=_SPECIES, n_vertices=_N_VERTICES)
 def joint_bands(species: str = "dog", n_vertices: int = 10_000) -> NDArray[np.bool_]:
     """Vertex mask of the joint bands: where some joint weight ``phi_j`` is strictly between 0 and 1.
 
@@ -222,7 +215,7 @@ def joint_bands(species: str = "dog", n_vertices: int = 10_000) -> NDArray[np.bo
     >>> bool(0.05 < bands.mean() < 0.95)
     True
     """
-    template = template_for(_check_species(species), _check_n_vertices(n_vertices))
+    template = template_for(species, n_vertices)
     w = template.weights
     mask = np.any((w > 0.0) & (w < 1.0), axis=0)
     mask.setflags(write=False)
