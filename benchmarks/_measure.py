@@ -11,7 +11,7 @@ from __future__ import annotations
 import time
 from typing import Any, Callable
 
-from lbo_notebooks._engine.threads import rebuild_thread_pools
+from lbo_notebooks.spectral._engine.threads import rebuild_thread_pools
 from lbo_notebooks._support.validation import check_integer
 
 

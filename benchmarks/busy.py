@@ -6,7 +6,7 @@ each heavy call in a fresh process, once on a quiet machine and once beside a ch
 spins (``while True: pass``), interleaved, and prints the slowdown (busy / quiet wall time).
 
 The BLAS thread variables (``OPENBLAS_NUM_THREADS`` and the others of
-:data:`lbo_notebooks._engine.threads.ENVIRONMENT`) are *removed* from the children's environment,
+:data:`lbo_notebooks.spectral._engine.threads.ENVIRONMENT`) are *removed* from the children's environment,
 as on a user's machine: OpenBLAS then starts one thread per core.
 
 With ``--baseline REV`` the same calls also run from ``git archive REV`` (a copy of that commit in
@@ -53,12 +53,12 @@ a machine loaded by other jobs (load 5-8, so "quiet" is not quiet), one round ea
     SMDS's embedding step alone: 3.9-7.3 s with OpenBLAS's threads, 0.2-0.5 s on one.
 
 The fix, by call: ``spectral_mds``, ``fast_classical_scaling`` and ``match`` run BLAS on one
-thread (:func:`~lbo_notebooks._engine.threads.one_blas_thread`), ``match``'s nearest-neighbour search
+thread (:func:`~lbo_notebooks.spectral._engine.threads.one_blas_thread`), ``match``'s nearest-neighbour search
 shares its blocks among its own worker threads; the eigensolver and the heat method did so
 already. Regularized PCA does gain from BLAS threads on an idle machine (25k vertices, 2 rounds
 on a quiet machine: 4.06 s with them, 4.86 s on one thread, ratio 1.00 busy/quiet on one thread
 and 1.81 with them), so it keeps them on large meshes when the rest of the machine is idle
-(:func:`~lbo_notebooks._engine.threads.machine_is_idle`) and takes one thread otherwise; with that
+(:func:`~lbo_notebooks.spectral._engine.threads.machine_is_idle`) and takes one thread otherwise; with that
 rule, 2 rounds: quiet new/old 1.00, busy/quiet 1.15 against the old code's 1.89.
 """
 

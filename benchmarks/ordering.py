@@ -26,7 +26,7 @@ import scipy.sparse.linalg as spla
 from threadpoolctl import threadpool_limits
 
 import lbo_notebooks as lbo
-from lbo_notebooks._engine.factor import fill_reducing_order, symmetric_lu
+from lbo_notebooks.spectral._engine.factor import fill_reducing_order, symmetric_lu
 
 from _measure import best_time  # type: ignore[import-not-found]  # benchmarks/ is the script's directory
 from mds import deformed_torus  # type: ignore[import-not-found]

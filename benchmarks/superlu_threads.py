@@ -51,8 +51,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import eigen  # noqa: E402
 
 from lbo_notebooks import mass_matrix, stiffness_matrix  # noqa: E402
-from lbo_notebooks._engine.threads import one_blas_thread  # noqa: E402
-from lbo_notebooks._engine.factor import symmetric_lu  # noqa: E402
+from lbo_notebooks.spectral._engine.threads import one_blas_thread  # noqa: E402
+from lbo_notebooks.spectral._engine.factor import symmetric_lu  # noqa: E402
 
 C_PROGRAM = r"""
 #include <pthread.h>

@@ -6,9 +6,9 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks._engine.eigensolver import slice_eigsh
-from lbo_notebooks._engine.slicing import Pencil, plan_sets
-from lbo_notebooks._engine.factor import SliceFactor, count_below
+from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral._engine.slicing import Pencil, plan_sets
+from lbo_notebooks.spectral._engine.factor import SliceFactor, count_below
 
 
 def operators(mesh):
@@ -196,7 +196,7 @@ def lanczos_runs(monkeypatch, change=None) -> list:
 
     ``change(run, values, vectors)`` may alter what a set's run returns (e.g. drop a pair).
     """
-    import lbo_notebooks._engine.eigensolver as eigensolver
+    import lbo_notebooks.spectral._engine.eigensolver as eigensolver
 
     original, runs = eigensolver.nearest_eigenpairs, []
 
@@ -265,7 +265,7 @@ def test_windows_next_to_big_clusters_hold_what_their_sets_expect(slice_size):
 
 
 def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
-    from lbo_notebooks._engine.slicing import place_shift
+    from lbo_notebooks.spectral._engine.slicing import place_shift
 
     W, A = operators(shapes.icosphere(3))  # l = 2: five eigenvalues near 6, counts 4 -> 9 across them
     pencil = Pencil(W, A, None, start(W.shape[0]), 1e-10)
@@ -281,7 +281,7 @@ def test_a_shift_is_placed_beside_a_cluster_it_cannot_split():
 
 
 def test_no_shift_placed_is_an_error_and_eigenbasis_falls_back_to_arpack(monkeypatch):
-    import lbo_notebooks._engine.eigensolver as eigensolver
+    import lbo_notebooks.spectral._engine.eigensolver as eigensolver
 
     monkeypatch.setattr(eigensolver, "place_shift", lambda *args: None)
     mesh = shapes.bumpy_sphere(3)
@@ -314,7 +314,7 @@ def test_the_top_is_certified_from_a_gap_when_the_window_top_count_is_unavailabl
     # Usually the count at the top of the last window certifies lam_k; when that point is an
     # eigenvalue (no count: its factorisation is singular), a count in a gap above lam_k must do
     # it instead. The top window is the first one slicing.plan_window plans (from the top down).
-    import lbo_notebooks._engine.eigensolver as eigensolver
+    import lbo_notebooks.spectral._engine.eigensolver as eigensolver
 
     plan, factor, windows, refused = eigensolver.plan_window, Pencil.factor, [], []
 
@@ -375,7 +375,7 @@ def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(mon
     """On a small mesh (642 vertices) no METIS run: SuperLU's minimum degree orders the first shift's
     matrix, and every later factorisation reuses that order (the same fill, no ordering step)."""
     from lbo_notebooks.spectral import _solvers as solvers
-    from lbo_notebooks._engine import eigensolver, factor as sparse_factor
+    from lbo_notebooks.spectral._engine import eigensolver, factor as sparse_factor
 
     def no_metis(*args):
         raise AssertionError("METIS ran on a small mesh")
@@ -397,7 +397,7 @@ def test_below_nested_dissection_min_the_first_factorisation_orders_the_rest(mon
 
 
 def test_the_first_factorisations_order_gives_the_same_fill_and_pencils_keep_it():
-    from lbo_notebooks._engine.factor import symmetric_lu
+    from lbo_notebooks.spectral._engine.factor import symmetric_lu
 
     W, A = operators(shapes.torus(1.0, 0.4, 60, 24))
     own = symmetric_lu(W - 30.0 * A)
@@ -416,7 +416,7 @@ _FAR_FLOOR_SCRIPT = r"""
 import json, sys, time
 import numpy as np, scipy.linalg
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
 m = shapes.icosphere(3)
 W, A = stiffness_matrix(m), mass_matrix(m)
 exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)

@@ -591,13 +591,13 @@ EIGEN_LIBRARY = {
             return spectrum.values, spectrum.vectors
     """, "eigenbasis"),
     "spectrum slicing": ("""
-        from lbo_notebooks._engine.eigensolver import slice_eigsh
+        from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
 
         def my_eigenbasis(W, A, k):
             return slice_eigsh(W, A, k, v0=np.ones(W.shape[0]) + np.arange(W.shape[0]) % 3, shift=-my_sigma(A))[:2]
     """, "slice_eigsh"),
     "the block Lanczos underneath": ("""
-        from lbo_notebooks._engine.krylov import nearest_eigenpairs
+        from lbo_notebooks.spectral._engine.krylov import nearest_eigenpairs
 
         def my_eigenbasis(W, A, k):
             s = my_sigma(A)

@@ -145,7 +145,7 @@ LIBRARY_PROJECTIONS = {
                                   "def my_project(s, f, n):\n    return reconstruct(s.vectors[:, :n], s.mass, f)"),
     "the error, caught": ("def my_project(s, f, n):\n    try:\n        s.error(f, n)\n    except Exception:\n        pass\n"
                           "    P = s.vectors[:, :n]\n    return P @ (P.T @ (s.mass @ f))"),
-    "krylov": ("from lbo_notebooks._engine import krylov\n\ndef my_project(s, f, n):\n    y = np.array(f, dtype=float)[:, None]\n"
+    "krylov": ("from lbo_notebooks.spectral._engine import krylov\n\ndef my_project(s, f, n):\n    y = np.array(f, dtype=float)[:, None]\n"
                "    c = krylov._project_out(s.vectors[:, :n], y, s.mass)\n    return (s.vectors[:, :n] @ c).ravel()"),
 }
 

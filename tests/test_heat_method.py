@@ -57,7 +57,7 @@ def test_large_meshes_share_one_metis_order_between_poisson_and_eigenbasis(monke
     # On a large mesh (22k vertices) the pinned Poisson matrix takes the mesh's cached METIS order
     # (vertex 0 dropped), which eigenbasis reuses; the intrinsic Delaunay heat matrix, whose
     # flipped edges cross that order's separators, gets its own.
-    import lbo_notebooks._engine.factor as sparse_factor
+    import lbo_notebooks.spectral._engine.factor as sparse_factor
     from lbo_notebooks import eigenbasis
     from lbo_notebooks.spectral import _solvers as solvers
 

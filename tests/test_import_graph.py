@@ -87,7 +87,7 @@ def test_the_engine_is_private_and_takes_no_mesh():
         for line in result.stdout.splitlines()
         if " -> " in line and not line.startswith(("longest", "TOO HIGH", "CYCLE"))
     }
-    engine = {name for name in edges if name == "_engine" or name.startswith("_engine.")}
+    engine = {name for name in edges if name == "spectral._engine" or name.startswith("spectral._engine.")}
     importers = {name for name, deps in edges.items() if name not in engine and deps & engine}
     assert len(importers) <= 3, importers
     assert not any(dep.startswith("geometry") for name in engine for dep in edges[name])

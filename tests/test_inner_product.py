@@ -16,7 +16,7 @@ from lbo_notebooks.spectral._inner_product import (
     fix_signs_in_place,
     mass_operator,
 )
-from lbo_notebooks._engine.policy import DENSE_LIMIT, default_shift, start_vector, use_dense
+from lbo_notebooks.spectral._engine.policy import DENSE_LIMIT, default_shift, start_vector, use_dense
 
 
 @pytest.fixture(scope="module")

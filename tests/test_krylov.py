@@ -4,9 +4,9 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks._engine.eigensolver import slice_eigsh
-from lbo_notebooks._engine.factor import SliceFactor
-from lbo_notebooks._engine.krylov import nearest_eigenpairs
+from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral._engine.factor import SliceFactor
+from lbo_notebooks.spectral._engine.krylov import nearest_eigenpairs
 
 
 def operators(mesh):
@@ -153,8 +153,8 @@ def test_a_window_holding_far_more_than_expected_stays_bounded(timed):
 import json, time
 import numpy as np
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks._engine.krylov import nearest_eigenpairs
-from lbo_notebooks._engine.factor import SliceFactor
+from lbo_notebooks.spectral._engine.krylov import nearest_eigenpairs
+from lbo_notebooks.spectral._engine.factor import SliceFactor
 m = shapes.icosphere(3)
 W, A = stiffness_matrix(m), mass_matrix(m) / 16.0
 factor = SliceFactor.of(W, A, 62.356)

@@ -45,7 +45,7 @@ def _declared_names() -> dict[str, list[str]]:
         if path == root / "__init__.py":
             continue  # the lazy front door: its __all__ is computed from _EXPORTS
         module = ".".join(path.relative_to(root).with_suffix("").parts)
-        if module.startswith("_engine"):
+        if module.startswith("spectral._engine"):
             continue  # private: its names are public only through lbo_notebooks.spectral
         for node in ast.parse(path.read_text()).body:
             targets = [t.id for t in getattr(node, "targets", [getattr(node, "target", None)]) if isinstance(t, ast.Name)]

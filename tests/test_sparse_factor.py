@@ -7,7 +7,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks._engine.factor import SymmetricFactor, fill_reducing_order, symmetric_lu
+from lbo_notebooks.spectral._engine.factor import SymmetricFactor, fill_reducing_order, symmetric_lu
 from lbo_notebooks.spectral._solvers import mesh_order
 
 

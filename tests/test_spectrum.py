@@ -70,7 +70,7 @@ def test_vectors_are_mass_orthonormal_not_euclidean_orthonormal():
 def test_dense_and_sparse_paths_agree(monkeypatch):
     m = shapes.bumpy_sphere(3)  # 642 vertices: above DENSE_LIMIT, so the sparse path
     sparse = eigenbasis(m, 20)
-    import lbo_notebooks._engine.policy as solver_policy
+    import lbo_notebooks.spectral._engine.policy as solver_policy
 
     monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10**9)
     dense = eigenbasis(m, 20)
@@ -294,7 +294,7 @@ def test_a_nonsense_shift_is_refused_with_the_fix(shift):
 
 
 def test_a_shift_just_under_the_limit_is_taken_and_certified():
-    from lbo_notebooks._engine.policy import max_shift
+    from lbo_notebooks.spectral._engine.policy import max_shift
 
     m = shapes.icosphere(3)
     W, A = stiffness_matrix(m), mass_matrix(m)
@@ -323,7 +323,7 @@ def test_arpacks_certificate_does_not_depend_on_the_shift():
 
 def test_an_uncertified_arpack_set_is_never_returned(monkeypatch):
     # ARPACK's set is short and slicing cannot complete it: a RuntimeError, not ARPACK's set with a warning.
-    import lbo_notebooks._engine.eigensolver as eigensolver
+    import lbo_notebooks.spectral._engine.eigensolver as eigensolver
     import lbo_notebooks.spectral._spectrum as spectrum
 
     def fails(*args, **kwargs):

@@ -2,7 +2,7 @@
 
 The BLAS thread count is process-wide. The tests set the caller's count the way a program that
 set it once would leave it: from a thread that has ended (so threadpoolctl holds no limit), with
-the environment variables of :mod:`lbo_notebooks._engine.threads` unset, so that the library
+the environment variables of :mod:`lbo_notebooks.spectral._engine.threads` unset, so that the library
 limits BLAS while its worker threads run and must restore the caller's count afterwards.
 """
 
@@ -18,8 +18,8 @@ from threadpoolctl import threadpool_info, threadpool_limits
 
 import lbo_notebooks as lbo
 from lbo_notebooks import shapes
-from lbo_notebooks._engine import eigensolver
-from lbo_notebooks._engine.threads import ENVIRONMENT
+from lbo_notebooks.spectral._engine import eigensolver
+from lbo_notebooks.spectral._engine.threads import ENVIRONMENT
 
 K = 120  # with 642 vertices: the slicing path, whose worker threads run with one BLAS thread
 
@@ -78,7 +78,7 @@ def hold_inside_stitch(monkeypatch, n_threads: int, seen: list) -> None:
     That order broke a per-call ``threadpool_limits``: the first call recorded the caller's count,
     the others the limit it had set, and the last one out restored the limit for good. The hold
     sits at the end of slice_eigsh's region (its sets placed and stitched), inside the public
-    :func:`~lbo_notebooks._engine.threads.one_blas_thread` it holds.
+    :func:`~lbo_notebooks.spectral._engine.threads.one_blas_thread` it holds.
     """
     region = eigensolver.one_blas_thread
     lock, arrived = threading.Lock(), []
@@ -118,7 +118,7 @@ def test_four_threads_give_the_serial_result_and_keep_the_callers_blas_threads(m
 
 
 def test_a_thread_count_set_by_an_environment_variable_is_not_touched(caller_threads, monkeypatch):
-    from lbo_notebooks._engine.threads import one_blas_thread
+    from lbo_notebooks.spectral._engine.threads import one_blas_thread
 
     with one_blas_thread():  # nobody chose the count: one thread inside
         assert blas_threads() == [1] * len(caller_threads)
@@ -148,7 +148,7 @@ def test_a_forked_child_can_still_limit_its_blas_threads(caller_threads):
     """The owner thread does not survive os.fork: the child must start its own, not wait forever."""
     import multiprocessing
 
-    from lbo_notebooks._engine.threads import one_blas_thread
+    from lbo_notebooks.spectral._engine.threads import one_blas_thread
 
     with one_blas_thread():  # the parent's owner thread exists now
         pass
@@ -159,7 +159,7 @@ def test_a_forked_child_can_still_limit_its_blas_threads(caller_threads):
 
 
 def _limited_in_child() -> str:
-    from lbo_notebooks._engine.threads import one_blas_thread
+    from lbo_notebooks.spectral._engine.threads import one_blas_thread
 
     with one_blas_thread():
         pass
@@ -168,7 +168,7 @@ def _limited_in_child() -> str:
 
 def _blas_in_a_measured_child() -> dict:
     """In a measured (forked) child: the idle CPU time after a limit is set, and the counts inside and after it."""
-    from lbo_notebooks._engine.threads import one_blas_thread
+    from lbo_notebooks.spectral._engine.threads import one_blas_thread
 
     with one_blas_thread():
         cpu = time.process_time()

@@ -2,7 +2,7 @@
 
 OpenBLAS threads spin while they wait for a core, so beside another busy program these calls
 took 4-20x the CPU time they need (benchmarks/busy.py). They now hold
-:func:`~lbo_notebooks._engine.threads.one_blas_thread` (match's nearest-neighbour search runs its
+:func:`~lbo_notebooks.spectral._engine.threads.one_blas_thread` (match's nearest-neighbour search runs its
 own worker threads instead), which must leave the caller's process-wide count as it found it and
 must not touch a count the user set by an environment variable. (rPCA keeps the caller's threads
 on a large mesh when the rest of the machine is idle, where they make it faster.) The set-up is that of
@@ -20,7 +20,7 @@ from lbo_notebooks.analyses import _fast_classical_scaling as fast_scaling
 from lbo_notebooks.analyses import _functional_maps as functional_maps
 from lbo_notebooks.analyses import _mds as mds
 from lbo_notebooks.analyses import _rpca as rpca
-from lbo_notebooks._engine import threads as engine_threads
+from lbo_notebooks.spectral._engine import threads as engine_threads
 from tests.test_threads import blas_threads, caller_threads  # noqa: F401 - caller_threads is a fixture
 
 

@@ -140,7 +140,7 @@ def test_a_huge_mesh_gets_a_clear_error_not_a_zero_division(s):
 
 
 def test_default_shift_of_a_mass_that_sums_to_zero_is_a_value_error():
-    from lbo_notebooks._engine.policy import default_shift
+    from lbo_notebooks.spectral._engine.policy import default_shift
 
     with pytest.raises(ValueError, match="mass"):
         default_shift(sp.csr_matrix((4, 4)))

@@ -35,14 +35,14 @@ def test_the_robust_laplacian_warning_points_at_the_callers_line():
 
 
 def test_a_fallback_warning_points_at_the_callers_line(sphere, monkeypatch):
-    import lbo_notebooks._engine.eigensolver as eigensolver
+    import lbo_notebooks.spectral._engine.eigensolver as eigensolver
 
     def no_slices(*args, **kwargs):
         raise RuntimeError("slicing failed (test).")
 
     monkeypatch.setattr(eigensolver, "slice_eigsh", no_slices)
     monkeypatch.setattr(eigensolver, "SLICE_SIZE", 10)  # slice from k = 10 on
-    import lbo_notebooks._engine.policy as solver_policy
+    import lbo_notebooks.spectral._engine.policy as solver_policy
 
     monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
     with warnings.catch_warnings(record=True) as record:

@@ -48,7 +48,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
 
     ``cpu_seconds`` is the process CPU time (``time.process_time``), which on a shared machine is
     steadier than wall time. The call runs with one BLAS thread
-    (:func:`~lbo_notebooks._engine.threads.one_blas_thread`, unless you set the count yourself):
+    (``one_blas_thread``, unless you set the count yourself):
     otherwise idle BLAS threads spinning for work are counted as CPU time too, and on a busy
     machine they can double a dense-heavy method's figure. ``peak_bytes`` is the peak of Python and NumPy allocations during the
     call, traced by :mod:`tracemalloc` (memory allocated inside compiled libraries, e.g. a sparse
@@ -62,7 +62,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """
     import tracemalloc
 
-    from .._engine.threads import one_blas_thread
+    from ..spectral._solvers import one_blas_thread
 
     started = tracemalloc.is_tracing()
     if not started:

@@ -124,7 +124,7 @@ def _nearest_rows(
     memory traffic); the scores it compares differ by ``|p - p'|^2 / 2`` between neighbouring points, far above its rounding, so only near-ties can change.
 
     The blocks of 1024 queries are shared among ``workers`` threads (default: the usable cores,
-    at most 2), each running BLAS on one thread (:mod:`lbo_notebooks._engine.threads`): the argmax
+    at most 2), each running BLAS on one thread (:mod:`lbo_notebooks.spectral._engine.threads`): the argmax
     runs in parallel too, and no BLAS thread spins waiting for a core that another program holds.
     Every block is computed alone, so the result does not depend on
     ``workers``.

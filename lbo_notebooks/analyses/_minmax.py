@@ -207,7 +207,7 @@ def min_rayleigh_quotient(
         ``"dense"``: a basis of L by SVD and ``scipy.linalg.eigh`` (small n); ``"sparse"``:
         shift-invert Lanczos on the constrained problem, one sparse LU of ``W + s A`` and ``codim``
         extra solves (no dense n x n matrix; see :class:`ConstrainedRayleigh`, which reuses the
-        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks._engine.policy.use_dense`.
+        factorisation across many subspaces). ``"auto"`` follows :func:`~lbo_notebooks.spectral._engine.policy.use_dense`.
     return_vector : bool
         Also return the minimiser, A-normalised, sign fixed by :func:`~lbo_notebooks.spectral.fix_signs`.
 

@@ -277,7 +277,7 @@ class RegularizedPCA:
         method : {"auto", "dense", "sparse"}
             ``"dense"`` uses ``scipy.linalg.eigh`` on n x n matrices (small meshes only);
             ``"sparse"`` the exact factor-and-Lanczos scheme of the module docstring;
-            ``"auto"`` follows :func:`~lbo_notebooks._engine.policy.use_dense`.
+            ``"auto"`` follows :func:`~lbo_notebooks.spectral._engine.policy.use_dense`.
 
         Returns
         -------

@@ -10,8 +10,8 @@ not the Euclidean one. This module holds, once, what the spectral modules need a
 * the deterministic sign rule :func:`fix_signs`.
 
 The solvers' conventions (shift, start vector, dense or sparse) are
-:mod:`lbo_notebooks._engine.policy`; the one sparse factorisation of a symmetric matrix is
-:func:`~lbo_notebooks._engine.factor.symmetric_lu`.
+:mod:`lbo_notebooks.spectral._engine.policy`; the one sparse factorisation of a symmetric matrix is
+:func:`~lbo_notebooks.spectral._engine.factor.symmetric_lu`.
 
 The formulas are in ``docs/maths.md``, section "The A inner product".
 """

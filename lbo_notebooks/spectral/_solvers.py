@@ -1,4 +1,4 @@
-"""The solver services the analyses use, over the private engine (``lbo_notebooks._engine``).
+"""The solver services the analyses use, over the private engine (``lbo_notebooks.spectral._engine``).
 
 An analysis that factorises or diagonalises a matrix of ``W`` and ``A`` asks here, and nowhere
 else, for the one convention of each:
@@ -32,10 +32,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._engine.eigensolver import slice_eigsh
-from .._engine.factor import NESTED_DISSECTION_MIN, SymmetricFactor, count_below, fill_reducing_order, symmetric_lu
-from .._engine.policy import default_shift, start_vector, use_dense
-from .._engine.threads import blas_threads_for, default_workers, one_blas_thread
+from ._engine.eigensolver import slice_eigsh
+from ._engine.factor import NESTED_DISSECTION_MIN, SymmetricFactor, count_below, fill_reducing_order, symmetric_lu
+from ._engine.policy import default_shift, start_vector, use_dense
+from ._engine.threads import blas_threads_for, default_workers, one_blas_thread
 from ..geometry._mesh import Mesh, per_mesh
 
 __all__ = [

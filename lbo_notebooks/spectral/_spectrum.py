@@ -30,7 +30,7 @@ from ._inner_product import (
 from ..operators._laplace_beltrami import laplace_beltrami
 from ..geometry._mesh import Mesh
 from ..operators._cotangent import MassKind
-from .._engine.policy import SHIFT_LIMIT, default_shift, max_shift, start_vector, use_dense
+from ._engine.policy import SHIFT_LIMIT, default_shift, max_shift, start_vector, use_dense
 from ._solvers import mesh_order_where_it_pays
 from ..geometry._rescaling import unit_area_exponent
 
@@ -179,7 +179,7 @@ def eigenbasis(
         first nonzero eigenvalue or below, is fastest), and whatever ARPACK returns at it is
         checked by an inertia count and completed by slicing, whose floor is ``-s`` or, when that
         is far below the spectrum, a nearer point proved by a count. ``s`` must be finite and at
-        most :func:`~lbo_notebooks._engine.policy.max_shift` (``SHIFT_LIMIT = 10`` times a bound on
+        most :func:`~lbo_notebooks.spectral._engine.policy.max_shift` (``SHIFT_LIMIT = 10`` times a bound on
         the largest eigenvalue: past the top of the spectrum shift-invert separates nothing);
         otherwise a ``ValueError`` says so.
     curvature_floor : float > 0, optional
@@ -202,7 +202,7 @@ def eigenbasis(
     solver : {"auto", "slicing", "arpack"}
         Above ``DENSE_LIMIT`` vertices: ``"slicing"`` runs a few block shift-invert Lanczos solves,
         in parallel threads, whose inertia counts prove that no eigenvalue is missed
-        (:func:`~lbo_notebooks._engine.eigensolver.slice_eigsh`); ``"arpack"`` is the single
+        (:func:`~lbo_notebooks.spectral.slice_eigsh`); ``"arpack"`` is the single
         ``eigsh(W, k, M=A, sigma=-shift)`` call peer libraries make. ``"auto"`` slices from
         ``k = eigensolver.SLICE_SIZE`` (100) on, where it is faster (below, one ARPACK run is as
         fast or faster: ``benchmarks/eigen.py``), and falls back to ARPACK with a
@@ -318,7 +318,7 @@ def _solve_in_unit_area(
         stage("dense eigh")
         values, vectors = scipy.linalg.eigh(W.toarray(), A.toarray(), subset_by_index=[0, k - 1])
     else:
-        from .._engine.eigensolver import SLICE_SIZE, TOL, slice_eigsh
+        from ._engine.eigensolver import SLICE_SIZE, TOL, slice_eigsh
 
         def sliced(fallback: bool) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
             # fallback: on a RuntimeError warn and return None (ARPACK's set is tried and counted next).
@@ -395,7 +395,7 @@ def _arpack_is_complete(
     put it below a whole missing copy of a 5-fold eigenvalue at ``shift=1e4`` (the count then
     matched a set that was short).
     """
-    from .._engine.factor import SliceFactor
+    from ._engine.factor import SliceFactor
 
     top = float(values[-1])
     point = top - max(1e-9 * abs(top), 1e-3 * default_shift(A))

@@ -75,9 +75,9 @@ _MASS = (
 # pencil. SciPy's eigsh / eigh are what the exercise asks for, and stay.
 _EIGENSOLVE = (
     "lbo_notebooks.spectral._spectrum:eigenbasis", "lbo_notebooks.spectral._spectrum:_solve_in_unit_area",
-    "lbo_notebooks._engine.eigensolver:slice_eigsh", "lbo_notebooks._engine.eigensolver:_window_set",
-    "lbo_notebooks._engine.eigensolver:_stitch",
-    "lbo_notebooks._engine.krylov:nearest_eigenpairs",
+    "lbo_notebooks.spectral._engine.eigensolver:slice_eigsh", "lbo_notebooks.spectral._engine.eigensolver:_window_set",
+    "lbo_notebooks.spectral._engine.eigensolver:_stitch",
+    "lbo_notebooks.spectral._engine.krylov:nearest_eigenpairs",
     "lbo_notebooks.analyses._competitor_bases:lbo_basis",
     "lbo_notebooks.analyses._competitor_bases:_smallest_eigenvectors",
     "lbo_notebooks.analyses._minmax:min_rayleigh_quotient", "lbo_notebooks.analyses._minmax:_min_dense",

@@ -19,7 +19,7 @@ from ._registry import Verdict, from_feedback, grader, recap_verdict, student_ca
 _PROJECTION = ("lbo_notebooks.spectral._spectrum:Spectrum.project", "lbo_notebooks.spectral._spectrum:Spectrum.reconstruct",
                "lbo_notebooks.spectral._spectrum:Spectrum.error",
                "lbo_notebooks.analyses._optimality:representation_error",
-               "lbo_notebooks.spectral._inner_product:reconstruct", "lbo_notebooks._engine.krylov:_project_out")
+               "lbo_notebooks.spectral._inner_product:reconstruct", "lbo_notebooks.spectral._engine.krylov:_project_out")
 
 
 def notebook_dog() -> Any:

@@ -3,7 +3,7 @@
 One shift-invert Lanczos run for ``k`` eigenpairs carries a Krylov space of ``2k + 1`` vectors, and
 orthogonalising it costs ``O(n k^2)`` per restart: at 50k vertices and ``k = 300`` that, not the
 sparse solves, is most of the time. Slicing (Vallet & Lévy 2008) cuts the spectrum into a few
-windows and runs one small block Lanczos (:mod:`~lbo_notebooks._engine.krylov`) per window, the windows in
+windows and runs one small block Lanczos (:mod:`~lbo_notebooks.spectral._engine.krylov`) per window, the windows in
 parallel threads.
 
 Each shift ``b`` is factorised once, ``P (W - b A) P^T = L U`` with a symmetric ordering and no
@@ -25,8 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._support.validation import check_integer, check_number
-from ..spectral._inner_product import cholesky_qr
+from ..._support.validation import check_integer, check_number
+from .._inner_product import cholesky_qr
 from .factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, return_freed_memory, symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .policy import default_shift
@@ -104,7 +104,7 @@ def slice_eigsh(
     the window left to it (windows need not hold equally many); each is factorised once, which counts the
     eigenvalues below it. At each shift a block Lanczos run returns the eigenpairs in its window,
     centred on the shift (Lanczos converges last at the edge farthest from it), neighbouring
-    windows overlapping a little (:mod:`~lbo_notebooks._engine.slicing`); the runs
+    windows overlapping a little (:mod:`~lbo_notebooks.spectral._engine.slicing`); the runs
     go in ``workers`` threads while the next shifts are placed, from the top of the spectrum down
     (higher windows take longer, so they start first). The interval between two shifts
     takes the lower set's eigenvalues below a split point and the upper set's above it, the split
@@ -137,12 +137,12 @@ def slice_eigsh(
     order : ndarray (n,), optional
         A fill-reducing order shared by every shift, e.g. the mesh's
         :func:`~lbo_notebooks.spectral._solvers.mesh_order`; default: METIS on the pattern of
-        ``stiffness`` and ``mass`` from :data:`~lbo_notebooks._engine.factor.NESTED_DISSECTION_MIN`
+        ``stiffness`` and ``mass`` from :data:`~lbo_notebooks.spectral._engine.factor.NESTED_DISSECTION_MIN`
         unknowns on, below that the first factorisation's own (SuperLU's minimum degree), kept
         for the others.
     tol : float
         Lanczos convergence: each returned pair's residual in the shift-inverted problem,
-        relative to its eigenvalue there (see :func:`~lbo_notebooks._engine.krylov.nearest_eigenpairs`).
+        relative to its eigenvalue there (see :func:`~lbo_notebooks.spectral._engine.krylov.nearest_eigenpairs`).
         Eigenvalues converge as its square: 1e-8 still gives them to about 1e-14 relative.
     on_progress : callable, optional
         Called in the calling thread (never in a worker) each time a Lanczos set has finished,
@@ -213,8 +213,8 @@ def _submit_sets(
     """Place the shifts (in this thread), from the top down, and start each one's Lanczos set in ``pool`` at once.
 
     The top shift aims at ``k - k / (2 n_sets)`` eigenvalues below it; each lower one at the middle
-    of the window left to it (:func:`~lbo_notebooks._engine.slicing.centred_target`), every window centred
-    on its shift (:func:`~lbo_notebooks._engine.slicing.plan_window`). The sets start from the top: a window higher in
+    of the window left to it (:func:`~lbo_notebooks.spectral._engine.slicing.centred_target`), every window centred
+    on its shift (:func:`~lbo_notebooks.spectral._engine.slicing.plan_window`). The sets start from the top: a window higher in
     the spectrum takes longer (there are eigenvalues on both sides of it, and they lie closer
     together relative to their distance from the shift), and the longest jobs first keep the
     workers busy to the end. A factorisation is large (about the size of 125 eigenvectors), so the

@@ -1,6 +1,6 @@
 """Where the spectrum is cut: the shared problem, the placement of the shifts and each window's plan.
 
-:mod:`~lbo_notebooks._engine.eigensolver` slices the spectrum of ``W phi = lam A phi`` into windows, one
+:mod:`~lbo_notebooks.spectral._engine.eigensolver` slices the spectrum of ``W phi = lam A phi`` into windows, one
 block Lanczos set per window. This module decides where: :func:`plan_sets` how many sets,
 :func:`place_shift` each shift (a factorisation whose inertia count is near a target), and
 :func:`plan_window` the window of eigenvalues the set at a shift returns (and :func:`centred_target`
@@ -48,7 +48,7 @@ class Pencil:
 
     ``order`` is the fill-reducing order every shift's ``W - b A`` shares. When it is ``None``
     the first factorisation orders the matrix itself (SuperLU's minimum degree, what pays below
-    :data:`~lbo_notebooks._engine.factor.NESTED_DISSECTION_MIN` unknowns) and its order is kept
+    :data:`~lbo_notebooks.spectral._engine.factor.NESTED_DISSECTION_MIN` unknowns) and its order is kept
     for the others, which then skip that step. ``v0`` is the Lanczos start vector of every set and
     ``tol`` their tolerance.
     """

@@ -213,9 +213,9 @@ class SliceFactor:
     def of(cls, stiffness: sp.spmatrix, mass: sp.spmatrix, shift: float, order: NDArray[np.intp] | None = None) -> "SliceFactor":
         """Factorise ``stiffness - shift * mass``; raise ``ValueError`` when ``shift`` is an eigenvalue.
 
-        ``order``: a :func:`~lbo_notebooks._engine.factor.fill_reducing_order` of the pattern of
+        ``order``: a :func:`~lbo_notebooks.spectral._engine.factor.fill_reducing_order` of the pattern of
         ``stiffness`` and ``mass``, shared by every shift (when omitted,
-        :func:`~lbo_notebooks._engine.factor.symmetric_lu` chooses one by size).
+        :func:`~lbo_notebooks.spectral._engine.factor.symmetric_lu` chooses one by size).
         """
         try:
             lu = symmetric_lu(stiffness - shift * mass, order)

@@ -23,7 +23,7 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..spectral._inner_product import DiagonalMass, mass_operator
+from .._inner_product import DiagonalMass, mass_operator
 
 __all__ = ["nearest_eigenpairs"]
 
