@@ -33,8 +33,8 @@ LIBRARY
     12-fmap, 12-zoomout-step) answered by calling the library instead of building: a direct alias,
     wrapper functions, a lambda, a detour through ``reconstruct`` / ``scaling_in_span`` /
     ``map_from_points``, ``eigenbasis`` on the pair ``(W, A)``, ``worst_case_ratio``,
-    ``curvature.angle_defects``, ``mds.classical_mds``, ``RegularizedPCA(...).solve``, one
-    iteration of ``functional_maps.zoomout``. They must earn 0 points in the graded run.
+    ``lbo.angle_defects``, ``lbo.classical_mds``, ``RegularizedPCA(...).solve``, one
+    iteration of ``lbo.zoomout``. They must earn 0 points in the graded run.
 
 How they were checked: each notebook of ``notebooks/`` was executed with nbclient (kernel
 ``python3`` of ``.venv``, working directory ``notebooks/``), once per student, with all of that
@@ -454,7 +454,7 @@ for a in [0.0, 0.4, 1.0]:
 ''',
     "08-best-answer": r'''best_alpha_curved = np.float64(1.0)
 ''',
-    "08-floor-answer": r'''rho_floor1 = curvature.metric_curvature(horse, floor=1.0)
+    "08-floor-answer": r'''rho_floor1 = operators.metric_curvature(horse, floor=1.0)
 floor_level = 4 * np.pi / horse.area  # curvature_floor = 1 times the round sphere's curvature
 floor_fraction = np.count_nonzero(np.isclose(rho_floor1, floor_level, rtol=1e-9, atol=0)) / horse.n_vertices
 for eps in (1e-3, 1e-2, 1e-1, 1.0):
@@ -862,7 +862,7 @@ disk_total = 0.0  # the disk is flat: K = 0 everywhere
 ''',
     "08-best-answer": r'''best_alpha_curved = 0.4  # the paper's compromise
 ''',
-    "08-floor-answer": r'''rho1 = curvature.metric_curvature(horse, floor=1.0)
+    "08-floor-answer": r'''rho1 = operators.metric_curvature(horse, floor=1.0)
 floor_fraction = 100 * np.mean(rho1 <= 4 * np.pi / horse.area * (1 + 1e-12))
 ''',
     "08-sphere-answer": r'''sphere_verdict = "scaled"
@@ -1061,12 +1061,12 @@ def my_rpca_basis(X, W, A, mu, m):
 ''',
     "12-fmap-answer": r'''def my_functional_map(p2p, source, target, k):
     """C = Phi_2^T A_2 Pi Phi_1 (k x k): source coefficients -> target coefficients."""
-    return fm.map_from_points(p2p, source, target, k_source=k, k_target=k)
+    return lbo.map_from_points(p2p, source, target, k_source=k, k_target=k)
 ''',
     "12-zoomout-step-answer": r'''def my_zoomout_step(C, source, target):
     """One ZoomOut iteration: (C_next of size (k+1, k+1), p2p read off the k x k map C)."""
     k = C.shape[0]
-    C_next, _ = fm.zoomout(C, source, target, k_final=k + 1)  # one iteration of the library's
-    return C_next, fm.points_from_map(C, source, target)
+    C_next, _ = lbo.zoomout(C, source, target, k_final=k + 1)  # one iteration of the library's
+    return C_next, lbo.points_from_map(C, source, target)
 ''',
 }

@@ -6,7 +6,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral import slice_eigsh
 from lbo_notebooks.spectral._engine.slicing import Pencil, plan_sets
 from lbo_notebooks.spectral._engine.factor import SliceFactor, count_below
 
@@ -416,7 +416,7 @@ _FAR_FLOOR_SCRIPT = r"""
 import json, sys, time
 import numpy as np, scipy.linalg
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral import slice_eigsh
 m = shapes.icosphere(3)
 W, A = stiffness_matrix(m), mass_matrix(m)
 exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)

@@ -4,7 +4,7 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral import slice_eigsh
 from lbo_notebooks.spectral._engine.factor import SliceFactor
 from lbo_notebooks.spectral._engine.krylov import nearest_eigenpairs
 

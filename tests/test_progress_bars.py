@@ -20,7 +20,7 @@ from lbo_notebooks import shapes
 from lbo_notebooks.analyses import _mds as mds
 from lbo_notebooks.analyses import _rpca as rpca
 from lbo_notebooks.spectral import _spectrum as spectrum
-from lbo_notebooks.spectral._engine.eigensolver import slice_eigsh
+from lbo_notebooks.spectral import slice_eigsh
 from lbo_notebooks.spectral._engine.slicing import plan_sets
 
 from .kernel import cell_outputs, is_widget
