@@ -16,7 +16,7 @@ from lbo_notebooks.spectral._inner_product import (
     fix_signs_in_place,
     mass_operator,
 )
-from lbo_notebooks.spectral._engine.policy import DENSE_LIMIT, default_shift, start_vector, use_dense
+from lbo_notebooks.spectral._engine.policy import default_shift, start_vector, use_dense
 
 
 @pytest.fixture(scope="module")
@@ -77,7 +77,8 @@ def test_solver_conventions():
     assert default_shift(4.0 * A) == pytest.approx(default_shift(A) / 4, rel=1e-15)  # scales like 1 / area
     v0 = start_vector(1000)
     assert v0.min() > 0 and np.ptp(v0) > 0.9  # never orthogonal to constants, not constant
-    assert use_dense(DENSE_LIMIT) and not use_dense(DENSE_LIMIT + 1)
+    assert use_dense(50) and not use_dense(50_000)  # a small problem dense, a mesh-sized one sparse
+    assert all(use_dense(n) >= use_dense(n + 1) for n in range(1, 5000, 7))  # one switch, dense below it
     assert use_dense(10**6, "dense") and not use_dense(3, "sparse")
     with pytest.raises(ValueError, match="method must be"):
         use_dense(10, "lanczos")

@@ -34,21 +34,20 @@ def test_the_robust_laplacian_warning_points_at_the_callers_line():
     assert _warned_here(record, LaplacianWarning) == [(__file__, line)]
 
 
-def test_a_fallback_warning_points_at_the_callers_line(sphere, monkeypatch):
+def test_a_fallback_warning_points_at_the_callers_line(monkeypatch):
     import lbo_notebooks.spectral._engine.eigensolver as eigensolver
+    from lbo_notebooks.spectral._solvers import use_dense
 
     def no_slices(*args, **kwargs):
         raise RuntimeError("slicing failed (test).")
 
     monkeypatch.setattr(eigensolver, "slice_eigsh", no_slices)
-    monkeypatch.setattr(eigensolver, "SLICE_SIZE", 10)  # slice from k = 10 on
-    import lbo_notebooks.spectral._engine.policy as solver_policy
-
-    monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10)  # the sparse path for 162 vertices
+    sphere = lbo.shapes.icosphere(3)
+    assert not use_dense(sphere.n_vertices)  # the sparse path, where solver="auto" slices k = 100
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         line = inspect.currentframe().f_lineno + 1
-        lbo.eigenbasis(sphere, 20)
+        lbo.eigenbasis(sphere, 100)
     assert _warned_here(record, RuntimeWarning) == [(__file__, line)]
 
 
