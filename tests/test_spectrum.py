@@ -67,16 +67,20 @@ def test_vectors_are_mass_orthonormal_not_euclidean_orthonormal():
     assert np.all(np.diff(spec.values) >= 0)
 
 
-def test_dense_and_sparse_paths_agree(monkeypatch):
-    m = shapes.bumpy_sphere(3)  # 642 vertices: above DENSE_LIMIT, so the sparse path
-    sparse = eigenbasis(m, 20)
-    import lbo_notebooks.spectral._engine.policy as solver_policy
+def test_the_sparse_path_agrees_with_a_dense_generalized_eigensolver():
+    import scipy.linalg
 
-    monkeypatch.setattr(solver_policy, "DENSE_LIMIT", 10**9)
-    dense = eigenbasis(m, 20)
-    np.testing.assert_allclose(sparse.values, dense.values, rtol=1e-9, atol=1e-9)
-    # Non-degenerate eigenvectors agree including sign (deterministic sign rule).
-    np.testing.assert_allclose(sparse.vectors[:, :8], dense.vectors[:, :8], atol=1e-6)
+    from lbo_notebooks.spectral import fix_signs
+    from lbo_notebooks.spectral._solvers import use_dense
+
+    m = shapes.bumpy_sphere(3)  # 642 vertices: the sparse path
+    assert not use_dense(m.n_vertices)
+    sparse = eigenbasis(m, 20)
+    values, vectors = scipy.linalg.eigh(sparse.stiffness.toarray(), sparse.mass.toarray(), subset_by_index=[0, 19])
+    np.testing.assert_allclose(sparse.values, values, rtol=1e-9, atol=1e-9 * values[-1])
+    # Non-degenerate eigenvectors agree including sign (the same deterministic sign rule).
+    dense = fix_signs(vectors, sparse.mass)
+    np.testing.assert_allclose(sparse.vectors[:, :8], dense[:, :8], atol=1e-6)
 
 
 def test_deterministic_and_rigid_motion_invariant():
