@@ -170,6 +170,30 @@ def _copy_assets(app) -> None:
     copy_mathjax(_MATHJAX, static / "mathjax")
 
 
+def _top_level() -> set[str]:
+    import lbo_notebooks
+
+    return {name for name in lbo_notebooks.__all__ if name not in lbo_notebooks._SUBMODULES}
+
+
+def _skip_top_level_names(app, what, name, obj, skip, options):
+    """A folder's page does not document again what has a page of its own at the top level, so that
+    a search finds one entry (``lbo_notebooks.spectral_mds``), not two."""
+    return True if what == "module" and name in _top_level() else None
+
+
+def _link_top_level_names(app, what, name, obj, options, lines):
+    """...and links those names instead, after the folder's docstring."""
+    if what != "module" or not name.startswith("lbo_notebooks.") or name.count(".") != 1:
+        return
+    here = [n for n in getattr(obj, "__all__", ()) if n in _top_level()]
+    if here:
+        lines += ["", "Also in this folder, each on its own page: "
+                  + ", ".join(f":obj:`~lbo_notebooks.{n}`" for n in here) + ".", ""]
+
+
 def setup(app):
     app.connect("builder-inited", _copy_assets)
+    app.connect("autodoc-skip-member", _skip_top_level_names)
+    app.connect("autodoc-process-docstring", _link_top_level_names)
     return {"parallel_read_safe": True}

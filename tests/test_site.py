@@ -176,7 +176,10 @@ def test_a_reference_page_shows_the_docstring_sections(small_site):
     for name in inspect.signature(lbo_notebooks.eigenbasis).parameters:
         assert re.search(rf"\b{name}\b", text), name
     # A module's page documents its members; a class's page its methods and properties.
-    assert 'id="lbo_notebooks.shapes.icosphere"' in (out / "generated" / "lbo_notebooks.shapes.html").read_text()
+    shapes_page = (out / "generated" / "lbo_notebooks.shapes.html").read_text()
+    assert 'id="lbo_notebooks.shapes.icosphere"' in shapes_page
+    # ...but not again what has a top-level page (one search hit per name): it is linked instead.
+    assert 'id="lbo_notebooks.shapes.creature"' not in shapes_page and "creature_poses" in shapes_page
     assert 'id="lbo_notebooks.Spectrum.project"' in (out / "generated" / "lbo_notebooks.Spectrum.html").read_text()
     assert "lbo_notebooks.eigenbasis" in (out / "searchindex.js").read_text()    # the search finds it
 
