@@ -19,8 +19,7 @@ Examples
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from ._support.lazy import front_door
 
 __version__ = "0.1.0"
 
@@ -42,17 +41,4 @@ _SUBMODULES = frozenset({"geometry", "operators", "spectral", "analyses", "shape
 _WHERE = {name: module for module, names in _EXPORTS.items() for name in names}
 
 __all__ = sorted(_WHERE) + sorted(_SUBMODULES)
-
-
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        value = getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module 'lbo_notebooks' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = front_door(__name__, _EXPORTS, modules=_SUBMODULES)
