@@ -117,9 +117,101 @@ def test_signature_and_docstring_preserved():
         validated(nope=Integer())(_pick.__wrapped__)
 
 
+# --- arrays, vertex indices, relations ---------------------------------------------------------
+
+from lbo_notebooks._support.validation import Array, Indices, Relation
+
+
+@validated(
+    n=Integer(1),
+    f=Array((1, 2), rows=lambda n, **_: n, meaning="one value per vertex", hint="replace them first"),
+    Y=Array((1, 2), rows=lambda n, **_: n, column=True, none=True, nonempty=True),
+    sources=Indices(lambda n, **_: n - 1, scalar=True, integral=True, nonempty=True, none=True),
+    mu=Number(0, none=True),
+    beta=(Number(0, none=True), Relation(lambda mu, beta, **_: (mu is None) != (beta is None),
+                                         "give exactly one of mu and beta, got mu={mu} and beta={beta}")),
+)
+def _field(n, f, Y=None, sources=None, mu=None, beta=1.0):
+    """Hand back what the body receives."""
+    return f, Y, sources, mu, beta
+
+
+def test_arrays_arrive_as_float64_of_the_declared_shape():
+    f, Y, sources, _, _ = _field(3, [1, 2, 3], Y=[4, 5, 6], sources=np.float32(2))
+    assert f.dtype == np.float64 and f.shape == (3,) and Y.shape == (3, 1) and sources.tolist() == [2]
+    assert sources.dtype == np.int64
+    assert _field(2, np.ones((2, 4)))[0].shape == (2, 4)
+
+
+def test_array_shape_messages_name_the_expected_and_the_actual_shape():
+    with pytest.raises(ValueError, match=r"^f must have shape \(3,\) or \(3, c\): one value per vertex; got \(4,\)\.$"):
+        _field(3, np.zeros(4))
+    with pytest.raises(ValueError, match=r"^f must have shape .*; got \(3, 1, 1\)\.$"):
+        _field(3, np.zeros((3, 1, 1)))
+    with pytest.raises(ValueError, match=r"^f must .*; got a value that is not an array of numbers\.$"):
+        _field(2, [[1, 2], [3]])  # ragged
+    with pytest.raises(ValueError, match=r"^f must .*; got a value that is not an array of numbers\.$"):
+        _field(2, ["a", "b"])
+    with pytest.raises(ValueError, match=r"^Y must have shape \(3,\) or \(3, c\), not empty; got \(3, 0\)\.$"):
+        _field(3, np.zeros(3), Y=np.zeros((3, 0)))
+
+
+def test_non_finite_values_are_refused_with_the_fix():
+    for bad in (np.nan, np.inf, -np.inf):
+        with pytest.raises(ValueError, match=r"^f must be finite, got NaN or inf; replace them first\.$"):
+            _field(3, [0.0, bad, 1.0])
+
+
+def test_the_callers_array_is_not_modified():
+    f = np.array([3, 2, 1])
+    out, Y, sources, _, _ = _field(3, f, Y=f, sources=f - 1)
+    assert f.dtype == np.int64 and f.tolist() == [3, 2, 1] and out.dtype == np.float64
+    assert Y.shape == (3, 1) and f.shape == (3,) and sources.tolist() == [2, 1, 0]
+
+
+def test_indices_refuse_booleans_fractions_and_out_of_range():
+    with pytest.raises(ValueError, match=r"^sources must be an array of vertex indices; got dtype bool"):
+        _field(3, np.zeros(3), sources=[True, False])
+    with pytest.raises(ValueError, match=r"^sources must be .*; got dtype float64 and shape \(1,\)\.$"):
+        _field(3, np.zeros(3), sources=[1.5])
+    with pytest.raises(ValueError, match=r"^sources must be .*; got dtype float64 and shape \(1,\)\.$"):
+        _field(3, np.zeros(3), sources=[np.nan])
+    with pytest.raises(ValueError, match=r"^sources must be .*; got dtype int64 and shape \(0,\)\.$"):
+        _field(3, np.zeros(3), sources=np.array([], dtype=np.int64))
+    with pytest.raises(ValueError, match=r"^sources must be .*shape \(1, 1\)\.$"):
+        _field(3, np.zeros(3), sources=[[1]])
+    for bad in (3, -1):
+        with pytest.raises(ValueError, match=rf"^sources holds vertex index {bad} outside 0\.\.2\.$"):
+            _field(3, np.zeros(3), sources=[0, bad])
+
+
+def test_relations_between_arguments():
+    assert _field(3, np.zeros(3), mu=0.5, beta=None)[3:] == (0.5, None)
+    with pytest.raises(ValueError, match=r"^give exactly one of mu and beta, got mu=0.5 and beta=1.0\.$"):
+        _field(3, np.zeros(3), mu=0.5)
+    with pytest.raises(ValueError, match=r"^give exactly one of mu and beta, got mu=None and beta=None\.$"):
+        _field(3, np.zeros(3), beta=None)
+
+
 @pytest.mark.timing
 def test_per_call_overhead_is_small():
     import timeit
 
     seconds = min(timeit.repeat(lambda: _pick(5, 2, tol=0.5), number=2000, repeat=3)) / 2000
     assert seconds < 1e-4, seconds
+
+
+def test_infinite_numbers_only_where_declared():
+    budget = Number(0, open_low=True, infinite=True)
+    assert budget.check(float("inf"), "memory_budget", {}) == float("inf")
+    for bad in (float("-inf"), float("nan"), 0.0):
+        with pytest.raises(ValueError, match=r"^memory_budget must be a positive number, got"):
+            budget.check(bad, "memory_budget", {})
+    with pytest.raises(ValueError, match=r"^tol must be a number in \(0, 1\], got inf\.$"):
+        _pick(3, tol=float("inf"))
+
+
+def test_out_of_range_message_as_the_caller_words_it():
+    rule = Indices(lambda n, **_: n - 1, out_of_range="{name} vertex {index} is out of range: {count} vertices")
+    with pytest.raises(ValueError, match=r"^target vertex 7 is out of range: 3 vertices$"):
+        rule.check([0, 7], "target", {"n": 3})

@@ -1,4 +1,4 @@
-"""Argument checks: one mechanism for "an integer in a range" and "a number in a range".
+"""Argument checks: one mechanism for numbers in a range, options, arrays of a shape, vertex indices.
 
 Every public function checks its arguments and raises ``ValueError`` with a message that names the
 argument, what it must be, what was passed and, where it helps, what to pass instead. The test of
@@ -11,7 +11,7 @@ message is built from the same parts everywhere:
 What it must be reads as the bounds state it ("an integer in 2..300", "an integer >= 3", "a
 positive integer") or as the caller words it (``what=``), so that messages stay specific: "k must be an integer
 between 1 and the number of vertices (642), got 0." The idea is scikit-learn's declared parameter
-constraints, kept to the two checks this package needs.
+constraints, kept to the kinds this package needs.
 
 Examples
 --------
@@ -27,7 +27,8 @@ Traceback (most recent call last):
 ValueError: tol must be a number between 0 and 1 (e.g. 1e-10), got 2.0.
 
 The same checks, declared: :func:`validated` takes one constraint per argument (:class:`Integer`,
-:class:`Number`, :class:`Options`, :class:`Boolean`, :class:`Satisfies`), binds the arguments once
+:class:`Number`, :class:`Options`, :class:`Boolean`, :class:`Array`, :class:`Indices`, :class:`Relation`,
+:class:`Satisfies`), binds the arguments once
 per call, and hands the normalized values (``int``, ``float``, the option) to the body. A bound or
 message may be a callable of the arguments, so it can depend on another one:
 
@@ -57,10 +58,12 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 import numpy as np
+from numpy.typing import NDArray
 
 __all__ = [
     "is_integer", "is_number", "check_integer", "check_number",
     "validated", "Constraint", "Integer", "Number", "Options", "Boolean", "Satisfies",
+    "Array", "Indices", "Relation",
 ]
 
 
@@ -245,16 +248,22 @@ class Integer(Constraint):
 class Number(Constraint):
     """A finite real number (:func:`is_number`) in ``[low, high]``; ``open_low``/``open_high`` exclude an end.
 
+    ``infinite=True`` also takes ``inf`` and ``-inf`` (still compared with the bounds; NaN never passes).
+
     The body gets ``float(value)``.
     """
 
     def __init__(self, low: Bound = None, high: Bound = None, *, open_low: bool = False, open_high: bool = False,
-                 **options: Any) -> None:
+                 infinite: bool = False, **options: Any) -> None:
         super().__init__(**options)
         self.low, self.high, self.open_low, self.open_high = low, high, open_low, open_high
+        self.infinite = infinite
 
     def accepts(self, value: Any, low: Any, high: Any) -> bool:
-        return is_number(value) and (low is None or (value > low if self.open_low else value >= low)) and (
+        infinite = self.infinite and isinstance(value, (float, np.floating)) and math.isinf(value)
+        if not (is_number(value) or infinite):
+            return False
+        return (low is None or (value > low if self.open_low else value >= low)) and (
             high is None or (value < high if self.open_high else value <= high)
         )
 
@@ -324,6 +333,181 @@ class Satisfies(Constraint):
 
     def default_what(self, low: Any, high: Any) -> str:
         return "valid"
+
+
+def _shape_text(ndim: tuple[int, ...], rows: Any, cols: Any, cols_name: str) -> str:
+    """The accepted shapes as a reader writes them: "(162,)", "(162, k)", "(162,) or (162, c)"."""
+    row = "n" if rows is None else str(rows)
+    col = cols_name if cols is None else str(cols)
+    forms = {0: "()", 1: f"({row},)", 2: f"({row}, {col})"}
+    return " or ".join(forms.get(d, f"{d}-D") for d in ndim)
+
+
+class Array(Constraint):
+    """An array of numbers of a declared shape; the body gets ``np.asarray(value, dtype)`` (a copy only if needed).
+
+    ``ndim`` is the accepted rank or ranks (``(1, 2)``: one function or a column per function);
+    ``rows`` and ``cols`` are the lengths of the first two axes (a number, ``None`` for any, or a
+    callable of the arguments: ``rows=lambda mesh, **_: mesh.n_vertices``); ``cols_name`` names a
+    free second axis in the message. ``column=True`` hands a 1-D value to the body as one column.
+    ``finite=True`` refuses NaN and infinity, ``nonempty=True`` a size-0 array. The messages:
+
+        {name} must have shape {shapes}[: {meaning}]; got {shape}.
+        {name} must be finite, got NaN or inf[; {hint}].
+
+    Examples
+    --------
+    >>> f = Array((1, 2), rows=3, meaning="one value per vertex", hint="replace them first")
+    >>> f.check([1, 2, 3], "f", {}).dtype
+    dtype('float64')
+    >>> f.check(np.ones((4, 2)), "f", {})
+    Traceback (most recent call last):
+    ...
+    ValueError: f must have shape (3,) or (3, c): one value per vertex; got (4, 2).
+    >>> f.check([1.0, np.nan, 0.0], "f", {})
+    Traceback (most recent call last):
+    ...
+    ValueError: f must be finite, got NaN or inf; replace them first.
+    """
+
+    def __init__(self, ndim: int | tuple[int, ...] = (1, 2), *, rows: Bound = None, cols: Bound = None,
+                 cols_name: str = "c", dtype: Any = np.float64, finite: bool = True, nonempty: bool = False,
+                 column: bool = False, meaning: str | None = None, **options: Any) -> None:
+        super().__init__(**options)
+        self.ndim = (ndim,) if isinstance(ndim, int) else tuple(ndim)
+        self.rows, self.cols, self.cols_name, self.dtype = rows, cols, cols_name, dtype
+        self.finite, self.nonempty, self.column, self.meaning = finite, nonempty, column, meaning
+
+    def check(self, value: Any, name: str, arguments: dict[str, Any]) -> Any:
+        if value is None and self.none:
+            return None
+        rows, cols = _resolve(self.rows, arguments), _resolve(self.cols, arguments)
+        parts = {"rows": rows, "cols": cols}
+        shapes = _shape_text(self.ndim, rows, cols, self.cols_name)
+        try:
+            arr = np.asarray(value, dtype=self.dtype)
+        except (TypeError, ValueError):
+            arr = None
+        got = "a value that is not an array of numbers" if arr is None else str(arr.shape)
+        fits = arr is not None and arr.ndim in self.ndim and (
+            arr.ndim == 0 or rows is None or arr.shape[0] == rows) and (
+            arr.ndim < 2 or cols is None or arr.shape[1] == cols) and not (self.nonempty and arr.size == 0)
+        if not fits:
+            if self.message is not None:
+                raise ValueError(self.message(name, value) if callable(self.message)
+                                 else self.message.format(name=name, shape=got, shapes=shapes, **parts))
+            what = self._text(self.what, arguments, parts) if self.what is not None else (
+                f"have shape {shapes}" + (f": {self.meaning}" if self.meaning else "")
+                + (", not empty" if self.nonempty else ""))
+            raise ValueError(f"{name} must {what}; got {got}.")
+        if self.finite and not np.all(np.isfinite(arr)):
+            hint = None if self.hint is None else self._text(self.hint, arguments, parts)
+            raise ValueError(f"{name} must be finite, got NaN or inf{'; ' + hint if hint else ''}.")
+        return arr[:, None] if self.column and arr.ndim == 1 else arr
+
+
+class Indices(Constraint):
+    """Vertex indices: integers (integer dtype; ``integral=True`` also takes floats such as ``3.0``) in ``0..high``.
+
+    ``high`` is usually a callable of the arguments (``lambda mesh, **_: mesh.n_vertices - 1``).
+    ``ndim`` as in :class:`Array`; ``scalar=True`` also takes one index and gives it as a 1-D array.
+    ``length`` fixes the number of indices; ``nonempty=True`` refuses none. The body gets an
+    ``int64`` array. The messages:
+
+        {name} must be {what}; got dtype {dtype} and shape {shape}.
+        {name} holds vertex index {index} outside 0..{high}[; {hint}].
+
+    ``out_of_range`` replaces the second, formatted with ``{name}``, ``{index}``, ``{high}`` and
+    ``{count}`` (``high + 1``, the number of vertices).
+
+    Examples
+    --------
+    >>> rule = Indices(high=9, nonempty=True, what="a non-empty 1-D array of vertex indices")
+    >>> rule.check([0, 3, 9], "samples", {}).tolist()
+    [0, 3, 9]
+    >>> rule.check([1.5], "samples", {})
+    Traceback (most recent call last):
+    ...
+    ValueError: samples must be a non-empty 1-D array of vertex indices; got dtype float64 and shape (1,).
+    >>> rule.check([10], "samples", {})
+    Traceback (most recent call last):
+    ...
+    ValueError: samples holds vertex index 10 outside 0..9.
+    """
+
+    def __init__(self, high: Bound = None, *, ndim: int = 1, length: Bound = None, scalar: bool = False,
+                 integral: bool = False, nonempty: bool = False, out_of_range: str | None = None,
+                 **options: Any) -> None:
+        super().__init__(**options)
+        self.high, self.ndim, self.length, self.scalar = high, ndim, length, scalar
+        self.integral, self.nonempty, self.out_of_range = integral, nonempty, out_of_range
+
+    def _integers(self, arr: NDArray[Any]) -> bool:
+        if arr.dtype == bool:
+            return False
+        if np.issubdtype(arr.dtype, np.integer):
+            return True
+        return bool(self.integral and np.issubdtype(arr.dtype, np.floating) and np.all(np.isfinite(arr))
+                    and np.all(arr == np.round(arr)))
+
+    def check(self, value: Any, name: str, arguments: dict[str, Any]) -> Any:
+        if value is None and self.none:
+            return None
+        high, length = _resolve(self.high, arguments), _resolve(self.length, arguments)
+        parts = {"low": 0, "high": high, "length": length}
+        try:
+            arr = np.asarray(value)
+        except (TypeError, ValueError):
+            arr = np.asarray(None)
+        if self.scalar and arr.ndim == 0:
+            arr = arr.reshape(1)
+        fits = arr.ndim == self.ndim and self._integers(arr) and not (self.nonempty and arr.size == 0) and (
+            length is None or arr.shape[0] == length)
+        if not fits:
+            if self.message is not None:
+                raise ValueError(self.message(name, value) if callable(self.message) else self.message.format(
+                    name=name, dtype=arr.dtype, shape=arr.shape, **parts))
+            what = self._text(self.what, arguments, parts) if self.what is not None else (
+                f"an integer array of shape ({length},)" if length is not None else "an array of vertex indices")
+            raise ValueError(f"{name} must be {what}; got dtype {arr.dtype} and shape {arr.shape}.")
+        arr = arr.astype(np.int64)
+        bad = (arr < 0) | (arr > high) if high is not None else arr < 0
+        if bad.any():
+            index = int(arr[bad].flat[0])
+            if self.out_of_range is not None:
+                raise ValueError(self.out_of_range.format(
+                    name=name, index=index, high=high, count=None if high is None else high + 1))
+            hint = None if self.hint is None else self._text(self.hint, arguments, parts)
+            raise ValueError(f"{name} holds vertex index {index} outside 0..{high}{'; ' + hint if hint else ''}.")
+        return arr
+
+
+class Relation(Constraint):
+    """A rule between arguments: ``holds(**arguments)`` is true, else ``ValueError(message)``.
+
+    ``message`` is a string formatted with the arguments, or a callable of them. Put it on the
+    argument named last in the relation, so the others are checked first; it passes the value on
+    unchanged.
+
+    Examples
+    --------
+    >>> one = Relation(lambda mu, beta, **_: (mu is None) != (beta is None), "give exactly one of mu and beta")
+    >>> one.check(None, "beta", {"mu": 0.1, "beta": None})
+    >>> one.check(2.0, "beta", {"mu": 0.1, "beta": 2.0})
+    Traceback (most recent call last):
+    ...
+    ValueError: give exactly one of mu and beta.
+    """
+
+    def __init__(self, holds: Callable[..., bool], message: Any) -> None:
+        super().__init__(message=message)
+        self.holds = holds
+
+    def check(self, value: Any, name: str, arguments: dict[str, Any]) -> Any:
+        if self.holds(**arguments):
+            return value
+        text = self.message(**arguments) if callable(self.message) else self.message.format(**arguments)
+        raise ValueError(text if text.endswith(".") else text + ".")
 
 
 F = TypeVar("F", bound=Callable[..., Any])
