@@ -30,6 +30,7 @@ from typing import Union
 import numpy as np
 from numpy.typing import NDArray
 
+from .._support.validation import Relation, Satisfies, validated
 from .._support.warning import warn
 from ._formats import (
     BINARY_FORMATS, FORMATS, POINT_FORMATS, RawMesh, mesh_text, read_point_text, read_raw, write_mesh_binary,
@@ -49,14 +50,26 @@ class MeshRepairWarning(UserWarning):
     """Issued by :func:`load_mesh` with ``clean=True`` when it changed the mesh; says what."""
 
 
-def _check_path(path: PathLike, formats: tuple[str, ...] = FORMATS) -> Path:
+def _extension_rule(formats: tuple[str, ...]) -> Satisfies:
+    """The rule for a ``path`` argument: its extension (case-insensitive) is one of ``formats``.
+
+    A value that is not a path gets the ``TypeError`` of :func:`os.fspath`, as before the table.
+    """
+    kind = "mesh" if formats == FORMATS else "point"
+
+    def message(name: str, path: PathLike) -> str:
+        p = Path(os.fspath(path))
+        return f"unsupported {kind} file extension {p.suffix!r} in {str(p)!r}; supported: {', '.join(formats)}."
+
+    return Satisfies(lambda path: Path(os.fspath(path)).suffix.lower() in formats, message=message)
+
+
+_MESH_PATH, _POINT_PATH = _extension_rule(FORMATS), _extension_rule(POINT_FORMATS)
+
+
+def _file(path: PathLike, formats: tuple[str, ...] = FORMATS) -> Path:
+    """``path`` (its extension already checked) as a :class:`Path` to an existing, non-empty regular file."""
     p = Path(os.fspath(path))
-    ext = p.suffix.lower()
-    if ext not in formats:
-        raise ValueError(
-            f"unsupported {'mesh' if formats == FORMATS else 'point'} file extension {p.suffix!r} in {str(p)!r}; "
-            f"supported: {', '.join(formats)}."
-        )
     if not p.exists():
         raise FileNotFoundError(f"no such {'mesh' if formats == FORMATS else 'point'} file: {str(p)!r}")
     if not p.is_file():
@@ -66,6 +79,7 @@ def _check_path(path: PathLike, formats: tuple[str, ...] = FORMATS) -> Path:
     return p
 
 
+@validated(path=_MESH_PATH)
 def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Read a mesh file's vertices and triangles without any topology check.
 
@@ -95,7 +109,7 @@ def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.in
     >>> f.tolist()
     [[0, 1, 2], [0, 1, 2]]
     """
-    raw = read_raw(_check_path(path))
+    raw = read_raw(_file(path))
     return raw.vertices, raw.triangles
 
 
@@ -103,6 +117,11 @@ def read_mesh_arrays(path: PathLike) -> tuple[NDArray[np.float64], NDArray[np.in
 
 # Public API
 # =============================================================================================
+@validated(
+    keep_largest_component=Relation(lambda clean, keep_largest_component, **_: clean or not keep_largest_component,
+                                    "keep_largest_component=True only applies when cleaning; pass clean=True as well"),
+    path=_MESH_PATH,
+)
 def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bool = False) -> Mesh:
     """Read a triangle mesh from an ``.off``, ``.obj``, ``.ply`` or ``.stl`` file.
 
@@ -158,9 +177,7 @@ def load_mesh(path: PathLike, clean: bool = False, *, keep_largest_component: bo
     ...     load_mesh(path, clean=True).faces.tolist()
     [[0, 1, 2], [0, 2, 3]]
     """
-    if keep_largest_component and not clean:
-        raise ValueError("keep_largest_component=True only applies when cleaning; pass clean=True as well.")
-    p = _check_path(path)
+    p = _file(path)
     raw = read_raw(p)
     if clean:
         try:
@@ -207,6 +224,12 @@ def _in_the_file(raw: RawMesh, message: str, p: Path) -> str:
     return f" In the file{counting}: {'; '.join(places)}."
 
 
+@validated(
+    path=_MESH_PATH,
+    binary=Relation(lambda path, binary, **_: not binary or Path(os.fspath(path)).suffix.lower() in BINARY_FORMATS,
+                    lambda path, **_: f"{Path(os.fspath(path)).suffix.lower()} files are text only; pass binary=False "
+                                      "(or None), or save as .ply or .stl"),
+)
 def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path:
     """Write ``mesh`` to an ``.off``, ``.obj``, ``.ply`` or ``.stl`` file.
 
@@ -247,12 +270,8 @@ def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path
         raise TypeError(f"save_mesh needs a Mesh, got {type(mesh).__name__}; build one with Mesh(vertices, faces).")
     p = Path(os.fspath(path))
     ext = p.suffix.lower()
-    if ext not in FORMATS:
-        raise ValueError(f"unsupported mesh file extension {p.suffix!r}; supported: {', '.join(FORMATS)}.")
     if binary is None:
         binary = ext in BINARY_FORMATS
-    if binary and ext not in BINARY_FORMATS:
-        raise ValueError(f"{ext} files are text only; pass binary=False (or None), or save as .ply or .stl.")
     v, f = mesh.vertices, mesh.faces
     if binary:
         # Written with NumPy (formats.writers), not open3d: saving needs no system libraries.
@@ -268,6 +287,7 @@ def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path
 
 
 
+@validated(path=_POINT_PATH)
 def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
     """Read a point cloud: a vertex-only PLY, a text list of points, or a mesh file's vertices.
 
@@ -304,7 +324,7 @@ def load_points(path: PathLike, *, clean: bool = False) -> PointCloud:
     >>> load_points(path).n_points
     5
     """
-    p = _check_path(path, POINT_FORMATS)
+    p = _file(path, POINT_FORMATS)
     ext = p.suffix.lower()
     try:
         points = read_raw(p, need_faces=False).vertices if ext in FORMATS else read_point_text(p)

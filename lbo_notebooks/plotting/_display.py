@@ -9,11 +9,12 @@ import re
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Array
 from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 
-__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "check_scalars", "colour_range", "tidy_label",
-           "default_colorscale", "DIVERGING", "SEQUENTIAL"]
+__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "SCALARS", "check_scalars",
+           "colour_range", "tidy_label", "default_colorscale", "DIVERGING", "SEQUENTIAL"]
 
 
 DEFAULT_MAX_FACES = 40_000
@@ -78,16 +79,20 @@ def display_mesh(mesh: Mesh | PointCloud, max_faces: int = DEFAULT_MAX_FACES
     return d.vertices, d.faces, d.index
 
 
+def _one_per_vertex(mesh: Mesh | PointCloud, **_: object) -> str:
+    what = "point" if isinstance(mesh, PointCloud) else "vertex"
+    return f"have one value per {what}, shape ({len(positions(mesh))},)"
+
+
+#: The rule for ``scalars`` beside ``mesh`` (a Mesh or a PointCloud): None, or one finite value per
+#: vertex (per point), as a float64 array.
+SCALARS = Array(1, rows=lambda mesh, **_: len(positions(mesh)), none=True, what=_one_per_vertex,
+                hint="plotly would draw them as holes. Replace them first")
+
+
 def check_scalars(mesh: Mesh | PointCloud, scalars: ArrayLike | None) -> NDArray[np.float64] | None:
-    if scalars is None:
-        return None
-    s = np.asarray(scalars, dtype=np.float64)
-    n, what = len(positions(mesh)), "point" if isinstance(mesh, PointCloud) else "vertex"
-    if s.shape != (n,):
-        raise ValueError(f"scalars must have one value per {what}, shape ({n},); got {s.shape}.")
-    if not np.all(np.isfinite(s)):
-        raise ValueError("scalars contain NaN or inf; plotly would draw them as holes. Replace them first.")
-    return s
+    """``scalars`` checked by :data:`SCALARS` for ``mesh``, where no table sees them (one of many meshes, a frame)."""
+    return SCALARS.check(scalars, "scalars", {"mesh": mesh, "scalars": scalars})
 
 
 def colour_range(s: NDArray[np.float64] | None, cmin: float | None, cmax: float | None,

@@ -5,18 +5,21 @@ reconstruction sliders (notebook 08). Built on :mod:`lbo_notebooks.plotting._mes
 
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Sequence, Sized
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Array, Relation, Satisfies, validated
 from ..geometry._mesh import Mesh
+from ._rayleigh_plane import MATRIX, OPTIONAL_NORMAL, plane_circle, plane_normal
 from ._sliders import mesh_slider
 
 __all__ = ["rayleigh_sphere_figure", "PlaneSlider", "plane_slider", "plot_mds_scaling", "reconstruction_sliders"]
 
 
 # --- min-max (notebook 07): the Rayleigh quotient on the unit sphere of R^3 ------------------------
+@validated(matrix=MATRIX, normal=OPTIONAL_NORMAL)
 def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *, resolution: int = 60) -> Any:
     """Plotly figure: the unit sphere coloured by ``x.T M x``, with a plane's great circle.
 
@@ -30,9 +33,7 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
     """
     import plotly.graph_objects as go
 
-    from . import _rayleigh_plane as teaching
-
-    M = teaching.symmetric_3x3(matrix)
+    M = matrix
     u, v = np.meshgrid(np.linspace(0, np.pi, resolution), np.linspace(0, 2 * np.pi, 2 * resolution))
     X = np.stack([np.sin(u) * np.cos(v), np.sin(u) * np.sin(v), np.cos(u)], axis=-1)
     R = np.einsum("...i,ij,...j->...", X, M, X)
@@ -41,7 +42,7 @@ def rayleigh_sphere_figure(matrix: ArrayLike, normal: ArrayLike | None = None, *
                    colorbar=dict(title="xᵀMx"))
     )
     if normal is not None:
-        circle, point, value = teaching.plane_circle(M, normal)
+        circle, point, value = plane_circle(M, normal)
         fig.add_trace(go.Scatter3d(x=circle[:, 0], y=circle[:, 1], z=circle[:, 2], mode="lines",
                                    line=dict(color="white", width=6), name="plane"))
         fig.add_trace(go.Scatter3d(x=[point[0]], y=[point[1]], z=[point[2]], mode="markers",
@@ -61,16 +62,15 @@ class PlaneSlider:
     Rayleigh quotient on the plane shown. Build it with :func:`plane_slider`.
     """
 
+    @validated(matrix=MATRIX)
     def __init__(self, matrix: ArrayLike, angles: Sequence[float]) -> None:
         import ipywidgets as widgets
         import plotly.graph_objects as go
 
-        from . import _rayleigh_plane as teaching
-
-        self.matrix = teaching.symmetric_3x3(matrix)
+        self.matrix = matrix
         self.lam = np.linalg.eigvalsh(self.matrix)
         self._values = list(angles)
-        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, teaching.plane_normal(self.matrix, angles[0])))
+        self.figure = go.FigureWidget(rayleigh_sphere_figure(self.matrix, plane_normal(self.matrix, angles[0])))
         self.slider = widgets.SelectionSlider(options=list(angles), value=angles[0], description="angle",
                                               continuous_update=False)
         self.slider.observe(lambda change: self.update(change["new"]), names="value")
@@ -78,9 +78,7 @@ class PlaneSlider:
         self.update(angles[0])
 
     def update(self, angle: float) -> None:
-        from . import _rayleigh_plane as teaching
-
-        circle, point, value = teaching.plane_circle(self.matrix, teaching.plane_normal(self.matrix, angle))
+        circle, point, value = plane_circle(self.matrix, plane_normal(self.matrix, angle))
         with self.figure.batch_update():
             line, marker = self.figure.data[1], self.figure.data[2]
             line.x, line.y, line.z = circle[:, 0], circle[:, 1], circle[:, 2]
@@ -95,6 +93,7 @@ class PlaneSlider:
         display(self.widget)
 
 
+@validated(matrix=MATRIX)
 def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181, 5))) -> PlaneSlider:
     """Courant–Fischer in 3-D: rotate a plane and watch its minimum Rayleigh quotient.
 
@@ -109,6 +108,8 @@ def plane_slider(matrix: ArrayLike, angles: Sequence[float] = tuple(range(0, 181
 
 
 # --- recorded MDS benchmark (notebook 10) -------------------------------------------------------
+@validated(rows=Satisfies(lambda rows: not isinstance(rows, Sized) or len(rows) > 0,
+                          message="rows is empty; pass lbo_notebooks.analyses.recorded_benchmark('mds')['scaling']."))
 def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     """Time and peak memory of spectral vs classical MDS against n, from ``benchmarks/mds.py`` rows.
 
@@ -131,8 +132,6 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
     """
     import matplotlib.pyplot as plt
 
-    if not rows:
-        raise ValueError("rows is empty; pass lbo_notebooks.analyses.recorded_benchmark('mds')['scaling'].")
     n = np.array([r["n"] for r in rows], dtype=np.float64)
 
     def get(kind: str, key: str) -> NDArray[np.float64]:
@@ -157,6 +156,14 @@ def plot_mds_scaling(rows: Sequence[dict]) -> Any:
 
 
 # --- reconstruction sliders (notebook 08) -------------------------------------------------------
+@validated(
+    target=Array(2, rows=lambda mesh, **_: mesh.n_vertices, cols=3, finite=False,
+                 what=lambda mesh, **_: f"be an ({mesh.n_vertices}, 3) array of positions"),
+    alphas=Satisfies(lambda alphas: True, convert=list),
+    counts=(Satisfies(lambda counts: True, convert=lambda counts: [int(c) for c in counts]),
+            Relation(lambda alphas, counts, **_: len(alphas) > 0 and len(counts) > 0,
+                     "alphas and counts must not be empty")),
+)
 def reconstruction_sliders(
     mesh: Mesh,
     target: ArrayLike,
@@ -188,12 +195,7 @@ def reconstruction_sliders(
     """
     import ipywidgets as widgets
 
-    X = np.asarray(target, dtype=np.float64)
-    if X.shape != (mesh.n_vertices, 3):
-        raise ValueError(f"target must be an ({mesh.n_vertices}, 3) array of positions, got {np.shape(target)}.")
-    alphas, counts = list(alphas), [int(c) for c in counts]
-    if not alphas or not counts:
-        raise ValueError("alphas and counts must not be empty.")
+    X = target
     alpha_slider = widgets.SelectionSlider(options=alphas, value=alphas[0] if alpha is None else alpha,
                                            description="alpha", continuous_update=False)
 

@@ -16,10 +16,12 @@ from typing import Any, Hashable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Relation, Satisfies, validated
 from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 from ._display import (
     DEFAULT_MAX_FACES,
+    SCALARS,
     Display,
     check_scalars,
     colour_range,
@@ -32,6 +34,7 @@ from ._scene import (
     ELEVATION,
     MARGIN,
     NOMINAL_WIDTH,
+    UP,
     View,
     scene_layout,
     trace,
@@ -46,6 +49,33 @@ _COLORBAR_PX = 70              # room for a colour bar and its tick labels, in p
 _ROW_GAP_PX = 10               # between rows of panels
 
 
+def _is_shared(shared: Any, meshes: list[Any]) -> bool:
+    """``shared_colour_range`` is True, False or one group label per mesh."""
+    if isinstance(shared, (bool, np.bool_)):
+        return True
+    return not isinstance(shared, str) and isinstance(shared, Sequence) and len(shared) == len(meshes)
+
+
+# plot_meshes: the meshes as a list (an iterator is read once), and one scalars, title and group label per mesh.
+_MESHES = (Satisfies(lambda meshes: True, convert=list),
+           Relation(lambda meshes, **_: len(meshes) > 0, "plot_meshes needs at least one mesh"))
+_SCALARS_PER_MESH = Relation(
+    lambda meshes, scalars, **_: scalars is None or len(scalars) == len(meshes),
+    lambda meshes, scalars, **_: (f"got {len(scalars)} scalar arrays for {len(meshes)} meshes; "
+                                  "pass one (or None) per mesh"))
+_TITLES = Relation(lambda meshes, titles, **_: titles is None or len(titles) == len(meshes),
+                   lambda meshes, titles, **_: f"got {len(titles)} titles for {len(meshes)} meshes")
+_SHARED = Relation(
+    lambda meshes, shared_colour_range, **_: _is_shared(shared_colour_range, meshes),
+    lambda meshes, shared_colour_range, **_: ("shared_colour_range must be True, False or one group label per mesh "
+                                              f"({len(meshes)}); got {shared_colour_range!r}"))
+# Whole numbers, as int or float (``cols=2.0``, ``height=0.5 * 800``).
+_COLS = Satisfies(lambda cols: int(cols) == cols and cols >= 1, "a positive integer", none=True)
+_HEIGHT = Satisfies(lambda height: int(height) == height and height >= 50, "a number of pixels (at least 50) or None",
+                    none=True)
+
+
+@validated(scalars=SCALARS, up=UP)
 def plot_mesh(
     mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
@@ -110,7 +140,7 @@ def plot_mesh(
     """
     import plotly.graph_objects as go
 
-    s = check_scalars(mesh, scalars)
+    s = scalars  # checked by SCALARS: None or one finite float64 per vertex
     lo, hi = colour_range(s, cmin, cmax, symmetric)
     view = View(positions(mesh), up)
     radius = view.radius * (1 + MARGIN)
@@ -124,6 +154,8 @@ def plot_mesh(
     return fig
 
 
+@validated(meshes=_MESHES, scalars=_SCALARS_PER_MESH, titles=_TITLES, cols=_COLS, height=_HEIGHT,
+           shared_colour_range=_SHARED, up=UP)
 def plot_meshes(
     meshes: Sequence[Mesh | PointCloud],
     scalars: Sequence[ArrayLike | None] | None = None,
@@ -194,20 +226,9 @@ def plot_meshes(
     """
     import plotly.graph_objects as go
 
-    meshes = list(meshes)
-    if not meshes:
-        raise ValueError("plot_meshes needs at least one mesh.")
     if scalars is None:
         scalars = [None] * len(meshes)
-    if len(scalars) != len(meshes):
-        raise ValueError(f"got {len(scalars)} scalar arrays for {len(meshes)} meshes; pass one (or None) per mesh.")
-    if titles is not None and len(titles) != len(meshes):
-        raise ValueError(f"got {len(titles)} titles for {len(meshes)} meshes.")
-    if cols is not None and (int(cols) != cols or cols < 1):
-        raise ValueError(f"cols must be a positive integer; got {cols!r}.")
-    if height is not None and (int(height) != height or height < 50):
-        raise ValueError(f"height must be a number of pixels (at least 50) or None; got {height!r}.")
-    values = [check_scalars(m, s) for m, s in zip(meshes, scalars)]
+    values = [check_scalars(m, s) for m, s in zip(meshes, scalars)]  # per mesh: no table sees them
     n = len(meshes)
     ranges = _panel_ranges(values, shared_colour_range, cmin, cmax, symmetric)
     # One colour bar per distinct range, beside the last panel drawn with it.
@@ -268,14 +289,11 @@ def _panel_ranges(values: list[NDArray[np.float64] | None], shared: bool | Seque
     """The colour range of each panel (None for a panel without a function).
 
     ``shared`` is False (a range per panel), True (one for all) or one group label per panel
-    (one range per group).
+    (one range per group), as :func:`plot_meshes` checked it.
     """
     n = len(values)
     if isinstance(shared, (bool, np.bool_)):
         groups: list[Hashable] = [0] * n if shared else list(range(n))
-    elif isinstance(shared, str) or not isinstance(shared, Sequence) or len(shared) != n:
-        raise ValueError(f"shared_colour_range must be True, False or one group label per mesh ({n}); "
-                         f"got {shared!r}.")
     else:
         groups = list(shared)
     out: list[tuple[float, float] | None] = [None] * n
@@ -298,6 +316,7 @@ def _view_rotation(view: View) -> NDArray[np.float64]:
 _MATPLOTLIB = {"RdBu_r": "RdBu_r", "Viridis": "viridis"}
 
 
+@validated(scalars=SCALARS, up=UP)
 def plot_mesh_static(
     mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
@@ -330,7 +349,7 @@ def plot_mesh_static(
     from matplotlib import colormaps
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    s = check_scalars(mesh, scalars)
+    s = scalars  # checked by SCALARS: None or one finite float64 per vertex
     d = Display(mesh, max_faces)
     view = View(positions(mesh), up)
     # Rotate into the view frame: x to the right, y away from the viewer, z up; matplotlib then

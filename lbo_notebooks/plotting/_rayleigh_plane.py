@@ -16,11 +16,31 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Array, Satisfies, validated
 from ..spectral._inner_product import fix_signs
 
-__all__ = ["plane_normal", "symmetric_3x3", "plane_circle"]
+__all__ = ["MATRIX", "NORMAL", "OPTIONAL_NORMAL", "plane_normal", "symmetric_3x3", "plane_circle"]
+
+#: The rule for ``matrix``: a finite symmetric 3 x 3 array (given to the body as float64).
+MATRIX = (
+    Array(2, rows=3, cols=3, meaning="a finite symmetric 3 x 3 array"),
+    Satisfies(lambda M: np.allclose(M, M.T),
+              message="{name} must be a finite symmetric 3 x 3 array; it is not symmetric (M != M.T)."),
+)
 
 
+def _is_normal(normal: ArrayLike) -> bool:
+    n = np.asarray(normal, dtype=np.float64)
+    return bool(n.shape == (3,) and np.all(np.isfinite(n)) and np.any(n))
+
+
+#: The rule for a plane's ``normal``: a finite nonzero 3-vector (``OPTIONAL_NORMAL``: or None).
+NORMAL = Satisfies(_is_normal, message="{name} must be a finite nonzero 3-vector, got {value!r}.")
+OPTIONAL_NORMAL = Satisfies(_is_normal, message="{name} must be a finite nonzero 3-vector or None, got {value!r}.",
+                            none=True)
+
+
+@validated(matrix=MATRIX)
 def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
     """Unit normal of a plane through the origin of R^3, rotated by ``angle`` degrees.
 
@@ -35,13 +55,13 @@ def plane_normal(matrix: ArrayLike, angle: float) -> NDArray[np.float64]:
     >>> plane_normal(np.diag([1.0, 2.0, 4.0]), 0.0).round(12).tolist()
     [1.0, 0.0, 0.0]
     """
-    M = symmetric_3x3(matrix)
-    _, vec = np.linalg.eigh(M)
+    _, vec = np.linalg.eigh(matrix)
     vec = fix_signs(vec)
     t = np.deg2rad(float(angle))
     return np.cos(t) * vec[:, 0] + np.sin(t) * (vec[:, 1] + vec[:, 2]) / np.sqrt(2.0)
 
 
+@validated(matrix=MATRIX)
 def symmetric_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
     """``matrix`` as a float array, checked to be a finite symmetric 3 x 3 matrix.
 
@@ -50,12 +70,10 @@ def symmetric_3x3(matrix: ArrayLike) -> NDArray[np.float64]:
     >>> symmetric_3x3(np.eye(3)).shape
     (3, 3)
     """
-    M = np.asarray(matrix, dtype=np.float64)
-    if M.shape != (3, 3) or not np.all(np.isfinite(M)) or not np.allclose(M, M.T):
-        raise ValueError(f"matrix must be a finite symmetric 3 x 3 array, got shape {M.shape}.")
-    return M
+    return matrix
 
 
+@validated(matrix=MATRIX, normal=NORMAL)
 def plane_circle(matrix: ArrayLike, normal: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
     """The plane ``{x : normal . x = 0}`` on the unit sphere and its Rayleigh-quotient minimum.
 
@@ -68,10 +86,8 @@ def plane_circle(matrix: ArrayLike, normal: ArrayLike) -> tuple[NDArray[np.float
     >>> circle.shape, round(value, 12)
     ((200, 3), 2.0)
     """
-    M = symmetric_3x3(matrix)
+    M = matrix
     nrm = np.asarray(normal, dtype=np.float64)
-    if nrm.shape != (3,) or not np.all(np.isfinite(nrm)) or not np.any(nrm):
-        raise ValueError(f"normal must be a finite nonzero 3-vector, got {normal!r}.")
     nrm = nrm / np.linalg.norm(nrm)
     # The Rayleigh quotient restricted to the plane: a 2 x 2 eigenproblem in an orthonormal basis Z
     # of the plane (what minmax.min_rayleigh_quotient does for any codimension, here by hand).

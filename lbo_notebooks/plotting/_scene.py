@@ -9,9 +9,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Satisfies
 from ._display import POINT_SIZE, Display
 
-__all__ = ["NOMINAL_WIDTH", "MARGIN", "ELEVATION", "AZIMUTH", "auto_up", "View", "scene_layout", "wrap", "trace"]
+__all__ = ["NOMINAL_WIDTH", "MARGIN", "ELEVATION", "AZIMUTH", "UP", "auto_up", "View", "scene_layout", "wrap",
+           "trace"]
 
 
 # --- the camera ------------------------------------------------------------------------------
@@ -53,19 +55,33 @@ def auto_up(vertices: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.eye(3)[1 if y > z * (1 + _SAME_EXTENT) else 2]
 
 
+def _is_up(up: str | ArrayLike) -> bool:
+    if isinstance(up, str):
+        key = up.strip().lower()
+        return key == "auto" or key.lstrip("+-") in _AXES
+    u = np.asarray(up, dtype=np.float64)
+    return bool(u.shape == (3,) and np.all(np.isfinite(u)) and np.linalg.norm(u) != 0)
+
+
+def _up_message(name: str, up: object) -> str:
+    if isinstance(up, str):
+        return f'{name}={up!r}: use "auto", "x", "y", "z" (optionally with a sign, e.g. "-y") or a 3-vector.'
+    return f"{name} must be a finite non-zero 3-vector or one of 'auto', 'x', 'y', 'z'; got {up!r}."
+
+
+#: The rule for ``up`` in every figure: "auto", an axis with an optional sign, or a finite non-zero 3-vector.
+UP = Satisfies(_is_up, message=_up_message)
+
+
 def _up_vector(up: str | ArrayLike, vertices: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The unit vector drawn upwards for an ``up`` that passed :data:`UP`."""
     if isinstance(up, str):
         key = up.strip().lower()
         if key == "auto":
             return auto_up(vertices)
         sign = -1.0 if key.startswith("-") else 1.0
-        if key.lstrip("+-") not in _AXES:
-            raise ValueError(f'up={up!r}: use "auto", "x", "y", "z" (optionally with a sign, e.g. "-y") '
-                             "or a 3-vector.")
         return sign * np.eye(3)[_AXES[key.lstrip("+-")]]
     u = np.asarray(up, dtype=np.float64)
-    if u.shape != (3,) or not np.all(np.isfinite(u)) or np.linalg.norm(u) == 0:
-        raise ValueError(f"up must be a finite non-zero 3-vector or one of 'auto', 'x', 'y', 'z'; got {up!r}.")
     return u / np.linalg.norm(u)
 
 

@@ -9,6 +9,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Relation, Satisfies, validated
 from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 from ._display import (
@@ -21,12 +22,22 @@ from ._display import (
     tidy_label,
 )
 from ._meshes import plot_mesh
-from ._scene import MARGIN, View
+from ._scene import MARGIN, UP, View
 
 __all__ = ["MeshSlider", "mesh_slider"]
 
 
 _LOOK_AHEAD = 3                # slider values tried for a first frame that is not blank
+
+# The slider's values as a list (an iterator is read once), at least one; ``start`` one of them.
+_SLIDER = dict(
+    values=(Satisfies(lambda values: True, convert=list),
+            Relation(lambda values, **_: len(values) > 0, "mesh_slider needs at least one slider value")),
+    start=Relation(lambda values, start, **_: start is None or start in values,
+                   lambda values, start, **_: f"start={start!r} is not one of the slider values {values[:3]}...; "
+                                              "pick one of them"),
+    up=UP,
+)
 
 
 def _first_informative(frame: Callable[[Any], Any], values: list[Any]) -> Any:
@@ -55,19 +66,15 @@ class MeshSlider:
     object itself); ``figure`` and ``slider`` are exposed so that code and tests can drive it.
     """
 
+    @validated(**_SLIDER)
     def __init__(self, mesh: Mesh | PointCloud, frame: Callable[[Any], Any], values: Sequence[Any], description: str,
                  *, colorscale: str | None, symmetric: bool, max_faces: int, height: int, title: Callable[[Any], str] | None,
                  up: str | ArrayLike = "auto", start: Any = None) -> None:
         import ipywidgets as widgets
         import plotly.graph_objects as go
 
-        values = list(values)
-        if not values:
-            raise ValueError("mesh_slider needs at least one slider value.")
         if start is None:
             start = _first_informative(frame, values)
-        elif start not in values:
-            raise ValueError(f"start={start!r} is not one of the slider values {values[:3]}...; pick one of them.")
         self.mesh, self._frame, self._values, self._title = mesh, frame, values, title
         self._symmetric, self._colorscale = symmetric, colorscale
         self._display = Display(mesh, max_faces)
@@ -134,6 +141,7 @@ class MeshSlider:
         display(self.widget)
 
 
+@validated(**_SLIDER)
 def mesh_slider(
     mesh: Mesh | PointCloud,
     frame: Callable[[Any], Any],

@@ -28,7 +28,7 @@ from typing import Any, Mapping
 import numpy as np
 from numpy.typing import NDArray
 
-from ..._support.validation import Integer, Options, validated
+from ..._support.validation import Integer, Options, Satisfies, validated
 from ...geometry._mesh import Mesh
 from .rig import JOINT_ORDER, deform, rotation_vector, template_for
 from .tables import JOINTS, PARTS, POSES, SPECIES, part_joints
@@ -43,16 +43,23 @@ _SPECIES = Options(*SPECIES, message=lambda name, value: f"unknown species {valu
 _N_VERTICES = Integer(1_000, 200_000, what="an integer in 1000..200000 (honoured within 10% from 2000 to 50000)")
 
 
+def _pose_message(name: str, value: Any) -> str:
+    if isinstance(value, str):
+        return f"unknown pose {value!r}; choose one of {tuple(POSES)} or pass a dict of joint angles."
+    return f"{name} must be a pose name or a dict joint -> angles in degrees, got {type(value).__name__}."
+
+
+# A pose name or a dict of joint angles; the angles of each joint are checked in _parse_pose.
+_POSE = Satisfies(lambda pose: isinstance(pose, Mapping) or (isinstance(pose, str) and pose in POSES),
+                  message=_pose_message)
+# None or a dict part -> scale factor; the parts and factors are checked in _parse_parts.
+_PARTS = Satisfies(lambda parts: isinstance(parts, Mapping), none=True,
+                   message="{name} must be a dict part -> scale factor (e.g. {{'head': 1.6}}), got {type}.")
+
+
 def _parse_pose(pose: Any) -> dict[str, NDArray[np.float64]]:
-    """Rotation vectors of the joints (and of ``"body"``) named in a pose."""
-    if isinstance(pose, str):
-        if pose not in POSES:
-            raise ValueError(f"unknown pose {pose!r}; choose one of {tuple(POSES)} or pass a dict of joint angles.")
-        angles: Mapping[str, Any] = POSES[pose]
-    elif isinstance(pose, Mapping):
-        angles = pose
-    else:
-        raise ValueError(f"pose must be a pose name or a dict joint -> angles in degrees, got {type(pose).__name__}.")
+    """Rotation vectors of the joints (and of ``"body"``) named in a pose (a name or a dict, see ``_POSE``)."""
+    angles: Mapping[str, Any] = POSES[pose] if isinstance(pose, str) else pose
     rotations = {}
     for joint, value in angles.items():
         if joint not in JOINTS and joint != "body":
@@ -72,10 +79,9 @@ def _parse_pose(pose: Any) -> dict[str, NDArray[np.float64]]:
 
 
 def _parse_parts(parts: Any) -> dict[str, float]:
+    """Scale factors of the joints for the parts named in ``parts`` (None or a dict, see ``_PARTS``)."""
     if parts is None:
         return {}
-    if not isinstance(parts, Mapping):
-        raise ValueError(f"parts must be a dict part -> scale factor (e.g. {{'head': 1.6}}), got {type(parts).__name__}.")
     scales: dict[str, float] = {}
     for part, factor in parts.items():
         if part not in PARTS:
@@ -87,7 +93,7 @@ def _parse_parts(parts: Any) -> dict[str, float]:
     return scales
 
 
-@validated(species=_SPECIES, n_vertices=_N_VERTICES)
+@validated(species=_SPECIES, n_vertices=_N_VERTICES, pose=_POSE, parts=_PARTS)
 def creature(
     species: str = "dog",
     pose: str | Mapping[str, float | tuple[float, float, float]] = "standing",
@@ -145,7 +151,7 @@ def creature(
     return template.mesh.with_vertices(deform(template, rotations, scales))
 
 
-@validated(species=_SPECIES, n_vertices=_N_VERTICES)
+@validated(species=_SPECIES, n_vertices=_N_VERTICES, parts=_PARTS)
 def creature_poses(
     species: str = "dog", n_vertices: int = 10_000, parts: Mapping[str, float] | None = None
 ) -> dict[str, Mesh]:
