@@ -36,7 +36,7 @@ LAYERS: list[tuple[str, str, tuple[str, ...]]] = [
     ("operators", "which (W, A) for an input: cotangent, robust (tufted, point cloud), curvature metric |K|^alpha",
      ("operators", "operators.*")),
     ("inner products", "the A-inner-product algebra (the first floor of the spectral folder: its engine uses it)",
-     ("spectral._inner_product",)),
+     ("spectral._mass_products", "spectral._inner_product")),
     ("engine", "the private eigensolver: factorisations, Krylov, the sliced solver, the thread policy; "
      "sparse matrices in, never a mesh", ("spectral._engine", "spectral._engine.*")),
     ("spectral", "the solver services over the engine, the Spectrum and eigenbasis",

@@ -8,14 +8,12 @@ import scipy.sparse as sp
 
 from lbo_notebooks import eigenbasis, mass_matrix, shapes
 from lbo_notebooks.spectral._inner_product import (
-    DiagonalMass,
     a_orthonormalize,
     check_operators,
-    cholesky_qr,
     fix_signs,
     fix_signs_in_place,
-    mass_operator,
 )
+from lbo_notebooks.spectral._mass_products import DiagonalMass, cholesky_qr, mass_operator
 from lbo_notebooks.spectral._engine.policy import default_shift, start_vector, use_dense
 
 

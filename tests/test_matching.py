@@ -10,6 +10,7 @@ import scipy.spatial
 
 import lbo_notebooks as lbo
 from lbo_notebooks.analyses import _functional_maps as fm
+from lbo_notebooks.analyses import _matching as matching_module
 from lbo_notebooks.analyses import gps, hks, hks_times, wks
 
 from .kernel import cell_outputs, is_widget
@@ -234,7 +235,7 @@ def test_match_names_the_bad_argument_before_computing_anything(dog, monkeypatch
     def computed(*args, **kw):
         raise AssertionError("match computed an eigenbasis before checking its arguments")
 
-    monkeypatch.setattr(lbo.analyses._matching, "eigenbasis", computed)
+    monkeypatch.setattr(matching_module, "eigenbasis", computed)
     with pytest.raises(ValueError, match=name):
         lbo.match(dog, dog, **kwargs)
 
@@ -326,7 +327,7 @@ def test_default_progress_shows_in_a_terminal_only_for_long_calls(dog, monkeypat
     monkeypatch.setattr(sys, "stderr", terminal)
     lbo.match(dog, target, k=10, k_final=20)
     assert terminal.getvalue() == ""  # 2000 vertices: too short for a bar
-    monkeypatch.setattr(lbo.analyses._matching, "LARGE_MESH", 1000)  # as if the dog were large
+    monkeypatch.setattr(matching_module, "LARGE_MESH", 1000)  # as if the dog were large
     lbo.match(dog, target, k=10, k_final=20)
     assert "match" in terminal.getvalue()
     log = io.StringIO()  # stderr redirected to a file: no bar even for a long call
@@ -334,8 +335,8 @@ def test_default_progress_shows_in_a_terminal_only_for_long_calls(dog, monkeypat
     with _progress.progress_bar(3, "quiet", None, long=True) as bar:
         bar.update(3)
     assert log.getvalue() == ""
-    with pytest.raises(ValueError, match="progress"):
-        _progress.check_progress(1)
+    with pytest.raises(ValueError, match=r"^progress must be True \(always show a progress bar\), False"):
+        lbo.match(dog, target, k=10, k_final=20, progress=1)
 
 
 def test_default_progress_bar_shows_in_a_notebook():

@@ -167,3 +167,19 @@ def test_default_bars_show_in_a_notebook():
     assert not any(o.get("output_type") == "error" for o in outputs), outputs
     widgets = [o for o in outputs if is_widget(o)]
     assert len(widgets) == 3, outputs  # one bar for each call (none for spectral MDS's eigenbasis)
+
+
+def test_every_call_with_a_progress_argument_checks_it(sphere):
+    """One rule for ``progress`` (issue 42, item 7): the MDS, sampling and geodesic calls refuse 1 too."""
+    from lbo_notebooks.analyses import classical_mds, fast_classical_scaling, landmark_mds
+
+    calls = {
+        "classical_mds": lambda: classical_mds(sphere, progress=1),
+        "landmark_mds": lambda: landmark_mds(sphere, n_samples=10, progress=1),
+        "fast_classical_scaling": lambda: fast_classical_scaling(sphere, n_samples=10, progress=1),
+        "geodesic_distances": lambda: lbo.geodesic_distances(sphere, [0], progress=1),
+        "farthest_point_sampling": lambda: lbo.farthest_point_sampling(sphere, 3, progress=1),
+    }
+    for name, call in calls.items():
+        with pytest.raises(ValueError, match=r"^progress must be True \(always show a progress bar\)"):
+            call()

@@ -19,18 +19,16 @@ from __future__ import annotations
 
 from typing import Any
 
+from .validation import Satisfies
+
 #: Calls on meshes of this many vertices or more are long enough for a bar by default.
 LARGE_MESH = 10_000
 
 
-def check_progress(progress: Any) -> bool | None:
-    """``progress`` checked to be ``True``, ``False`` or ``None`` (a ``ValueError`` otherwise)."""
-    if progress is not None and not isinstance(progress, bool):
-        raise ValueError(
-            f"progress must be True (always show a progress bar), False (never) or None (only for long "
-            f"calls in a notebook or a terminal), got {progress!r}."
-        )
-    return progress
+#: The ``progress`` argument's constraint, for a function's ``@validated`` table: a Python ``bool`` or None.
+PROGRESS = Satisfies(lambda progress: isinstance(progress, bool), none=True, message=(
+    "{name} must be True (always show a progress bar), False (never) or None (only for long "
+    "calls in a notebook or a terminal), got {value!r}."))
 
 
 def progress_bar(total: int, desc: str, progress: bool | None, *, long: bool = True) -> Any:

@@ -10,6 +10,7 @@ scaling", scaling in a span).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -17,10 +18,12 @@ import scipy.linalg
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from .._support.validation import Constraint, Integer, Number, Satisfies
+from .._support.validation import Constraint, Integer, Number, Relation, Satisfies
 from ..spectral._solvers import start_vector, use_dense
 
-__all__ = ["dim_below", "sample_count", "check_dim", "check_samples", "top_eigenpairs", "scaling_in_span"]
+__all__ = [
+    "dim_below", "sample_count", "check_dim", "check_samples", "sampling_pair", "top_eigenpairs", "scaling_in_span",
+]
 
 #: The table entry of ``dim`` when its limit is known only from the data (then :func:`check_dim`).
 DIM = Integer(1, what="a positive integer (the embedding dimension)")
@@ -65,6 +68,35 @@ def check_samples(count: Any, n: int, name: str = "n_samples") -> int:
     for rule in sample_count(n):
         count = rule.check(count, name, {})
     return int(count)
+
+
+def sampling_pair(count: Callable[..., int], letter: str = "count") -> Relation:
+    """The table entry of ``sampling``: ``None``, or ``(samples, distances)`` with at least ``count`` samples.
+
+    ``count`` is a callable of the arguments (``lambda n_samples, **_: n_samples``); ``distances``
+    holds one row of ``mesh.n_vertices`` values per sample, as
+    ``farthest_point_sampling(mesh, count, return_distances=True)`` returns them. ``letter`` names
+    the count in the message.
+    """
+
+    def shapes(sampling: Any) -> tuple[tuple[int, ...], tuple[int, ...]]:
+        samples, fields = (np.asarray(a) for a in sampling)
+        return samples.shape, fields.shape
+
+    def holds(mesh: Any, sampling: Any, **arguments: Any) -> bool:
+        if sampling is None:
+            return True
+        samples, fields = shapes(sampling)
+        return len(samples) == 1 and fields == (samples[0], mesh.n_vertices) and (
+            samples[0] >= count(mesh=mesh, sampling=sampling, **arguments))
+
+    def message(mesh: Any, sampling: Any, **arguments: Any) -> str:
+        q, n = count(mesh=mesh, sampling=sampling, **arguments), mesh.n_vertices
+        samples, fields = shapes(sampling)
+        return (f"sampling must be (samples, distances) from farthest_point_sampling(mesh, {letter} >= {q}, "
+                f"return_distances=True): shapes ({letter},) and ({letter}, {n}); got {samples} and {fields}.")
+
+    return Relation(holds, message)
 
 
 def top_eigenpairs(B: NDArray[np.float64], dim: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, Satisfies, validated
+from .._support.validation import Array, Integer, Number, Relation, Satisfies, validated
 from ..spectral._inner_product import a_orthonormalize, check_operators
 from ..geometry._mesh import Mesh
 from ..operators._cotangent import MASS_KIND, MassKind, mass_matrix, stiffness_matrix
@@ -190,7 +190,16 @@ def _gaussian_bumps(mesh: Mesh, count: int, seed: int) -> NDArray[np.float64]:
     return out
 
 
-@validated(**_BASIS)
+def _enough_samples(k: int, samples: NDArray[np.float64] | None, **_: object) -> bool:
+    return samples is None or samples.shape[1] >= k - 1
+
+
+@validated(**_BASIS, samples=(
+    Array(2, rows=lambda mesh, **_: mesh.n_vertices, none=True,
+          message="{name} must be a finite array of shape ({rows}, m), got {shape}."),
+    Relation(_enough_samples, lambda k, samples, **_: (
+        f"pca_basis needs at least k - 1 = {k - 1} independent samples; got {samples.shape[1]} columns.")),
+))
 def pca_basis(
     mesh: Mesh,
     k: int,
@@ -224,11 +233,7 @@ def pca_basis(
     True
     """
     A = mass_matrix(mesh, mass_kind)
-    X = _gaussian_bumps(mesh, 4 * k, seed) if samples is None else np.array(samples, dtype=np.float64)
-    if X.ndim != 2 or X.shape[0] != mesh.n_vertices or not np.all(np.isfinite(X)):
-        raise ValueError(f"samples must be a finite array of shape ({mesh.n_vertices}, m), got {X.shape}.")
-    if X.shape[1] < k - 1:
-        raise ValueError(f"pca_basis needs at least k - 1 = {k - 1} independent samples; got {X.shape[1]} columns.")
+    X = _gaussian_bumps(mesh, 4 * k, seed) if samples is None else samples
     a = np.asarray(A @ np.ones(mesh.n_vertices)).ravel()
     X = X - np.outer(np.ones(mesh.n_vertices), (a @ X) / a.sum())  # remove each sample's A-mean
     K = X.T @ (A @ X)

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._support.validation import check_integer
+from .._support.validation import Array, Integer, Relation, validated
 
 __all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
 
@@ -27,6 +27,28 @@ __all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark"
 RESULTS = Path(__file__).resolve().parents[1] / "recorded"
 
 
+_SERIES = "sizes and costs must be 1-D arrays of the same length, at least 2"
+#: ``sizes`` and ``costs``: 1-D (NaN and inf are refused below, for the costs only, as the logarithms see them).
+_ONE_D = Array(1, finite=False, message=_SERIES + "; {name} has shape {shape}.")
+
+
+def _loggable(sizes: Any, costs: Any, **_: Any) -> bool:
+    return not (np.any(sizes <= 0) or np.any(costs <= 0) or not np.all(np.isfinite(costs)))
+
+
+def _benchmark_name(name: Any, path: Any, **_: Any) -> bool:
+    return path is not None or (isinstance(name, str) and bool(name) and Path(name).name == name)
+
+
+@validated(
+    sizes=_ONE_D,
+    costs=(
+        _ONE_D,
+        Relation(lambda sizes, costs, **_: sizes.shape == costs.shape and sizes.size >= 2,
+                 lambda sizes, costs, **_: f"{_SERIES}; got lengths {sizes.size} and {costs.size}."),
+        Relation(_loggable, "sizes and costs must be positive and finite (logarithms are taken)."),
+    ),
+)
 def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
     """Least-squares slope of ``log(cost)`` against ``log(size)``: cost ~ size^exponent.
 
@@ -35,12 +57,7 @@ def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
     >>> growth_exponent([100, 200, 400], [3.0, 12.0, 48.0])
     2.0
     """
-    n, c = np.asarray(sizes, dtype=np.float64), np.asarray(costs, dtype=np.float64)
-    if n.shape != c.shape or n.ndim != 1 or n.size < 2:
-        raise ValueError("sizes and costs must be 1-D arrays of the same length, at least 2.")
-    if np.any(n <= 0) or np.any(c <= 0) or not np.all(np.isfinite(c)):
-        raise ValueError("sizes and costs must be positive and finite (logarithms are taken).")
-    return float(round(np.polyfit(np.log(n), np.log(c), 1)[0], 12))
+    return float(round(np.polyfit(np.log(sizes), np.log(costs), 1)[0], 12))
 
 
 def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
@@ -81,6 +98,7 @@ def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     return {"result": result, "cpu_seconds": cpu, "peak_bytes": int(peak)}
 
 
+@validated(runs=Integer(1))
 def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """:func:`measure_cost` of ``runs`` calls of ``function``: the one that took the least CPU time.
 
@@ -93,10 +111,11 @@ def least_cost(runs: int, function: Any, *args: Any, **kwargs: Any) -> dict[str,
     >>> sorted(cost), cost["result"].shape
     (['cpu_seconds', 'peak_bytes', 'result'], (100, 100))
     """
-    check_integer(runs, "runs", 1)
-    return min((measure_cost(function, *args, **kwargs) for _ in range(int(runs))), key=lambda cost: cost["cpu_seconds"])
+    return min((measure_cost(function, *args, **kwargs) for _ in range(runs)), key=lambda cost: cost["cpu_seconds"])
 
 
+@validated(path=Relation(_benchmark_name, lambda name, **_: (
+    f"name must be a benchmark's name such as 'mds' (a file of {RESULTS}), got {name!r}.")))
 def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, Any]:
     """The results a benchmark run recorded: ``lbo_notebooks/recorded/<name>.json``, as a dict.
 
@@ -110,12 +129,7 @@ def recorded_benchmark(name: str, path: str | Path | None = None) -> dict[str, A
     >>> sorted(recorded)[:3]
     ['accuracy', 'blas_threads', 'cores']
     """
-    if path is None:
-        if not isinstance(name, str) or not name or Path(name).name != name:
-            raise ValueError(f"name must be a benchmark's name such as 'mds' (a file of {RESULTS}), got {name!r}.")
-        file = RESULTS / f"{name}.json"
-    else:
-        file = Path(path)
+    file = RESULTS / f"{name}.json" if path is None else Path(path)
     if not file.is_file():
         raise FileNotFoundError(
             f"no recorded benchmark at {file}: run benchmarks/{name}.py with its --record/--json option in the "

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, Satisfies, validated
+from .._support.validation import Integer, Number, Relation, Satisfies, validated
 from ..geometry._mesh import MeshError
 from ..spectral._spectrum import Spectrum
 
@@ -118,7 +118,9 @@ def hks(spectrum: Spectrum, times: ArrayLike | None = None, *, n_times: int = 16
 
 
 @validated(spectrum=_spectrum(3), n_energies=Integer(1), sigma_factor=_POSITIVE)
-def wks_energies(spectrum: Spectrum, n_energies: int = 100, *, sigma_factor: float = 7.0) -> tuple[NDArray[np.float64], float]:
+def wks_energies(
+    spectrum: Spectrum, n_energies: int = 100, *, sigma_factor: float = 7.0
+) -> tuple[NDArray[np.float64], float]:
     """Default WKS log-energies and width: log-spaced over ``(log lam_1, log lam_max)``.
 
     The grid is shrunk by ``2 sigma`` at both ends so each band sees eigenvalues on both sides;
@@ -135,7 +137,15 @@ def wks_energies(spectrum: Spectrum, n_energies: int = 100, *, sigma_factor: flo
     return np.linspace(lo + 2 * sigma, hi - 2 * sigma, n_energies), float(sigma)
 
 
-@validated(spectrum=_spectrum(3), energies=_GRID, sigma=Number(0, open_low=True, none=True))
+@validated(
+    spectrum=_spectrum(3),
+    energies=_GRID,
+    sigma=(
+        Number(0, open_low=True, none=True),
+        Relation(lambda energies, sigma, **_: energies is None or sigma is not None,
+                 "with explicit energies pass sigma too (a few grid steps in log-energy)."),
+    ),
+)
 def wks(
     spectrum: Spectrum,
     energies: ArrayLike | None = None,
@@ -169,12 +179,10 @@ def wks(
     _check_connected(spectrum)
     if energies is None:
         e, default_sigma = wks_energies(spectrum, n_energies)
+        sigma = default_sigma if sigma is None else sigma
     else:
-        e, default_sigma = energies, None
-    if sigma is None:
-        if default_sigma is None:
-            raise ValueError("with explicit energies pass sigma too (a few grid steps in log-energy).")
-        sigma = default_sigma
+        e = energies
+    assert sigma is not None  # with explicit energies the table asks for sigma
     log_lam = np.log(spectrum.values[1:])
     g = np.exp(-((e[None, :] - log_lam[:, None]) ** 2) / (2.0 * sigma**2))
     return (spectrum.vectors[:, 1:] ** 2) @ (g / g.sum(axis=0))

@@ -12,14 +12,22 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from .._support.validation import Integer, validated
+from .._support.validation import Integer, Relation, Satisfies, validated
 from ._geodesics import farthest_point_sampling
 from ..geometry._mesh import Mesh
 
 __all__ = ["pose_distortion", "vertex_strain"]
 
+_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh),
+                  message="{name} must be an lbo_notebooks.Mesh object, got {type}.")
+#: ``rest`` and ``posed`` are two poses of one triangulation (on ``posed``, named last).
+_SAME_FACES = Relation(
+    lambda rest, posed, **_: rest.n_vertices == posed.n_vertices and np.array_equal(rest.faces, posed.faces),
+    "rest and posed must share one triangulation (same faces); pass two poses of one creature.",
+)
 
-@validated(n_samples=Integer(2, lambda rest, **_: rest.n_vertices))
+
+@validated(n_samples=Integer(2, lambda rest, **_: rest.n_vertices), posed=_SAME_FACES)
 def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, float]:
     """How far ``posed`` is from an isometry of ``rest`` (two meshes with the same faces).
 
@@ -39,8 +47,6 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
     import scipy.sparse as sp
     from scipy.sparse.csgraph import dijkstra
 
-    if rest.n_vertices != posed.n_vertices or not np.array_equal(rest.faces, posed.faces):
-        raise ValueError("rest and posed must share one triangulation (same faces); pass two poses of one creature.")
     edges, n = rest.edges, rest.n_vertices
 
     def lengths(mesh: Mesh) -> NDArray[np.float64]:
@@ -62,6 +68,7 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
     }
 
 
+@validated(rest=_MESH, posed=(_MESH, _SAME_FACES))
 def vertex_strain(rest: Mesh, posed: Mesh) -> NDArray[np.float64]:
     """Per vertex, the largest relative length change ``|l1 / l0 - 1|`` of the edges at it.
 
@@ -76,10 +83,6 @@ def vertex_strain(rest: Mesh, posed: Mesh) -> NDArray[np.float64]:
     >>> float(vertex_strain(m, m.with_vertices(2 * m.vertices)).max().round(12))   # scaling by 2: +100%
     1.0
     """
-    if not isinstance(rest, Mesh) or not isinstance(posed, Mesh):
-        raise ValueError("rest and posed must be lbo_notebooks.Mesh objects.")
-    if rest.n_vertices != posed.n_vertices or not np.array_equal(rest.faces, posed.faces):
-        raise ValueError("rest and posed must share one triangulation (same faces); pass two poses of one creature.")
     e = rest.edges
     l0 = np.linalg.norm(rest.vertices[e[:, 0]] - rest.vertices[e[:, 1]], axis=1)
     l1 = np.linalg.norm(posed.vertices[e[:, 0]] - posed.vertices[e[:, 1]], axis=1)

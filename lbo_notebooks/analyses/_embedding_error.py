@@ -9,28 +9,26 @@ orthogonal alignment (:func:`procrustes_error`). Both cost O(n dim^2).
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
+
+from .._support.validation import Array, Relation, validated
 
 __all__ = ["gram_error", "procrustes_error"]
 
-
-def _as_embedding(Z: ArrayLike, name: str) -> NDArray[np.float64]:
-    arr = np.asarray(Z, dtype=np.float64)
-    if arr.ndim != 2:
-        raise ValueError(f"{name} must be an (n, dim) array of embedded points, got shape {arr.shape}.")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or inf.")
-    return arr
-
-
-def _pair(Z: ArrayLike, X: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    Zc, Xc = _as_embedding(Z, "Z"), _as_embedding(X, "X")
-    if Zc.shape[0] != Xc.shape[0]:
-        raise ValueError(f"Z has {Zc.shape[0]} points but X has {Xc.shape[0]}; compare embeddings of the same vertices.")
-    return Zc - Zc.mean(axis=0), Xc - Xc.mean(axis=0)
+#: Each embedding: n points of any dimension, finite.
+_EMBEDDING = Array(2, message="{name} must be an (n, dim) array of embedded points, got shape {shape}.")
+_SAME_VERTICES = Relation(
+    lambda Z, X, **_: Z.shape[0] == X.shape[0],
+    lambda Z, X, **_: f"Z has {Z.shape[0]} points but X has {X.shape[0]}; compare embeddings of the same vertices.",
+)
+_SAME_DIMENSION = Relation(
+    lambda Z, X, **_: Z.shape[1] == X.shape[1],
+    lambda Z, X, **_: f"Z and X must have the same dimension for Procrustes, got {Z.shape[1]} and {X.shape[1]}.",
+)
 
 
 # --- accuracy ---------------------------------------------------------------------------------
+@validated(Z=_EMBEDDING, X=(_EMBEDDING, _SAME_VERTICES))
 def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
     """Relative Gram-matrix error ``||Z Z.T - X X.T||_F / ||X X.T||_F`` of centred embeddings.
 
@@ -48,7 +46,7 @@ def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
     >>> bool(gram_error(X @ Q + 5.0, X) < 1e-12)
     True
     """
-    Zc, Xc = _pair(Z, X)
+    Zc, Xc = Z - Z.mean(axis=0), X - X.mean(axis=0)
     # ZZ.T - XX.T = Y S Y.T with Y = [Z X], S = diag(I, -I). With the thin QR Y = Q R its Frobenius
     # norm is that of the small matrix R S R.T: no cancellation between ||Z.T Z|| and ||X.T X||.
     R = np.linalg.qr(np.hstack([Zc, Xc]), mode="r")
@@ -60,6 +58,7 @@ def gram_error(Z: ArrayLike, X: ArrayLike) -> float:
     return float(np.linalg.norm(Rz @ Rz.T - Rx @ Rx.T) / ref)
 
 
+@validated(Z=_EMBEDDING, X=(_EMBEDDING, _SAME_VERTICES, _SAME_DIMENSION))
 def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
     """Relative error ``min_R ||Z R - X||_F / ||X||_F`` over orthogonal ``R``, after centring.
 
@@ -74,9 +73,7 @@ def procrustes_error(Z: ArrayLike, X: ArrayLike) -> float:
     >>> bool(procrustes_error(-X[:, ::-1] + 1.0, X) < 1e-12)  # a reflection and a shift
     True
     """
-    Zc, Xc = _pair(Z, X)
-    if Zc.shape[1] != Xc.shape[1]:
-        raise ValueError(f"Z and X must have the same dimension for Procrustes, got {Zc.shape[1]} and {Xc.shape[1]}.")
+    Zc, Xc = Z - Z.mean(axis=0), X - X.mean(axis=0)
     ref = np.sum(Xc * Xc)
     if ref <= 0:
         raise ValueError("the reference embedding X is a single point.")

@@ -15,12 +15,13 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.progress import PROGRESS
 from .._support.validation import Number, Satisfies, validated
 from ..spectral._solvers import one_blas_thread
 from ._geodesics import METHOD, GeodesicMethod, check_connected, farthest_point_sampling
 from ..spectral._inner_product import fix_signs
 from ..geometry._mesh import Mesh
-from ._classical_scaling import dim_below, sample_count, scaling_in_span
+from ._classical_scaling import dim_below, sample_count, sampling_pair, scaling_in_span
 
 __all__ = ["fast_classical_scaling", "FCS_DEFAULTS"]
 
@@ -73,6 +74,8 @@ def _interpolation_operator(mesh: Mesh, samples: NDArray[np.int64], mu: float) -
     dim=dim_below(lambda n_samples, **_: 2 * n_samples,
                   "2 n_samples (the embedding lives in the span of 2q interpolants)"),
     mu=Number(0, open_low=True, what="a positive number (dimensionless; try 1e-3)"),
+    sampling=sampling_pair(lambda n_samples, **_: n_samples),
+    progress=PROGRESS,
 )
 def fast_classical_scaling(
     mesh: Mesh,
@@ -144,7 +147,7 @@ def fast_classical_scaling(
     """
     t0 = time.perf_counter()
     check_connected(mesh, "fast classical scaling")
-    n, q = mesh.n_vertices, n_samples
+    q = n_samples
 
     with one_blas_thread():  # as in spectral_mds: no BLAS threads spinning against other programs
         # 1. samples and their squared distance fields
@@ -154,11 +157,6 @@ def fast_classical_scaling(
             )
         else:
             samples, fields = (np.asarray(a) for a in sampling)
-            if samples.ndim != 1 or fields.ndim != 2 or fields.shape != (samples.size, n) or samples.size < q:
-                raise ValueError(
-                    f"sampling must be (samples, distances) from farthest_point_sampling(mesh, count >= {q}, "
-                    f"return_distances=True): shapes (count,) and (count, {n}); got {samples.shape} and {fields.shape}."
-                )
             samples, fields = samples[:q].astype(np.int64), fields[:q]
         F = np.square(fields)  # a new array: the caller's sampling is not modified
         t1 = time.perf_counter()

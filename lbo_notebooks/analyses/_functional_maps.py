@@ -38,8 +38,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, Satisfies, validated
-from .._support.progress import LARGE_MESH, check_progress, progress_bar
+from .._support.validation import Array, Indices, Integer, Number, Relation, Satisfies, validated
+from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
 from ..spectral._inner_product import a_norms
 from ..geometry._mesh import Mesh
 from ..spectral._spectrum import Spectrum
@@ -67,16 +67,25 @@ def _eigenpairs(computed: Any, none: bool = False) -> Integer:
                    hint="compute more eigenpairs with eigenbasis(mesh, k)")
 
 
-def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64]:
-    arr = np.asarray(p2p)
-    if arr.shape != (n_target,) or not np.issubdtype(arr.dtype, np.integer):
-        raise ValueError(
-            f"p2p must be an integer array of shape ({n_target},): one source vertex per target vertex; "
-            f"got dtype {arr.dtype} and shape {arr.shape}."
-        )
-    if arr.size and (arr.min() < 0 or arr.max() >= n_source):
-        raise ValueError(f"p2p holds vertex indices outside 0..{n_source - 1} (the source has {n_source} vertices).")
-    return arr.astype(np.int64)
+#: A point map from the target to the source: one source vertex per target vertex.
+_P2P = Indices(
+    lambda source, **_: source.n_vertices - 1,
+    length=lambda target, **_: target.n_vertices,
+    what="an integer array of shape ({length},): one source vertex per target vertex",
+    hint=lambda source, **_: f"the source has {source.n_vertices} vertices",
+)
+
+
+def _map_shape(source: Spectrum, target: Spectrum, **_: Any) -> str:
+    return f"be a finite (k_target, k_source) matrix with k_target <= {target.k} and k_source <= {source.k}"
+
+
+#: A functional map no larger than the two bases (the Relation reads the checked ``C``).
+_MAP = (
+    Array(2, nonempty=True, what=_map_shape),
+    Relation(lambda C, source, target, **_: C.shape[0] <= target.k and C.shape[1] <= source.k,
+             lambda C, source, target, **_: f"C must {_map_shape(source, target)}; got {C.shape}"),
+)
 
 
 @validated(
@@ -84,8 +93,11 @@ def _check_p2p(p2p: ArrayLike, n_target: int, n_source: int) -> NDArray[np.int64
     target=_SPECTRUM,
     k_source=_eigenpairs(lambda source, **_: source.k, none=True),
     k_target=_eigenpairs(lambda target, **_: target.k, none=True),
+    p2p=_P2P,
 )
-def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_source: int | None = None, k_target: int | None = None) -> NDArray[np.float64]:
+def map_from_points(
+    p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_source: int | None = None, k_target: int | None = None
+) -> NDArray[np.float64]:
     """The functional map ``C = Phi_2.T A_2 Pi Phi_1`` of a point map, shape (k_target, k_source).
 
     Parameters
@@ -106,7 +118,7 @@ def map_from_points(p2p: ArrayLike, source: Spectrum, target: Spectrum, *, k_sou
     """
     k1 = source.k if k_source is None else k_source
     k2 = target.k if k_target is None else k_target
-    p = _check_p2p(p2p, target.n_vertices, source.n_vertices)
+    p = np.asarray(p2p)  # int64 source vertices, checked by the table
     return target.vectors[:, :k2].T @ (target.mass @ source.vectors[p, :k1])
 
 
@@ -119,9 +131,11 @@ def _nearest_rows(
     with ``-|p|^2 / 2`` appended to every point and ``1`` to every query, that is a matrix
     product and an argmax along its rows, done on tiles of 1024 queries x 2048 points (faster
     than full rows of points, whose products leave the cache before the argmax reads them). A
-    k-d tree, the textbook answer, degrades to a near-exhaustive search in the 30-80 dimensions of a spectral embedding, and there its scalar
-    distance loops lose clearly to the matrix product. ``dtype=np.float32`` is faster (half the
-    memory traffic); the scores it compares differ by ``|p - p'|^2 / 2`` between neighbouring points, far above its rounding, so only near-ties can change.
+    k-d tree, the textbook answer, degrades to a near-exhaustive search in the 30-80 dimensions of a
+    spectral embedding, and there its scalar distance loops lose clearly to the matrix product.
+    ``dtype=np.float32`` is faster (half the memory traffic); the scores it compares differ by
+    ``|p - p'|^2 / 2`` between neighbouring points, far above its rounding, so only near-ties can
+    change.
 
     The blocks of 1024 queries are shared among ``workers`` threads (default: the usable cores,
     at most 2), each running BLAS on one thread (:mod:`lbo_notebooks.spectral._engine.threads`): the argmax
@@ -161,17 +175,7 @@ def _nearest_rows(
     return out
 
 
-def _check_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray[np.float64]:
-    C = np.asarray(C, dtype=np.float64)
-    if C.ndim != 2 or C.shape[0] > target.k or C.shape[1] > source.k or 0 in C.shape or not np.all(np.isfinite(C)):
-        raise ValueError(
-            f"C must be a finite (k_target, k_source) matrix with k_target <= {target.k} and k_source <= {source.k}, "
-            f"got shape {C.shape}."
-        )
-    return C
-
-
-@validated(source=_SPECTRUM, target=_SPECTRUM)
+@validated(source=_SPECTRUM, target=_SPECTRUM, C=_MAP)
 def points_from_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray[np.int64]:
     """Point map of a functional map: nearest neighbours in the spectral embedding.
 
@@ -193,7 +197,7 @@ def points_from_map(C: ArrayLike, source: Spectrum, target: Spectrum) -> NDArray
     >>> bool((points_from_map(np.eye(10), s, s) == np.arange(s.n_vertices)).all())  # identity
     True
     """
-    C = _check_map(C, source, target)
+    C = np.asarray(C)  # float64, checked by the table
     k2, k1 = C.shape
     return _nearest_rows(target.vectors[:, :k2], source.vectors[:, :k1] @ C.T, dtype=np.float32)
 
@@ -208,9 +212,11 @@ def _check_samples(samples: Any, source: Spectrum, target: Spectrum) -> tuple[ND
         ) from None
     for name, arr, n in (("source", s1, source.n_vertices), ("target", s2, target.n_vertices)):
         if arr.ndim != 1 or arr.size == 0 or not np.issubdtype(arr.dtype, np.integer):
-            raise ValueError(f"the {name} samples must be a non-empty 1-D array of vertex indices, got dtype {arr.dtype} and shape {arr.shape}.")
+            raise ValueError(f"the {name} samples must be a non-empty 1-D array of vertex indices, "
+                             f"got dtype {arr.dtype} and shape {arr.shape}.")
         if arr.min() < 0 or arr.max() >= n:
-            raise ValueError(f"the {name} samples hold vertex indices outside 0..{n - 1} (the {name} has {n} vertices).")
+            raise ValueError(
+                f"the {name} samples hold vertex indices outside 0..{n - 1} (the {name} has {n} vertices).")
     return s1.astype(np.int64), s2.astype(np.int64)
 
 
@@ -219,6 +225,9 @@ def _check_samples(samples: Any, source: Spectrum, target: Spectrum) -> tuple[ND
     target=_SPECTRUM,
     k_final=_eigenpairs(lambda source, target, **_: min(source.k, target.k), none=True),
     step=Integer(1),
+    C=(*_MAP, Relation(lambda C, k_final, **_: k_final is None or min(C.shape) <= k_final,
+                       "C is already {C.shape}, larger than k_final={k_final}.")),
+    progress=PROGRESS,
 )
 def zoomout(
     C: ArrayLike,
@@ -270,7 +279,7 @@ def zoomout(
     >>> C.shape, bool((p2p == np.arange(s.n_vertices)).all())
     ((12, 12), True)
     """
-    C = _check_map(C, source, target)
+    C = np.asarray(C)  # float64, checked by the table
     k_final = min(source.k, target.k) if k_final is None else k_final
     picked = None if samples is None else _check_samples(samples, source, target)
     if picked is not None and picked[1].size < k_final:
@@ -278,9 +287,6 @@ def zoomout(
             f"ZoomOut on samples fits maps of k_final={k_final} functions by least squares on the target samples, "
             f"so it needs at least {k_final} of them (many more for a good fit), got {picked[1].size}."
         )
-    check_progress(progress)
-    if min(C.shape) > k_final:
-        raise ValueError(f"C is already {C.shape}, larger than k_final={k_final}.")
     k = min(C.shape)
     long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
     with progress_bar(-(-(k_final - k) // step) + 1, "ZoomOut", progress, long=long) as bar:
@@ -304,6 +310,7 @@ def zoomout(
     return C, p2p
 
 
+@validated(f=Array((1, 2), rows=lambda mesh, **_: mesh.n_vertices, finite=False, meaning="one value per vertex"))
 def face_gradients(mesh: Mesh, f: ArrayLike) -> NDArray[np.float64]:
     """Gradient of piecewise-linear vertex functions on every face, shape (m, 3) or (m, 3, c).
 
@@ -311,9 +318,7 @@ def face_gradients(mesh: Mesh, f: ArrayLike) -> NDArray[np.float64]:
     traversed counter-clockwise.
     """
     F = mesh.faces
-    arr = np.asarray(f, dtype=np.float64)
-    if arr.shape[0] != mesh.n_vertices or arr.ndim not in (1, 2):
-        raise ValueError(f"f must have shape ({mesh.n_vertices},) or ({mesh.n_vertices}, c), got {arr.shape}.")
+    arr = np.asarray(f)  # float64, checked by the table
     V = mesh.vertices
     n = mesh.face_normals
     scale = 1.0 / (2.0 * mesh.face_areas)
@@ -326,7 +331,12 @@ def face_gradients(mesh: Mesh, f: ArrayLike) -> NDArray[np.float64]:
     return np.asarray(grad)
 
 
-@validated(spectrum=_SPECTRUM, k=_eigenpairs(lambda spectrum, **_: spectrum.k))
+@validated(
+    spectrum=_SPECTRUM,
+    k=_eigenpairs(lambda spectrum, **_: spectrum.k),
+    descriptors=Array(2, rows=lambda mesh, **_: mesh.n_vertices, cols_name="p", finite=False,
+                      meaning="one column per descriptor"),
+)
 def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike, k: int) -> NDArray[np.float64]:
     """``O^f[i, j] = int phi_i (n x grad f) . grad phi_j dA`` for every descriptor column, (p, k, k).
 
@@ -335,9 +345,7 @@ def orientation_operators(mesh: Mesh, spectrum: Spectrum, descriptors: ArrayLike
     every metric ``|K|^alpha g`` (only ``phi`` changes). Face values are spread to the three
     corners with weight ``area / 3``, the lumped mass.
     """
-    D = np.asarray(descriptors, dtype=np.float64)
-    if D.ndim != 2 or D.shape[0] != mesh.n_vertices:
-        raise ValueError(f"descriptors must have shape ({mesh.n_vertices}, p), got {D.shape}.")
+    D = np.asarray(descriptors)  # float64, checked by the table
     Phi = spectrum.vectors[:, :k]
     grad_phi = face_gradients(mesh, Phi)  # (m, 3, k)
     rotated = np.cross(mesh.face_normals[:, :, None], face_gradients(mesh, D), axis=1)  # (m, 3, p)
@@ -392,6 +400,11 @@ def _unit_columns(D: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float
     commutativity_weight=_WEIGHT,
     orientation_weight=_WEIGHT,
     n_operators=Integer(1),
+    source_descriptors=Array(2, rows=lambda source, **_: source.n_vertices, cols_name="p",
+                             meaning="one row per source vertex, one column per descriptor"),
+    target_descriptors=Array(2, rows=lambda target, **_: target.n_vertices,
+                             cols=lambda source_descriptors, **_: source_descriptors.shape[1],
+                             meaning="one row per target vertex and the same number of columns as source_descriptors"),
 )
 def estimate_map(
     source_mesh: Mesh,
@@ -440,15 +453,9 @@ def estimate_map(
     >>> bool(np.abs(C - np.eye(10)).max() < 1e-6)
     True
     """
-    D1 = np.asarray(source_descriptors, dtype=np.float64)
-    D2 = np.asarray(target_descriptors, dtype=np.float64)
-    if D1.ndim != 2 or D2.ndim != 2 or D1.shape[1] != D2.shape[1]:
-        raise ValueError(f"descriptors must be 2-D with the same number of columns, got {D1.shape} and {D2.shape}.")
-    if D1.shape[0] != source.n_vertices or D2.shape[0] != target.n_vertices:
-        raise ValueError("descriptors must have one row per vertex of their shape (source first, then target).")
-    if not (np.all(np.isfinite(D1)) and np.all(np.isfinite(D2))):
-        raise ValueError("descriptors contain NaN or inf.")
-    D1, D2 = _unit_columns(D1, source.mass), _unit_columns(D2, target.mass)
+    # float64 (n, p) arrays with one row per vertex and the same p, checked by the table
+    D1 = _unit_columns(np.asarray(source_descriptors), source.mass)
+    D2 = _unit_columns(np.asarray(target_descriptors), target.mass)
     A = source.project(D1, k)  # (k, p)
     B = target.project(D2, k)
 

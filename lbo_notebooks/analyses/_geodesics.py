@@ -25,8 +25,8 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.progress import progress_bar
-from .._support.validation import Integer, Number, Options, Satisfies, validated
+from .._support.progress import PROGRESS, progress_bar
+from .._support.validation import Indices, Integer, Number, Options, Satisfies, validated
 from ._heat_method import HeatMethod
 from ..geometry._mesh import Mesh, MeshError, per_mesh
 
@@ -79,26 +79,15 @@ def distance_matrix_bytes(rows: int, cols: int) -> int:
     return 8 * int(rows) * int(cols)
 
 
-def _check_sources(sources: ArrayLike, n: int, what: str = "source") -> NDArray[np.int64]:
-    arr = np.asarray(sources)
-    if arr.ndim == 0:
-        arr = arr.reshape(1)
-    if arr.ndim != 1:
-        raise ValueError(f"{what}s must be a vertex index or a 1-D sequence of vertex indices, got shape {arr.shape}.")
-    if arr.size == 0:
-        raise ValueError(f"{what}s is empty; pass at least one vertex index.")
-    if arr.dtype == bool or not (np.issubdtype(arr.dtype, np.integer) or (
-        np.issubdtype(arr.dtype, np.floating) and np.all(arr == np.round(arr))
-    )):
-        raise ValueError(f"{what}s must be integer vertex indices, got dtype {arr.dtype}.")
-    arr = arr.astype(np.int64)
-    bad = (arr < 0) | (arr >= n)
-    if bad.any():
-        raise ValueError(
-            f"{what} vertex {int(arr[bad][0])} is out of range: the mesh has {n} vertices, so "
-            f"indices must lie in 0..{n - 1}."
-        )
-    return arr
+def _vertex_indices(role: str, n_vertices: Callable[..., int], none: bool = False) -> Indices:
+    """Table entry of one vertex index or a non-empty 1-D sequence of them (``role`` names them in messages)."""
+    return Indices(lambda **arguments: n_vertices(**arguments) - 1, scalar=True, integral=True, nonempty=True, none=none,
+                   what="a vertex index or a non-empty 1-D sequence of integer vertex indices",
+                   out_of_range=role + " vertex {index} is out of range: the mesh has {count} vertices, so "
+                   "indices must lie in 0..{high}.")
+
+
+_OF_SOLVER = lambda self, **_: self.n_vertices  # noqa: E731 - the solver's vertex count, for its methods' tables
 
 
 def _progress(iterable: Sequence[Any], total: int, show: bool | None, desc: str) -> Any:
@@ -180,9 +169,10 @@ class GeodesicSolver:
     def __repr__(self) -> str:
         return f"GeodesicSolver(method={self.method!r}, n_vertices={self.n_vertices})"
 
+    @validated(source=_vertex_indices("source", _OF_SOLVER))
     def distance(self, source: int) -> NDArray[np.float64]:
         """Distances from one vertex to every vertex, shape (n,); zero at the source."""
-        s = int(_check_sources(source, self.n_vertices)[0])
+        s = int(source[0])
         d = self._one(s)
         if d.shape != (self.n_vertices,) or not np.all(np.isfinite(d)):
             raise RuntimeError(
@@ -193,6 +183,11 @@ class GeodesicSolver:
         d[s] = 0.0
         return d
 
+    @validated(sources=_vertex_indices("source", _OF_SOLVER),
+               targets=_vertex_indices("target", _OF_SOLVER, none=True),
+               progress=PROGRESS,
+               memory_budget=Number(0, open_low=True, infinite=True, none=True,
+                                    message="memory_budget must be a positive number of bytes, got {value!r}."))
     def distances(
         self,
         sources: ArrayLike,
@@ -216,8 +211,7 @@ class GeodesicSolver:
             Refuse (``MemoryError`` with the size it would need) if the result would exceed this
             many bytes. Default: half of the memory currently available.
         """
-        src = _check_sources(sources, self.n_vertices)
-        cols = None if targets is None else _check_sources(targets, self.n_vertices, "target")
+        src, cols = sources, targets
         width = self.n_vertices if cols is None else cols.size
         need = distance_matrix_bytes(src.size, width)
         check_memory(need, memory_budget, f"a {src.size} x {width} distance matrix")
@@ -369,6 +363,8 @@ SampleSelection = Literal["geodesic", "graph"]
               hint="you cannot pick more samples than the mesh has vertices"),
     select=Options("geodesic", "graph", message="select must be 'geodesic' or 'graph' (the distance samples are "
                    "chosen in), got {value!r}."),
+    start=_vertex_indices("start", lambda mesh, **_: mesh.n_vertices),
+    progress=PROGRESS,
 )
 def farthest_point_sampling(
     mesh: Mesh,
@@ -428,8 +424,7 @@ def farthest_point_sampling(
     (0, True)
     """
     check_connected(mesh)
-    n = mesh.n_vertices
-    start = int(_check_sources(start, n)[0])
+    n, start = mesh.n_vertices, int(start[0])
     if select == "graph":
         # The solver factorises while the graph search runs (SuperLU releases the GIL), so
         # the two overlap instead of running one after the other.

@@ -13,7 +13,8 @@ Both matrices are factorised once per mesh. Each source is a separate right-hand
 two solves, and step 2 (not linear: it normalises) acts on each source's field alone, so a block
 of b sources is b right-hand sides of the same two factorisations, and the triangular solves work
 on b columns at once, so a source costs less in a block than alone. The two factorisations run
-in two threads (SuperLU releases the GIL while it factorises; its solves release it too but gain little from a second thread).
+in two threads (SuperLU releases the GIL while it factorises; its solves release it too but gain
+little from a second thread).
 
 Step 1 uses the intrinsic Delaunay Laplacian of robust-laplacian (Sharp & Crane 2020): its
 weights are non-negative, so the diffused heat has no spurious extrema on meshes with obtuse or

@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, Satisfies, validated
-from .._support.progress import LARGE_MESH, check_progress, progress_bar
+from .._support.validation import Indices, Integer, Number, Relation, Satisfies, validated
+from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
 from ..spectral._solvers import one_blas_thread
 from ._functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
 from ..geometry._mesh import Mesh
@@ -63,8 +63,14 @@ def _count(minimum: Any, hint: Any = None, none: bool = False) -> Integer:
     source=_MESH,
     target=_MESH,
     k=_count(2),
-    k_final=(_count(2), Integer(lambda k, **_: k, message="k_final ({value}) must be at least k ({low}); "
-                                                          "use k_final=k to skip ZoomOut.")),
+    k_final=(
+        _count(2),
+        Integer(lambda k, **_: k,
+                message="k_final ({value}) must be at least k ({low}); use k_final=k to skip ZoomOut."),
+        Integer(high=lambda source, target, **_: min(source.n_vertices, target.n_vertices) - 1,
+                what=lambda source, target, **_: "an integer smaller than the vertex count of the smaller shape "
+                                                 f"({min(source.n_vertices, target.n_vertices)})"),
+    ),
     alpha=Number(0, 1, what="a number in [0, 1] (the exponent of the metric |K|^alpha g)"),
     n_descriptors=_count(1, "it is the number of WKS energies"),
     laplacian_weight=_WEIGHT,
@@ -76,6 +82,7 @@ def _count(minimum: Any, hint: Any = None, none: bool = False) -> Integer:
         hint=lambda k_final, **_: f"ZoomOut fits maps of up to k_final={k_final} functions on the samples; "
                                   "use n_samples=None for every vertex",
     ),
+    progress=PROGRESS,
 )
 def match(
     source: Mesh,
@@ -142,11 +149,7 @@ def match(
     from ._functional_maps import estimate_map, zoomout
     from ._geodesics import farthest_point_sampling
 
-    # The table cannot say "smaller than" with the count itself in the message (its bound would be n_min - 1).
     n_min = min(source.n_vertices, target.n_vertices)
-    if k_final >= n_min:
-        raise ValueError(f"k_final ({k_final}) must be smaller than the vertex count of the smaller shape ({n_min}).")
-    check_progress(progress)
 
     sampled = n_samples is not None and n_min > 2.5 * n_samples
     long = max(source.n_vertices, target.n_vertices) >= LARGE_MESH
@@ -188,7 +191,22 @@ def match(
     return p2p
 
 
-@validated(source=_MESH)
+def _source_vertices(what: str) -> Indices:
+    """A 1-D integer array of vertex indices of ``source`` (integer dtype: a point map, not floats)."""
+    return Indices(lambda source, **_: source.n_vertices - 1, what=what,
+                   hint=lambda source, **_: f"the source has {source.n_vertices} vertices")
+
+
+_P2P = _source_vertices("a 1-D integer array of source vertex indices")
+
+
+@validated(
+    source=_MESH,
+    p2p=_P2P,
+    true_p2p=(_P2P, Relation(lambda p2p, true_p2p, **_: p2p.shape == true_p2p.shape,
+                             "p2p {p2p.shape} and true_p2p {true_p2p.shape} must have the same length "
+                             "(one entry per target vertex).")),
+)
 def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method: str = "heat") -> NDArray[np.float64]:
     """Geodesic error of a correspondence on the source, per target vertex, divided by ``sqrt(area)``.
 
@@ -218,15 +236,7 @@ def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method:
     """
     from ._geodesics import GeodesicSolver
 
-    pred, true = np.asarray(p2p), np.asarray(true_p2p)
-    n = source.n_vertices
-    for name, arr in (("p2p", pred), ("true_p2p", true)):
-        if arr.ndim != 1 or not np.issubdtype(arr.dtype, np.integer):
-            raise ValueError(f"{name} must be a 1-D integer array of source vertex indices, got dtype {arr.dtype} and shape {arr.shape}.")
-        if arr.size and (arr.min() < 0 or arr.max() >= n):
-            raise ValueError(f"{name} holds indices outside 0..{n - 1} (the source has {n} vertices).")
-    if pred.shape != true.shape:
-        raise ValueError(f"p2p {pred.shape} and true_p2p {true.shape} must have the same length (one entry per target vertex).")
+    pred, true = np.asarray(p2p), np.asarray(true_p2p)  # int64 vertex indices, checked by the table
     err = np.zeros(true.size, dtype=np.float64)
     wrong = np.flatnonzero(pred != true)  # exact hits cost nothing
     if wrong.size:
@@ -238,7 +248,18 @@ def matching_error(source: Mesh, p2p: ArrayLike, true_p2p: ArrayLike, *, method:
     return err / np.sqrt(source.area)
 
 
-def error_curve(errors: ArrayLike, thresholds: ArrayLike | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _flat(values: ArrayLike) -> NDArray[np.float64]:
+    return np.asarray(values, dtype=np.float64).ravel()
+
+
+@validated(errors=Satisfies(
+    lambda e: (a := _flat(e)).size > 0 and bool(np.all(np.isfinite(a))) and bool(np.all(a >= 0)),
+    convert=_flat,
+    message="errors must be a non-empty array of finite non-negative numbers.",
+))
+def error_curve(
+    errors: ArrayLike, thresholds: ArrayLike | None = None
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Cumulative error curve: the fraction of vertices with error at most each threshold.
 
     Parameters
@@ -259,8 +280,6 @@ def error_curve(errors: ArrayLike, thresholds: ArrayLike | None = None) -> tuple
     >>> frac.tolist()
     [0.25, 0.5, 1.0]
     """
-    e = np.asarray(errors, dtype=np.float64).ravel()
-    if e.size == 0 or not np.all(np.isfinite(e)) or np.any(e < 0):
-        raise ValueError("errors must be a non-empty array of finite non-negative numbers.")
+    e = np.asarray(errors)  # flat float64, checked by the table
     t = np.linspace(0.0, 0.25, 101) if thresholds is None else np.asarray(thresholds, dtype=np.float64).ravel()
     return t, np.searchsorted(np.sort(e), t, side="right") / e.size

@@ -34,8 +34,8 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, Options, Satisfies, validated
-from .._support.progress import LARGE_MESH, check_progress, progress_bar
+from .._support.validation import Indices, Integer, Number, Options, Relation, Satisfies, validated
+from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
 from ..spectral._solvers import one_blas_thread
 from ._geodesics import (
     A_MESH,
@@ -47,7 +47,8 @@ from ._geodesics import (
     farthest_point_sampling,
     geodesic_solver,
 )
-from ..spectral._inner_product import DiagonalMass, fix_signs, mass_operator
+from ..spectral._inner_product import fix_signs
+from ..spectral._mass_products import DiagonalMass, mass_operator
 from ..geometry._mesh import Mesh
 from ._classical_scaling import (
     DIM,
@@ -55,6 +56,7 @@ from ._classical_scaling import (
     check_samples,
     dim_below,
     sample_count,
+    sampling_pair,
     scaling_in_span,
     top_eigenpairs,
 )
@@ -102,8 +104,35 @@ SMDS_EIGEN_TOL = 1e-6
 SAMPLED = ("fields", "rows", "pairs")
 
 
+def _got(value: Any) -> str:
+    """What a message says was passed instead of a matrix: "shape (3, 4)", or "a ragged sequence"."""
+    try:
+        return f"shape {np.shape(value)}"
+    except ValueError:
+        return "a ragged sequence"
+
+
 # --- classical MDS ----------------------------------------------------------------------------
-@validated(dim=DIM)
+def _mesh_or_square(distances: Any) -> bool:
+    return isinstance(distances, Mesh) or (np.ndim(distances) == 2 and len(set(np.shape(distances))) == 1)
+
+
+def _points(distances: Any) -> int:
+    """n: the vertices of a mesh or the rows of a (square) distance matrix."""
+    return distances.n_vertices if isinstance(distances, Mesh) else np.shape(distances)[0]
+
+
+def _too_large(distances: Any, dim: int, **_: Any) -> str:
+    points = "vertices" if isinstance(distances, Mesh) else "points"
+    return f"dim={dim} must be smaller than the number of {points} ({_points(distances)})."
+
+
+@validated(
+    distances=Satisfies(_mesh_or_square,
+                        message=lambda name, value: f"distances must be a square (n, n) matrix, got {_got(value)}."),
+    dim=(DIM, Relation(lambda distances, dim, **_: dim < _points(distances), _too_large)),
+    progress=PROGRESS,
+)
 def classical_mds(
     distances: ArrayLike | Mesh,
     dim: int = 3,
@@ -151,7 +180,6 @@ def classical_mds(
         mesh = distances
         check_connected(mesh, "classical MDS on geodesic distances")
         n = mesh.n_vertices
-        dim = check_dim(dim, n, "the number of vertices")
         check_memory(2 * distance_matrix_bytes(n, n), memory_budget,
                       f"classical MDS on {n} vertices (two {n} x {n} float64 matrices)",
                       "simplify the mesh (fewer vertices)")
@@ -161,10 +189,8 @@ def classical_mds(
         np.square(D2, out=D2)  # our own buffer: square in place
     else:
         D = np.asarray(distances, dtype=np.float64)
-        if D.ndim != 2 or D.shape[0] != D.shape[1]:
-            raise ValueError(f"distances must be a square (n, n) matrix, got shape {D.shape}.")
         n = D.shape[0]
-        dim = check_dim(dim, n, "the number of points")
+        # Inline, on the one float64 copy: the table also takes a Mesh, and D may be large.
         if not np.all(np.isfinite(D)):
             raise ValueError("distances contain NaN or inf (a disconnected mesh?); MDS needs finite distances.")
         if np.any(D < 0):
@@ -188,7 +214,29 @@ def classical_mds(
 
 
 # --- landmark MDS -----------------------------------------------------------------------------
-@validated(dim=DIM)
+def _with_mesh(mesh_or_distances: Any, landmarks: Any, **_: Any) -> bool:
+    return not (isinstance(mesh_or_distances, Mesh) and landmarks is not None)
+
+
+def _with_distances(mesh_or_distances: Any, landmarks: Any, **_: Any) -> bool:
+    return isinstance(mesh_or_distances, Mesh) or landmarks is not None
+
+
+@validated(
+    dim=DIM,
+    mesh_or_distances=Satisfies(
+        lambda value: isinstance(value, Mesh) or np.ndim(value) == 2,
+        message=lambda name, value: f"distances must be a (q, n) array (landmarks x vertices), got {_got(value)}."),
+    landmarks=(
+        Relation(_with_mesh, "landmarks= goes with a precomputed (q, n) distance array, not with a mesh."),
+        Relation(_with_distances, "with a distance array, pass landmarks= (the vertex index of each row)."),
+        Indices(lambda mesh_or_distances, **_: np.shape(mesh_or_distances)[1] - 1,
+                length=lambda mesh_or_distances, **_: np.shape(mesh_or_distances)[0], none=True,
+                what="{length} integer vertex indices in 0..{high}, one per row of distances",
+                hint="landmarks= are the vertices of the {length} rows of distances"),
+    ),
+    progress=PROGRESS,
+)
 def landmark_mds(
     mesh_or_distances: Mesh | ArrayLike,
     dim: int = 3,
@@ -237,22 +285,14 @@ def landmark_mds(
     (642, 3)
     """
     if isinstance(mesh_or_distances, Mesh):
-        if landmarks is not None:
-            raise ValueError("landmarks= goes with a precomputed (q, n) distance array, not with a mesh.")
         mesh = mesh_or_distances
         check_connected(mesh, "landmark MDS")
         q = check_samples(n_samples, mesh.n_vertices)
         idx, delta = farthest_point_sampling(mesh, q, method=method, return_distances=True, progress=progress, select="graph")
     else:
         delta = np.asarray(mesh_or_distances, dtype=np.float64)
-        if delta.ndim != 2:
-            raise ValueError(f"distances must be a (q, n) array (landmarks x vertices), got shape {delta.shape}.")
-        if landmarks is None:
-            raise ValueError("with a distance array, pass landmarks= (the vertex index of each row).")
-        idx = np.asarray(landmarks)
-        q, n = delta.shape
-        if idx.shape != (q,) or not np.issubdtype(idx.dtype, np.integer) or idx.min() < 0 or idx.max() >= n:
-            raise ValueError(f"landmarks must be {q} integer vertex indices in 0..{n - 1}, one per row of distances.")
+        idx = landmarks
+        # Inline, on the one float64 copy (the table also takes a Mesh).
         if not np.all(np.isfinite(delta)):
             raise ValueError("distances contain NaN or inf (a disconnected mesh?).")
     q = delta.shape[0]
@@ -342,6 +382,16 @@ def _scaling_with_fields(
     return phi @ y[:k] + fields.T @ y[k:], G
 
 
+def _spectrum_fits(mesh: Mesh, k: int | None, spectrum: Spectrum | None, **_: Any) -> bool:
+    return spectrum is None or (spectrum.n_vertices == mesh.n_vertices and spectrum.k >= _or_default("k", k, mesh))
+
+
+def _spectrum_misfit(mesh: Mesh, k: int | None, spectrum: Spectrum, **_: Any) -> str:
+    k, n = _or_default("k", k, mesh), mesh.n_vertices
+    return (f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
+            f"k={k} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {k}).")
+
+
 @validated(
     mesh=A_MESH,
     method=METHOD,
@@ -355,8 +405,11 @@ def _scaling_with_fields(
         "sampled must be 'fields' (the samples' distance fields, unprojected), 'rows' (those fields projected onto "
         "the eigenfunctions) or 'pairs' (the distances among the samples only), got {value!r}.")),
     mu=Number(0, open_low=True, what="a positive number (dimensionless; try 0.05)"),
-    spectrum=Satisfies(lambda spectrum: isinstance(spectrum, Spectrum), none=True,
-                       message="spectrum must be a Spectrum (from eigenbasis), got {type}."),
+    spectrum=(Satisfies(lambda spectrum: isinstance(spectrum, Spectrum), none=True,
+                        message="spectrum must be a Spectrum (from eigenbasis), got {type}."),
+              Relation(_spectrum_fits, _spectrum_misfit)),
+    sampling=sampling_pair(lambda mesh, n_samples, **_: _or_default("n_samples", n_samples, mesh), "k"),
+    progress=PROGRESS,
 )
 def spectral_mds(
     mesh: Mesh,
@@ -459,7 +512,6 @@ def spectral_mds(
     n = mesh.n_vertices
     k, q = _or_default("k", k, mesh), _or_default("n_samples", n_samples, mesh)
     power = ENERGIES[energy]
-    check_progress(progress)
 
     # One BLAS thread throughout (unless the user chose the count): the eigensolver and the heat
     # method limit themselves anyway, and OpenBLAS threads spinning against another program made
@@ -469,11 +521,6 @@ def spectral_mds(
         bar.set_postfix_str("eigenbasis", refresh=True)
         if spectrum is None:
             spectrum = eigenbasis(mesh, k, tol=SMDS_EIGEN_TOL, progress=False)
-        elif spectrum.n_vertices != n or spectrum.k < k:
-            raise ValueError(
-                f"spectrum has {spectrum.k} eigenpairs on {spectrum.n_vertices} vertices; need at least "
-                f"k={k} on this mesh's {n} vertices. Compute it with eigenbasis(mesh, {k})."
-            )
         phi = spectrum.vectors[:, :k]
         lam = np.maximum(spectrum.values[:k], 0.0)
         t1 = time.perf_counter()
@@ -490,11 +537,6 @@ def spectral_mds(
             ds = geodesic_solver(mesh, method).distances(samples, targets=samples, progress=False) ** 2
         else:
             samples, fields = (np.asarray(a) for a in sampling)
-            if samples.ndim != 1 or fields.shape != (samples.size, n) or samples.size < q:
-                raise ValueError(
-                    f"sampling must be (samples, distances) from farthest_point_sampling(mesh, k >= {q}, "
-                    f"return_distances=True): shapes (k,) and (k, {n}); got {samples.shape} and {fields.shape}."
-                )
             samples = samples[:q].astype(np.int64)
             ds = fields[:q] ** 2 if sampled != "pairs" else fields[:q][:, samples] ** 2
         t2 = time.perf_counter()

@@ -26,7 +26,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Options, Satisfies, validated
+from .._support.validation import Array, Integer, Options, Relation, Satisfies, validated
 from ..spectral._inner_product import (
     a_orthonormalize,
     check_functions,
@@ -84,12 +84,8 @@ def _constraint_basis(orthogonal_to: ArrayLike | None, A: sp.csr_matrix) -> NDAr
     n = A.shape[0]
     if orthogonal_to is None:
         return np.zeros((n, 0))
-    C = np.asarray(orthogonal_to, dtype=np.float64)
-    C = C[:, None] if C.ndim == 1 else C
-    if C.ndim != 2 or C.shape[0] != n:
-        raise ValueError(f"orthogonal_to must have shape ({n},) or ({n}, codim), got {np.shape(orthogonal_to)}.")
-    if not np.all(np.isfinite(C)):
-        raise ValueError("orthogonal_to contains NaN or inf.")
+    # The rule applied here, not in a table: n is that of the checked operators.
+    C = Array(rows=n, cols_name="codim", column=True).check(orthogonal_to, "orthogonal_to", {})
     if C.shape[1] >= n:
         raise ValueError(f"the codimension ({C.shape[1]}) must be smaller than the dimension ({n}).")
     return a_orthonormalize(C, A)
@@ -231,7 +227,16 @@ def min_rayleigh_quotient(
     return ConstrainedRayleigh(W, A).minimum(orthogonal_to, return_vector=return_vector)
 
 
-@validated(n_vertices=Integer(1), k=Integer(0, lambda n_vertices, **_: n_vertices - 1))
+def _pool_spans(k: int, pool: NDArray[np.float64] | None, **_: object) -> bool:
+    return pool is None or pool.shape[1] >= k
+
+
+@validated(n_vertices=Integer(1), k=Integer(0, lambda n_vertices, **_: n_vertices - 1), pool=(
+    Array(2, rows=lambda n_vertices, **_: n_vertices, none=True,
+          message="{name} must be a finite array of shape ({rows}, m), got {shape}."),
+    Relation(_pool_spans, lambda k, pool, **_: (
+        f"pool has {pool.shape[1]} columns; it needs at least k = {k} to span a codimension-{k} constraint set.")),
+))
 def random_subspace(
     n_vertices: int, k: int, *, seed: int = 0, pool: ArrayLike | None = None
 ) -> NDArray[np.float64]:
@@ -261,12 +266,7 @@ def random_subspace(
     rng = np.random.default_rng(seed)
     if pool is None:
         return rng.normal(size=(n_vertices, k))
-    P = np.asarray(pool, dtype=np.float64)
-    if P.ndim != 2 or P.shape[0] != n_vertices or not np.all(np.isfinite(P)):
-        raise ValueError(f"pool must be a finite array of shape ({n_vertices}, m), got {P.shape}.")
-    if P.shape[1] < k:
-        raise ValueError(f"pool has {P.shape[1]} columns; it needs at least k = {k} to span a codimension-{k} constraint set.")
-    return P @ rng.normal(size=(P.shape[1], k))
+    return pool @ rng.normal(size=(pool.shape[1], k))
 
 
 @validated(

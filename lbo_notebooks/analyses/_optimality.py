@@ -17,7 +17,7 @@ section "Optimality".
 
 from __future__ import annotations
 
-from typing import Literal, overload
+from typing import Any, Literal, overload
 
 import numpy as np
 import scipy.linalg
@@ -26,8 +26,16 @@ import scipy.sparse.csgraph as csgraph
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Options, Satisfies, validated
-from ..spectral._inner_product import a_orthonormalize, check_functions, check_operators, fix_signs
+from .._support.validation import (
+    Array,
+    Constraint,
+    Integer,
+    Options,
+    Relation,
+    Satisfies,
+    validated,
+)
+from ..spectral._inner_product import a_orthonormalize, check_operators, fix_signs
 from ..spectral._solvers import start_vector, symmetric_lu, use_dense
 from ..spectral._spectrum import Spectrum
 
@@ -49,23 +57,27 @@ _SPECTRUM = Satisfies(lambda s: isinstance(s, Spectrum),
 _METHOD = Options("auto", "dense", "sparse", message="method must be 'auto', 'dense' or 'sparse', got {value!r}.")
 
 
-def _check_basis(basis: ArrayLike, n_vertices: int) -> NDArray[np.float64]:
-    arr = np.asarray(basis, dtype=np.float64)
-    if arr.ndim != 2 or arr.shape[0] != n_vertices:
-        raise ValueError(
-            f"basis must be a 2-D array of shape ({n_vertices}, n): one column per basis function; "
-            f"got {arr.shape}. Use basis[:, None] for a single function."
-        )
-    if not 1 <= arr.shape[1] < n_vertices:
-        raise ValueError(
-            f"basis must have between 1 and n_vertices - 1 = {n_vertices - 1} columns, got {arr.shape[1]}."
-        )
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("basis contains NaN or inf.")
-    return arr
+_SQUARE_SPARSE = Satisfies(lambda W: sp.issparse(W) and W.shape[0] == W.shape[1],
+                           message="stiffness must be a square scipy.sparse matrix (see operators.stiffness_matrix).")
+
+
+def _basis(n_vertices: Any) -> tuple[Constraint, ...]:
+    """The table entry of ``basis``: a finite 2-D array of ``n_vertices`` rows and 1..n_vertices - 1 columns.
+
+    ``n_vertices`` is a count or a callable of the arguments (``lambda spectrum, **_: spectrum.n_vertices``).
+    """
+    return (
+        Array(2, rows=n_vertices, message=(
+            "{name} must be a 2-D array of shape ({rows}, n): one column per basis function; got {shape}. "
+            "Use basis[:, None] for a single function.")),
+        Satisfies(lambda basis: 1 <= basis.shape[1] < basis.shape[0], message=lambda name, value: (
+            f"{name} must have between 1 and n_vertices - 1 = {value.shape[0] - 1} columns, got {value.shape[1]}.")),
+    )
 
 
 # --- the bound ---------------------------------------------------------------------------------
+@validated(stiffness=_SQUARE_SPARSE, f=Array(rows=lambda stiffness, **_: stiffness.shape[0],
+                                              meaning="one value per vertex", hint="replace them first"))
 def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64] | float:
     """Dirichlet energy ``f @ W @ f`` (the squared L2 norm of the gradient), per column.
 
@@ -88,11 +100,8 @@ def dirichlet_energy(stiffness: sp.spmatrix, f: ArrayLike) -> NDArray[np.float64
     >>> round(dirichlet_energy(stiffness_matrix(m), m.vertices[:, 0]), 12)  # |grad x|^2 * area
     2.0
     """
-    if not sp.issparse(stiffness) or stiffness.shape[0] != stiffness.shape[1]:
-        raise ValueError("stiffness must be a square scipy.sparse matrix (see operators.stiffness_matrix).")
-    arr = check_functions(f, stiffness.shape[0])
-    out = np.einsum("i...,i...->...", arr, stiffness @ arr)
-    return float(out) if arr.ndim == 1 else np.asarray(out)
+    out = np.einsum("i...,i...->...", f, stiffness @ f)
+    return float(out) if f.ndim == 1 else np.asarray(out)
 
 
 @validated(spectrum=_SPECTRUM)
@@ -125,7 +134,12 @@ def representation_error(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np
     return err**2 if isinstance(err, float) else np.asarray(err) ** 2
 
 
-@validated(spectrum=_SPECTRUM, k=Integer(what="an integer number of eigenfunctions"))
+@validated(spectrum=_SPECTRUM, k=(
+    Integer(what="an integer number of eigenfunctions"),
+    Integer(1, lambda spectrum, **_: spectrum.k - 1,
+            what=lambda spectrum, **_: f"an integer with 1 <= k < spectrum.k = {spectrum.k} (error_bound needs lam[k])",
+            hint="compute the spectrum with more than k eigenpairs"),
+))
 def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64] | float:
     """The theorem's bound ``(f @ W @ f) / lam[k]`` on :func:`representation_error`.
 
@@ -141,12 +155,6 @@ def error_bound(spectrum: Spectrum, f: ArrayLike, k: int) -> NDArray[np.float64]
     >>> bool(representation_error(s, z ** 3, 9) <= error_bound(s, z ** 3, 9))
     True
     """
-    # Inline: the message states spectrum.k, one more than the largest k allowed (a table bound).
-    if not 1 <= k < spectrum.k:
-        raise ValueError(
-            f"error_bound needs lam[k] with 1 <= k < spectrum.k = {spectrum.k}; got k = {k}. "
-            "Compute the spectrum with more than k eigenpairs."
-        )
     lam = float(spectrum.values[k])
     if not lam > 0:
         raise ValueError(f"lam[{k}] = {lam:.3g} is not positive: the surface has more than {k} components.")
@@ -322,7 +330,9 @@ def worst_case_ratio(
     """
     W, A = check_operators(stiffness, mass)
     n = W.shape[0]
-    arr = _check_basis(basis, n)
+    arr = basis
+    for rule in _basis(n):  # inline: the number of rows is that of the checked operators
+        arr = rule.check(arr, "basis", {})
     dense = use_dense(n, method)
     Q = a_orthonormalize(arr, A)
     kernel = kernel_basis(W)
@@ -341,7 +351,14 @@ def worst_case_ratio(
     return value, fix_signs(f / np.sqrt(float(r @ (A @ r))), A)
 
 
-@validated(spectrum=_SPECTRUM)
+def _too_few_eigenpairs(spectrum: Spectrum, basis: NDArray[np.float64], **_: Any) -> str:
+    return f"the spectrum needs at least n + 1 = {basis.shape[1] + 1} eigenpairs, it has {spectrum.k}."
+
+
+@validated(spectrum=_SPECTRUM, basis=(
+    *_basis(lambda spectrum, **_: spectrum.n_vertices),
+    Relation(lambda spectrum, basis, **_: basis.shape[1] + 1 <= spectrum.k, _too_few_eigenpairs),
+))
 def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64]:
     """The witness argument (notebook 05, section 6): a nonzero ``f`` in span(phi_0..phi_n) A-orthogonal to V.
 
@@ -364,11 +381,8 @@ def witness_function(spectrum: Spectrum, basis: ArrayLike) -> NDArray[np.float64
     >>> bool(np.abs(B.T @ s.mass @ f).max() < 1e-10 and f @ s.stiffness @ f <= s.values[8] * (1 + 1e-12))
     True
     """
-    arr = _check_basis(basis, spectrum.n_vertices)
-    n = arr.shape[1]
-    if n + 1 > spectrum.k:
-        raise ValueError(f"the spectrum needs at least n + 1 = {n + 1} eigenpairs, it has {spectrum.k}.")
-    Q = a_orthonormalize(arr, spectrum.mass)
+    n = basis.shape[1]
+    Q = a_orthonormalize(basis, spectrum.mass)
     coupling = Q.T @ (spectrum.mass @ spectrum.vectors[:, : n + 1])  # (n, n + 1)
     c = scipy.linalg.null_space(coupling)[:, 0]  # the last right-singular vector
     f = spectrum.vectors[:, : n + 1] @ c

@@ -62,8 +62,8 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.progress import LARGE_MESH, check_progress, progress_bar
-from .._support.validation import Integer, Number, Options, Satisfies, validated
+from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
+from .._support.validation import Array, Integer, Number, Options, Relation, Satisfies, validated
 from ..spectral._inner_product import (
     a_orthonormalize,
     check_operators,
@@ -84,18 +84,26 @@ __all__ = [
 Method = Literal["auto", "dense", "sparse"]
 
 # --- input checks ------------------------------------------------------------------------------
-def _check_data(data: ArrayLike, n: int) -> NDArray[np.float64]:
-    X = np.asarray(data, dtype=np.float64)
-    if X.ndim == 1:
-        X = X[:, None]
-    if X.ndim != 2 or X.shape[0] != n or X.shape[1] == 0:
-        raise ValueError(
-            f"data must have shape ({n}, c): one row per vertex of the operators and one column per "
-            f"training function (e.g. np.hstack of (n, 3) vertex arrays); got {np.shape(data)}."
-        )
-    if not np.all(np.isfinite(X)):
-        raise ValueError("data contains NaN or inf; regularized PCA of such data is meaningless. Clean it first.")
-    return np.array(X, copy=True)
+def _rows(matrix: Any) -> int | None:
+    """The number of rows of an operator, for the table of ``data``; ``None`` (any) when it has no shape.
+
+    The operators themselves are checked in the body (:func:`~lbo_notebooks.spectral.check_operators`).
+    """
+    try:
+        shape = np.shape(matrix)
+    except ValueError:  # a ragged sequence
+        return None
+    return shape[0] if len(shape) else None
+
+
+def _data(operator: str) -> Array:
+    """``data``: one row per vertex of ``operator`` (``"stiffness"`` or ``"mass"``), one column per function."""
+    return Array(
+        rows=lambda **arguments: _rows(arguments[operator]), column=True, nonempty=True,
+        message="{name} must have shape ({rows}, c): one row per vertex of the operators and one column per "
+                "training function (e.g. np.hstack of (n, 3) vertex arrays); got {shape}.",
+        hint="regularized PCA of such data is meaningless. Clean it first",
+    )
 
 
 def _basis_size(n: Any) -> tuple[Integer, Integer]:
@@ -122,6 +130,9 @@ def _beta(none: bool = False) -> Number:
 
 
 _K = _basis_size(lambda self, **_: self.n_vertices)
+_ONE_WEIGHT = Relation(lambda mu, beta, **_: (mu is None) != (beta is None),
+                       "give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
+_ONE_SERIES = Relation(lambda betas, mus, **_: (betas is None) != (mus is None), "give exactly one of betas or mus.")
 _METHOD = Options("auto", "dense", "sparse", message="method must be 'auto', 'dense' or 'sparse', got {value!r}.")
 
 
@@ -211,10 +222,11 @@ class RegularizedPCA:
     True
     """
 
+    @validated(data=_data("stiffness"))
     def __init__(self, data: ArrayLike, stiffness: sp.spmatrix, mass: sp.spmatrix, *, center: bool = False) -> None:
         W, A = check_operators(stiffness, mass)
         n = W.shape[0]
-        X = _check_data(data, n)
+        X = np.array(data, copy=True)  # frozen below: never the caller's array
         if center:
             X = _centred(X, A)
         X.setflags(write=False)
@@ -262,7 +274,7 @@ class RegularizedPCA:
         return r / (1.0 + r)
 
     # ---- solving ----
-    @validated(k=_K, mu=_mu(none=True), beta=_beta(none=True), method=_METHOD)
+    @validated(k=_K, mu=_mu(none=True), beta=(_beta(none=True), _ONE_WEIGHT), method=_METHOD)
     def solve(self, k: int, mu: float | None = None, *, beta: float | None = None, method: Method = "auto") -> RPCAResult:
         """The regularized PCA basis of size ``k`` for weight ``mu`` (or dimensionless ``beta``).
 
@@ -283,8 +295,6 @@ class RegularizedPCA:
         -------
         RPCAResult
         """
-        if (mu is None) == (beta is None):
-            raise ValueError("give exactly one of mu (raw weight) or beta (dimensionless weight in [0, 1]).")
         mu = self.mu_from_beta(beta, k) if beta is not None else mu
         n, c = self.data.shape
         method = "dense" if use_dense(n, method) else "sparse"
@@ -379,6 +389,7 @@ class RegularizedPCA:
             raise RuntimeError("regularized PCA lost a direction; try method='dense' and report this.")
         return RPCAResult(basis=fix_signs(ritz, A), values=values, mu=mu, n_data=n_data)
 
+    @validated(mus=_ONE_SERIES, progress=PROGRESS)
     def sweep(
         self,
         k: int,
@@ -393,9 +404,6 @@ class RegularizedPCA:
         always, ``False`` never, ``None`` (default) only for meshes of 10,000 vertices or more and
         only in a notebook or a terminal (never in a log file or under pytest).
         """
-        if (betas is None) == (mus is None):
-            raise ValueError("give exactly one of betas or mus.")
-        check_progress(progress)
         weights = [("beta", b) for b in betas] if betas is not None else [("mu", m) for m in mus]  # type: ignore[union-attr]
         results = []
         with progress_bar(len(weights), "regularized PCA", progress, long=self.n_vertices >= LARGE_MESH) as bar:
@@ -462,7 +470,7 @@ def regularized_pca(
     return (basis, np.array(result.values)) if return_values else basis
 
 
-@validated(k=_basis_size(lambda mass, **_: np.shape(mass)[0]), beta=_beta())
+@validated(k=_basis_size(lambda mass, **_: np.shape(mass)[0]), beta=_beta(), data=_data("mass"))
 def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, center: bool = False) -> float:
     """Raw weight ``mu`` for a dimensionless ``beta`` in [0, 1].
 
@@ -483,7 +491,7 @@ def mu_from_beta(beta: float, data: ArrayLike, mass: sp.spmatrix, k: int, *, cen
     64.0
     """
     A = sp.csr_matrix(mass, dtype=np.float64)
-    X = _check_data(data, A.shape[0])
+    X = data
     if center:
         X = _centred(X, A)
     gram = X.T @ (A @ X)

@@ -13,12 +13,20 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Integer, Number, validated
+from .._support.validation import Array, Integer, Number, Satisfies, validated
 
 __all__ = ["shape_distribution", "shape_distribution_distances"]
 
 
-@validated(bins=Integer(1), max_ratio=Number(0, open_low=True))
+@validated(
+    bins=Integer(1),
+    max_ratio=Number(0, open_low=True),
+    points=(
+        Array(2, cols_name="d", meaning="n points in d dimensions"),
+        Satisfies(lambda P: P.shape[0] >= 2,
+                  message=lambda name, P: f"a shape distribution needs at least two points, got {P.shape[0]}."),
+    ),
+)
 def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 3.0) -> NDArray[np.float64]:
     """Histogram (a density) of all pairwise Euclidean distances, divided by their mean.
 
@@ -50,12 +58,7 @@ def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 
     """
     from scipy.spatial.distance import pdist
 
-    P = np.asarray(points, dtype=np.float64)
-    if P.ndim != 2 or not np.all(np.isfinite(P)):
-        raise ValueError(f"points must be a finite (n, d) array, got shape {P.shape}.")
-    if P.shape[0] < 2:
-        raise ValueError(f"a shape distribution needs at least two points, got {P.shape[0]}.")
-    d = pdist(P)
+    d = pdist(points)
     mean = d.mean()
     if mean <= 0:
         raise ValueError("all points coincide; their shape distribution is undefined.")

@@ -18,7 +18,6 @@ from ..geometry._mesh import Mesh, per_mesh
 
 __all__ = [
     "stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "MASS_KIND",
-    "check_mass_kind",
 ]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
@@ -140,17 +139,6 @@ def _mass(m: Mesh, mass_kind: str) -> sp.csr_matrix:
         corner = _voronoi_corner_areas(m)
     diag = np.bincount(f.ravel(), weights=corner.ravel(), minlength=n)
     return sp.diags(diag).tocsr()
-
-
-def check_mass_kind(mass_kind: Any) -> str:
-    """``mass_kind`` checked: one of :data:`MASS_KINDS` (the one check every module uses).
-
-    Examples
-    --------
-    >>> check_mass_kind("voronoi")
-    'voronoi'
-    """
-    return MASS_KIND.check(mass_kind, "mass_kind", {})
 
 
 @validated(mass_kind=MASS_KIND)

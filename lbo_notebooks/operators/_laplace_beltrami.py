@@ -23,7 +23,7 @@ from typing import Any
 
 import scipy.sparse as sp
 
-from .._support.validation import Number, Options, validated
+from .._support.validation import Number, Options, Relation, Satisfies, validated
 from .._support.warning import warn
 from ..geometry._mesh import Mesh, MeshError, check_coordinate_range
 from ._cotangent import MASS_KIND, mass_matrix, stiffness_matrix
@@ -41,10 +41,15 @@ from ._robust import (
 __all__ = ["laplace_beltrami", "select_operators"]
 
 _LAPLACIAN = Options(*LAPLACIANS)
+_NO_COTAN_FOR_CLOUDS = Relation(
+    lambda shape, laplacian, **_: not (isinstance(shape, PointCloud) and laplacian == "cotan"),
+    "a point cloud has no triangles for the cotangent Laplacian; use laplacian='auto' or 'robust'.",
+)
+_SHAPE = Satisfies(lambda shape: isinstance(shape, (Mesh, PointCloud)), message=lambda name, value: (
+    f"eigenbasis takes a Mesh or a PointCloud or a (stiffness, mass) tuple, got {type(value).__name__}."))
 
 
 @validated(laplacian=_LAPLACIAN, mass_kind=MASS_KIND, alpha=Number(0, 1))
-
 def laplace_beltrami(
     shape: Mesh | PointCloud,
     *,
@@ -83,7 +88,7 @@ def laplace_beltrami(
     return W, metric_mass_matrix(shape, alpha, mass_kind=mass_kind, floor=floor)
 
 
-@validated(laplacian=_LAPLACIAN)
+@validated(laplacian=(_LAPLACIAN, _NO_COTAN_FOR_CLOUDS), shape=_SHAPE)
 def select_operators(
     shape: Any,
     laplacian: str,
@@ -110,12 +115,8 @@ def select_operators(
     (42, 42)
     """
     if isinstance(shape, PointCloud):
-        if laplacian == "cotan":
-            raise ValueError("a point cloud has no triangles for the cotangent Laplacian; use laplacian='auto' or 'robust'.")
         _check_robust_options(mass_kind, alpha)
         return point_cloud_operators(shape, n_neighbors=n_neighbors)
-    if not isinstance(shape, Mesh):
-        raise ValueError(f"eigenbasis takes a Mesh or a PointCloud or a (stiffness, mass) tuple, got {type(shape).__name__}.")
     check_referenced(shape)
     if laplacian == "robust":
         _check_robust_options(mass_kind, alpha)
@@ -140,6 +141,8 @@ def select_operators(
 
 
 def _check_robust_options(mass_kind: str, alpha: float) -> None:
+    # Inline, not a table's: for a Mesh under "auto" whether the robust operator is taken is
+    # cotan_defects' verdict on the mesh, known only here (and after check_referenced).
     if mass_kind not in ("voronoi", "barycentric"):
         raise ValueError(
             f"the robust Laplacian comes with its own lumped (diagonal) mass; mass_kind={mass_kind!r} applies to the "

@@ -9,6 +9,9 @@ not the Euclidean one. This module holds, once, what the spectral modules need a
   A-orthonormal basis;
 * the deterministic sign rule :func:`fix_signs`.
 
+The products with a lumped mass and the Cholesky QR refinement, which the engine shares, are
+:mod:`lbo_notebooks.spectral._mass_products`.
+
 The solvers' conventions (shift, start vector, dense or sparse) are
 :mod:`lbo_notebooks.spectral._engine.policy`; the one sparse factorisation of a symmetric matrix is
 :func:`~lbo_notebooks.spectral._engine.factor.symmetric_lu`.
@@ -18,21 +21,20 @@ The formulas are in ``docs/maths.md``, section "The A inner product".
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Array, Number, Satisfies, validated
+from ._mass_products import ROW_BLOCK, cholesky_qr, mass_operator
 
 __all__ = [
     "check_operators",
     "check_functions",
     "a_norms",
     "a_orthonormalize",
-    "DiagonalMass",
-    "mass_operator",
-    "cholesky_qr",
     "fix_signs_in_place",
     "fix_signs",
     "principal_angles",
@@ -41,11 +43,21 @@ __all__ = [
 ]
 
 _BLOCK = 32
-# Columns whose A-Gram matrix is this close to I are finished by one Cholesky QR pass.
-_NEARLY_ORTHONORMAL = 1e-8
 
 
 # --- checks ------------------------------------------------------------------------------------
+def _rows(mass: Any, **_: Any) -> int:
+    """The number of vertices, from the mass matrix: the row count every function argument must have."""
+    return int(np.shape(mass)[0])
+
+
+_FUNCTIONS = Array((1, 2), rows=lambda n_vertices, **_: n_vertices, meaning="one value per vertex",
+                   hint="replace them first")
+_BASIS = Array(2, rows=_rows, cols_name="k", meaning="one column per basis function")
+_TARGET = Array((1, 2), rows=_rows, cols_name="d", nonempty=True, meaning="one row per vertex", hint="clean it first")
+_SUBSPACE = Array(2, rows=_rows, cols_name="k")
+
+
 def _check_symmetric(M: sp.csr_matrix, name: str) -> None:
     scale = abs(M).max() if M.nnz else 0.0
     if M.nnz and abs(M - M.T).max() > 1e-10 * scale:
@@ -99,59 +111,10 @@ def check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[n
     >>> check_functions([[1.0], [2.0]], 2).shape
     (2, 1)
     """
-    arr = np.asarray(f, dtype=np.float64)
-    if arr.ndim not in (1, 2) or arr.shape[0] != n_vertices:
-        raise ValueError(
-            f"{name} must have shape ({n_vertices},) or ({n_vertices}, c): one value per vertex; "
-            f"got {arr.shape}."
-        )
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} contains NaN or inf; replace them first.")
-    return arr
+    return _FUNCTIONS.check(f, name, {"n_vertices": n_vertices})
 
 
 # --- norms and orthonormal bases ---------------------------------------------------------------
-class DiagonalMass:
-    """A diagonal (lumped) mass matrix applied as a row scaling: ``mass @ X`` keeps X's memory order.
-
-    SciPy's sparse-times-dense product walks the rows in C order (copying a Fortran-ordered
-    block first) and is several times slower than the scaling on tall blocks.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> (DiagonalMass(np.array([2.0, 3.0])) @ np.ones(2)).tolist()
-    [2.0, 3.0]
-    """
-
-    def __init__(self, diagonal: NDArray[np.float64]) -> None:
-        self.diagonal = np.asarray(diagonal, dtype=np.float64)
-        self.shape = (self.diagonal.size, self.diagonal.size)
-
-    def __matmul__(self, X: ArrayLike) -> NDArray[np.float64]:
-        X = np.asarray(X)
-        return self.diagonal[:, None] * X if X.ndim == 2 else self.diagonal * X
-
-
-def mass_operator(mass: sp.spmatrix) -> sp.spmatrix | DiagonalMass:
-    """``mass`` ready for many products ``mass @ X``: a :class:`DiagonalMass` when it is diagonal, else itself.
-
-    Examples
-    --------
-    >>> import numpy as np, scipy.sparse as sp
-    >>> A = mass_operator(sp.diags([1.0, 2.0, 3.0]))
-    >>> type(A).__name__, (A @ np.ones((3, 2))).tolist()
-    ('DiagonalMass', [[1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])
-    """
-    if isinstance(mass, DiagonalMass):
-        return mass
-    coo = sp.coo_matrix(mass)
-    stored = coo.data != 0
-    if np.array_equal(coo.row[stored], coo.col[stored]):
-        return DiagonalMass(np.asarray(mass.diagonal(), dtype=np.float64))
-    return mass
-
-
 def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """A-norm ``sqrt(x @ A @ x)`` of each column of ``X`` (shape (c,)).
 
@@ -179,6 +142,13 @@ def _project_out(
     return norms
 
 
+@validated(
+    mass=Satisfies(lambda mass: sp.issparse(mass) and len(mass.shape) == 2 and mass.shape[0] == mass.shape[1],
+                   message="mass must be a square scipy.sparse matrix (see operators.mass_matrix)."),
+    prepend=Array((1, 2), rows=_rows, cols_name="p", column=True, none=True, meaning="the columns placed first"),
+    vectors=Array((1, 2), rows=_rows, cols_name="m", column=True, meaning="one column per function"),
+    rtol=Number(0, 1, open_low=True, open_high=True),
+)
 def a_orthonormalize(
     vectors: ArrayLike,
     mass: sp.spmatrix,
@@ -234,24 +204,8 @@ def a_orthonormalize(
     >>> Q.shape, bool(np.allclose(Q.T @ A @ Q, np.eye(4)))
     ((162, 4), True)
     """
-    if not sp.issparse(mass) or mass.shape[0] != mass.shape[1]:
-        raise ValueError("mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
     nv = mass.shape[0]
-    cols = np.asarray(vectors, dtype=np.float64)
-    if cols.ndim == 1:
-        cols = cols[:, None]
-    if prepend is not None:
-        pre = np.asarray(prepend, dtype=np.float64)
-        pre = pre[:, None] if pre.ndim == 1 else pre
-        if pre.ndim != 2 or pre.shape[0] != nv:
-            raise ValueError(f"prepend must have shape ({nv},) or ({nv}, p), got {pre.shape}.")
-        cols = np.hstack([pre, cols]) if cols.ndim == 2 and cols.shape[0] == nv else cols
-    if cols.ndim != 2 or cols.shape[0] != nv:
-        raise ValueError(f"vectors must have shape ({nv}, m): one column per function; got {cols.shape}.")
-    if not np.all(np.isfinite(cols)):
-        raise ValueError("vectors contain NaN or inf.")
-    if not (np.isfinite(rtol) and 0 < rtol < 1):
-        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}.")
+    cols = vectors if prepend is None else np.hstack([prepend, vectors])  # both (nv, .) float64, checked
     mass = mass_operator(mass)
     if refine and cols.shape[1]:
         refined = cholesky_qr(cols, mass, out=np.empty(cols.shape))
@@ -286,46 +240,6 @@ def a_orthonormalize(
     return Q[:, :r]
 
 
-_ROWS = 4096  # row blocks of tall products: small temporaries, still BLAS-3
-
-
-def cholesky_qr(
-    vectors: NDArray[np.float64], mass: sp.spmatrix | DiagonalMass, *, out: NDArray[np.float64]
-) -> NDArray[np.float64] | None:
-    """``out = V L^-T`` with ``L L^T = V^T A V`` when ``V`` is A-orthonormal to ``1e-8``; else ``None``.
-
-    The refinement of :func:`a_orthonormalize` (``refine=True``): one Cholesky QR pass, exact to
-    round-off for nearly orthonormal input, all BLAS-3, column ``j`` mixing only columns
-    ``0..j``. Row block by row block, so ``out`` may be ``vectors`` itself (an eigensolver's own
-    output, refined without a second n x k array) and a lumped mass needs no n x k temporary.
-
-    Examples
-    --------
-    >>> import numpy as np, scipy.sparse as sp
-    >>> V = np.eye(4)[:, :2] * 0.5 * (1 + 1e-10)
-    >>> Q = cholesky_qr(V, sp.identity(4) * 4.0, out=V)
-    >>> bool(np.allclose(Q.T @ (4.0 * Q), np.eye(2), rtol=0, atol=1e-15)), Q is V
-    (True, True)
-    """
-    n, k = vectors.shape
-    mass = mass_operator(mass)
-    if isinstance(mass, DiagonalMass):
-        gram = np.zeros((k, k))
-        for start in range(0, n, _ROWS):
-            block = vectors[start : start + _ROWS]
-            gram += block.T @ (mass.diagonal[start : start + _ROWS, None] * block)
-    else:
-        gram = vectors.T @ (mass @ vectors)
-    gram = 0.5 * (gram + gram.T)
-    if not np.abs(gram - np.eye(k)).max() < _NEARLY_ORTHONORMAL:
-        return None
-    # V @ L^-T as matrix products: much faster than solve(L, V.T) on tall blocks.
-    inverse_t = np.linalg.inv(np.linalg.cholesky(gram)).T
-    for start in range(0, n, _ROWS):
-        out[start : start + _ROWS] = vectors[start : start + _ROWS] @ inverse_t
-    return out
-
-
 # --- the sign rule -----------------------------------------------------------------------------
 def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
     """Flip columns so that their signs are deterministic (a fresh array; 1-D input allowed).
@@ -349,6 +263,11 @@ def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np
     return fix_signs_in_place(v, mass)
 
 
+@validated(v=Satisfies(
+    lambda v: getattr(v, "ndim", None) == 2 and getattr(v, "dtype", None) == np.float64,
+    message=lambda name, value: (f"fix_signs_in_place needs a 2-D float64 array, got {np.ndim(value)}-D "
+                                 f"{getattr(value, 'dtype', type(value).__name__)}."),
+))
 def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
     """:func:`fix_signs` on a 2-D float64 array of one's own, flipping its columns in place; returns it.
 
@@ -361,19 +280,17 @@ def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) 
     >>> fix_signs_in_place(v) is v, v[:, 0].tolist()
     (True, [1.0, 2.0, -0.5])
     """
-    if v.ndim != 2 or v.dtype != np.float64:
-        raise ValueError(f"fix_signs_in_place needs a 2-D float64 array, got {v.ndim}-D {v.dtype}.")
     if v.size == 0:
         return v
     a = np.ones(v.shape[0]) if mass is None else np.asarray(mass.sum(axis=1)).ravel()
     # Row blocks: contiguous in a C-ordered basis, and the temporaries stay small for (n, 300) bases.
     moment, size = np.zeros(v.shape[1]), np.zeros(v.shape[1])
-    for start in range(0, v.shape[0], _ROWS):
-        block = v[start : start + _ROWS]
+    for start in range(0, v.shape[0], ROW_BLOCK):
+        block = v[start : start + ROW_BLOCK]
         cube = block * block * block  # not block**3: the generic power is several times slower
-        moment += a[start : start + _ROWS] @ cube
+        moment += a[start : start + ROW_BLOCK] @ cube
         np.abs(cube, out=cube)
-        size += a[start : start + _ROWS] @ cube
+        size += a[start : start + ROW_BLOCK] @ cube
     sign = np.sign(moment)
     vanishing = np.flatnonzero(np.abs(moment) <= 1e-6 * size)
     # Mirror-image peaks on symmetric shapes agree to round-off: take the first vertex whose
@@ -390,30 +307,17 @@ def fix_signs_in_place(v: NDArray[np.float64], mass: sp.spmatrix | None = None) 
 
 
 # --- any A-orthonormal basis -------------------------------------------------------------------
-def _check_a_orthonormal(basis: ArrayLike, mass: sp.csr_matrix) -> NDArray[np.float64]:
-    P = np.asarray(basis, dtype=np.float64)
-    n = mass.shape[0]
-    if P.ndim != 2 or P.shape[0] != n:
-        raise ValueError(f"basis must have shape ({n}, k), one column per basis function; got {P.shape}.")
-    if not np.all(np.isfinite(P)):
-        raise ValueError("basis contains NaN or inf.")
+def _check_a_orthonormal(P: NDArray[np.float64], mass: sp.csr_matrix) -> None:
     gram = P.T @ (mass @ P)
     if not np.allclose(gram, np.eye(P.shape[1]), atol=1e-8):
         raise ValueError(
             "basis is not A-orthonormal (basis.T @ mass @ basis != I); the projection P P.T A would "
             "be wrong. A-orthonormalise it first (a_orthonormalize, or spectrum vectors)."
         )
-    return P
 
 
-def _check_targets(target: ArrayLike, n: int) -> NDArray[np.float64]:
-    Y = np.asarray(target, dtype=np.float64)
-    Y = Y[:, None] if Y.ndim == 1 else Y
-    if Y.ndim != 2 or Y.shape[0] != n or Y.shape[1] == 0:
-        raise ValueError(f"target must have shape ({n},) or ({n}, d): one row per vertex; got {np.shape(target)}.")
-    if not np.all(np.isfinite(Y)):
-        raise ValueError("target contains NaN or inf; clean it first.")
-    return Y
+def _as_columns(Y: NDArray[np.float64]) -> NDArray[np.float64]:
+    return Y[:, None] if Y.ndim == 1 else Y
 
 
 def _centred(Y: NDArray[np.float64], A: sp.csr_matrix) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -422,6 +326,7 @@ def _centred(Y: NDArray[np.float64], A: sp.csr_matrix) -> tuple[NDArray[np.float
     return Y - centroid, centroid
 
 
+@validated(basis=_BASIS, target=_TARGET)
 def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
     """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
 
@@ -437,12 +342,14 @@ def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArr
     True
     """
     A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_a_orthonormal(basis, A)
-    Yc, centroid = _centred(_check_targets(target, A.shape[0]), A)
+    P = basis
+    _check_a_orthonormal(P, A)
+    Yc, centroid = _centred(_as_columns(target), A)
     out = P @ (P.T @ (A @ Yc)) + centroid
-    return out[:, 0] if np.ndim(target) == 1 else out
+    return out[:, 0] if target.ndim == 1 else out
 
 
+@validated(basis=_BASIS)
 def reconstruction_error(
     basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
 ) -> float | NDArray[np.float64]:
@@ -472,11 +379,12 @@ def reconstruction_error(
     True
     """
     A = sp.csr_matrix(mass, dtype=np.float64)
-    P = _check_a_orthonormal(basis, A)
+    P = basis
+    _check_a_orthonormal(P, A)
     many = isinstance(targets, (list, tuple))  # a sequence of shapes; an array is one shape
     errors = []
     for target in list(targets) if many else [targets]:
-        Yc, _ = _centred(_check_targets(target, A.shape[0]), A)
+        Yc, _ = _centred(_as_columns(_TARGET.check(target, "target", {"mass": A})), A)
         residual = Yc - P @ (P.T @ (A @ Yc))
         num = float(np.einsum("ij,ij->", residual, A @ residual))
         den = float(np.einsum("ij,ij->", Yc, A @ Yc))
@@ -486,6 +394,7 @@ def reconstruction_error(
     return np.array(errors) if many else errors[0]
 
 
+@validated(P=_SUBSPACE, Q=_SUBSPACE)
 def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
 
@@ -502,15 +411,8 @@ def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[n
     True
     """
     A = sp.csr_matrix(mass, dtype=np.float64)
-    n = A.shape[0]
-    Pa, Qa = (np.asarray(x, dtype=np.float64) for x in (P, Q))
-    for name, x in (("P", Pa), ("Q", Qa)):
-        if x.ndim != 2 or x.shape[0] != n:
-            raise ValueError(f"{name} must have shape ({n}, k); got {x.shape}.")
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"{name} contains NaN or inf.")
-    Pa = a_orthonormalize(Pa, A, drop_dependent=True)
-    Qa = a_orthonormalize(Qa, A, drop_dependent=True)
+    Pa = a_orthonormalize(P, A, drop_dependent=True)
+    Qa = a_orthonormalize(Q, A, drop_dependent=True)
     if Qa.shape[1] > Pa.shape[1]:
         Pa, Qa = Qa, Pa  # angles are symmetric; let Q be the smaller space
     k = Qa.shape[1]

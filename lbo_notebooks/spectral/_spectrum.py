@@ -17,16 +17,11 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.progress import LARGE_MESH, check_progress, progress_bar
-from .._support.validation import Integer, Number, Options, check_integer, validated
+from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
+from .._support.validation import Array, Integer, Number, Options, Relation, check_integer, validated
 from .._support.warning import warn
-from ._inner_product import (
-    a_orthonormalize,
-    check_functions,
-    check_operators,
-    cholesky_qr,
-    fix_signs_in_place,
-)
+from ._inner_product import a_orthonormalize, check_operators, fix_signs_in_place
+from ._mass_products import cholesky_qr
 from ..operators._laplace_beltrami import laplace_beltrami
 from ..geometry._mesh import Mesh
 from ..operators._cotangent import MassKind
@@ -44,6 +39,24 @@ _N_FUNCTIONS = (
     Integer(0, lambda self, **_: self.k, none=True,
             message="k must be between 0 and k={high} (the eigenpairs computed), got {value}."),
 )
+# f of project/reconstruct/error: one value per vertex, a column per function (as check_functions).
+_F = Array((1, 2), rows=lambda self, **_: self.n_vertices, meaning="one value per vertex", hint="replace them first")
+
+# eigenbasis with the caller's own (stiffness, mass): the options that build operators from a Mesh do not apply.
+_OPERATORS_GIVEN = {
+    "laplacian": Relation(
+        lambda mesh, laplacian, **_: not isinstance(mesh, tuple) or laplacian == "auto",
+        "laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.",
+    ),
+    "alpha": Relation(
+        lambda mesh, alpha, **_: not isinstance(mesh, tuple) or alpha == 0.0,
+        "alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.",
+    ),
+    "mesh": Relation(
+        lambda mesh, **_: not isinstance(mesh, tuple) or len(mesh) == 2,
+        lambda mesh, **_: f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got a tuple of {len(mesh)}.",
+    ),
+}
 
 
 def _is_long(n: int, k: int) -> bool:
@@ -103,33 +116,28 @@ class Spectrum:
         return f"Spectrum(k={self.k}, n_vertices={self.n_vertices}, values=[{self.values[0]:.4g} .. {self.values[-1]:.4g}])"
 
     # --- the A-inner-product algebra -------------------------------------------------------
-    def _check_f(self, f: ArrayLike) -> NDArray[np.float64]:
-        return check_functions(f, self.n_vertices)
-
-    @validated(k=_N_FUNCTIONS)
+    @validated(k=_N_FUNCTIONS, f=_F)
     def project(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """Coefficients ``Phi_n.T @ (A @ f)`` of ``f`` in the first ``k`` eigenfunctions.
 
         ``f`` is (n_vertices,) or (n_vertices, c); the result is (k,) or (k, c).
         """
-        arr = self._check_f(f)
         k = self.k if k is None else k
-        return self.vectors[:, :k].T @ (self.mass @ arr)
+        return self.vectors[:, :k].T @ (self.mass @ f)
 
-    @validated(k=_N_FUNCTIONS)
+    @validated(k=_N_FUNCTIONS, f=_F)
     def reconstruct(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """The A-orthogonal projection of ``f`` onto the span of the first ``k`` eigenfunctions."""
         k = self.k if k is None else k
         return self.vectors[:, :k] @ self.project(f, k)
 
-    @validated(k=_N_FUNCTIONS)
+    @validated(k=_N_FUNCTIONS, f=_F)
     def error(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64] | float:
         """A-norm of ``f - reconstruct(f, k)``: a float for 1-D ``f``, an array per column for 2-D."""
-        arr = self._check_f(f)
-        r = arr - self.reconstruct(arr, k)
+        r = f - self.reconstruct(f, k)
         sq = np.einsum("i...,i...->...", r, self.mass @ r)
         out = np.sqrt(np.maximum(sq, 0.0))
-        return float(out) if arr.ndim == 1 else out
+        return float(out) if f.ndim == 1 else out
 
 
 @validated(
@@ -138,6 +146,8 @@ class Spectrum:
     solver=Options("auto", "slicing", "arpack", message="solver must be 'auto', 'slicing' or 'arpack', got {value!r}."),
     tol=Number(0, 1, open_low=True, open_high=True, none=True,
                what="a number between 0 and 1 (e.g. 1e-8), or None for the solver's default"),
+    progress=PROGRESS,
+    **_OPERATORS_GIVEN,
 )
 def eigenbasis(
     mesh: Union[Mesh, Operators],
@@ -238,14 +248,7 @@ def eigenbasis(
     >>> bool(abs(s.values[4:9] / 6 - 1).max() < 0.02)  # l = 2: lam = l (l + 1) = 6
     True
     """
-    check_progress(progress)
-    if isinstance(mesh, tuple):  # the caller's own operators
-        if laplacian != "auto":
-            raise ValueError("laplacian chooses how to build operators from a Mesh; with a (stiffness, mass) tuple leave it out.")
-        if alpha != 0.0:
-            raise ValueError("alpha applies to a Mesh; with explicit operators pass the scaled mass yourself.")
-        if len(mesh) != 2:
-            raise ValueError(f"eigenbasis takes a Mesh or a (stiffness, mass) tuple, got a tuple of {len(mesh)}.")
+    if isinstance(mesh, tuple):  # the caller's own operators (no Mesh option given: _OPERATORS_GIVEN)
         W, A = check_operators(*mesh)
     else:
         W, A = laplace_beltrami(

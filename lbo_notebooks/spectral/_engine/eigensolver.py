@@ -25,8 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from ..._support.validation import check_integer, check_number
-from .._inner_product import cholesky_qr
+from ..._support.validation import Array, Integer, Number, validated
+from .._mass_products import cholesky_qr
 from .factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, return_freed_memory, symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
 from .policy import default_shift
@@ -84,6 +84,19 @@ def _window_set(
     )
 
 
+def _n(stiffness: sp.spmatrix, **_: object) -> int:
+    """The number of unknowns (vertices): the size of ``stiffness``."""
+    return int(np.shape(stiffness)[0])
+
+
+@validated(
+    k=Integer(1, lambda stiffness, **_: _n(stiffness) - 1, what="an integer between 1 and n - 1 = {high}"),
+    slice_size=Integer(1),
+    shift=Number(0, open_low=True),
+    tol=Number(0, 1, open_low=True, open_high=True, what="a number between 0 and 1 (e.g. 1e-10)"),
+    v0=Array(1, rows=_n, what="be a finite vector of shape ({rows},)"),
+    workers=Integer(1, none=True),
+)
 def slice_eigsh(
     stiffness: sp.spmatrix,
     mass: sp.spmatrix,
@@ -176,17 +189,8 @@ def slice_eigsh(
     """
     W, A = sp.csr_matrix(stiffness, dtype=np.float64), sp.csr_matrix(mass, dtype=np.float64)
     n = W.shape[0]
-    check_integer(k, "k", 1, n - 1, what=f"an integer between 1 and n - 1 = {n - 1}")
-    check_integer(slice_size, "slice_size", 1)
-    check_number(shift, "shift", 0, open_low=True)
-    check_number(tol, "tol", 0, 1, open_low=True, open_high=True, what="a number between 0 and 1 (e.g. 1e-10)")
-    v0 = np.asarray(v0, dtype=np.float64)
-    if v0.shape != (n,) or not np.all(np.isfinite(v0)):
-        raise ValueError(f"v0 must be a finite vector of shape ({n},), got shape {v0.shape}.")
     if workers is None:
         workers = default_workers()
-    else:
-        check_integer(workers, "workers", 1)
     n_sets = plan_sets(k, slice_size, int(workers))
     if order is None and n >= NESTED_DISSECTION_MIN:
         order = fill_reducing_order(abs(W) + abs(A))  # every shift's W - b A has this pattern

@@ -23,7 +23,7 @@ import scipy.linalg
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._inner_product import DiagonalMass, mass_operator
+from .._mass_products import DiagonalMass, mass_operator
 
 __all__ = ["nearest_eigenpairs"]
 

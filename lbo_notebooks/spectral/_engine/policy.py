@@ -18,6 +18,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from ..._support.validation import Options, validated
+
 __all__ = ["DENSE_LIMIT", "SHIFT_LIMIT", "Method", "default_shift", "max_shift", "start_vector", "use_dense"]
 
 #: Up to this many unknowns a dense ``scipy.linalg.eigh`` is exact and fast enough on a laptop;
@@ -97,6 +99,8 @@ def start_vector(n: int) -> NDArray[np.float64]:
     return 1.0 + 0.5 * np.cos(np.arange(int(n), dtype=np.float64))
 
 
+@validated(method=Options("auto", "dense", "sparse",
+                          message="method must be 'auto', 'dense' or 'sparse', got {value!r}."))
 def use_dense(n: int, method: str = "auto") -> bool:
     """The dense-or-sparse policy: ``method`` checked, ``"auto"`` is dense up to :data:`DENSE_LIMIT`.
 
@@ -105,6 +109,4 @@ def use_dense(n: int, method: str = "auto") -> bool:
     >>> use_dense(100), use_dense(100_000), use_dense(100_000, "dense")
     (True, False, True)
     """
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"method must be 'auto', 'dense' or 'sparse', got {method!r}.")
     return method == "dense" or (method == "auto" and n <= DENSE_LIMIT)
