@@ -22,7 +22,7 @@ from .._support.validation import Array, Integer, Relation, validated
 
 __all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
 
-#: Where ``benchmarks/*.py`` record their runs: the package's own ``recorded/`` folder (package
+#: Where the benchmark scripts record their runs: the package's own ``recorded/`` folder (package
 #: data), so an installed package, or one notebook handed out alone, reads them too.
 RESULTS = Path(__file__).resolve().parents[1] / "recorded"
 

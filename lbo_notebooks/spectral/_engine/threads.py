@@ -127,7 +127,7 @@ def rebuild_thread_pools() -> None:
 
     Nothing changes but this: OpenBLAS, which drops its thread pool in a forked child, builds it
     again now rather than at the child's first change of the count (see
-    ``measure_in_fresh_process`` of ``benchmarks/_measure.py``). Done in the owner thread, like every
+    the benchmarks' measurements in a fresh process). Done in the owner thread, like every
     change here, so that threadpoolctl still lets :func:`one_blas_thread` set the count later.
 
     Examples
