@@ -88,6 +88,16 @@ def test_no_module_is_over_600_lines():
     assert not over, f"split these by concept: {over}"
 
 
+def test_the_library_points_into_benchmarks_at_most_five_times():
+    """Issue 42, item 5: measurements live in benchmarks/, the library text points there at most 5 times."""
+    from pathlib import Path
+
+    root = Path(lbo.__file__).parent
+    pointers = [f"{p.relative_to(root)}:{i}" for p in root.rglob("*.py")
+                for i, line in enumerate(p.read_text().splitlines(), 1) if "benchmarks/" in line]
+    assert len(pointers) <= 5, pointers
+
+
 def test_every_public_docstring_parses_as_numpydoc():
     """A malformed docstring (a section twice, a section inside another) drops the name from the
     site's reference table; numpydoc's parser says so here, without building the site."""
