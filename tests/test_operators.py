@@ -95,3 +95,14 @@ def test_invariance_to_rigid_motion_and_permutation():
     P = sp.eye(m.n_vertices, format="csr")[perm]
     np.testing.assert_allclose((P @ W @ P.T).toarray(), stiffness_matrix(permuted).toarray(), atol=8 * EPS * abs(W).max())
     np.testing.assert_allclose(mass_matrix(permuted).diagonal(), mass_matrix(m).diagonal()[perm])
+
+
+@pytest.mark.parametrize("name", ["stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles",
+                                  "cotan_defects", "non_manifold_vertices", "metric_curvature"])
+@pytest.mark.parametrize("not_a_mesh", [np.eye(3), None, (np.eye(3), np.array([[0, 1, 2]]))])
+def test_every_operator_names_a_non_mesh_argument(name, not_a_mesh):
+    """A (vertices, faces) pair or an array gets the fix, not an AttributeError from deep inside."""
+    import lbo_notebooks as lbo
+
+    with pytest.raises(ValueError, match=r"^mesh must be an lbo_notebooks\.Mesh, got \w+; build one with"):
+        getattr(lbo.operators, name)(not_a_mesh)

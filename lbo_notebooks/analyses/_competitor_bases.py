@@ -28,10 +28,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Array, Integer, Number, Relation, Satisfies, validated
+from .._support.validation import Array, Integer, Number, Relation, validated
 from ..spectral._inner_product import a_orthonormalize, check_operators
 from ..geometry._mesh import Mesh
-from ..operators._cotangent import MASS_KIND, MassKind, mass_matrix, stiffness_matrix
+from ..operators._cotangent import MASS_KIND, MESH, MassKind, mass_matrix, stiffness_matrix
 from ..spectral._solvers import symmetric_lu
 from ..spectral._spectrum import eigenbasis
 
@@ -54,11 +54,10 @@ __all__ = [
 Metric = Union[sp.spmatrix, tuple, Callable[[Mesh], Union[sp.spmatrix, tuple]]]
 
 
-_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message="mesh must be a lbo_notebooks.Mesh, got {type}.")
 
 #: The table of every basis builder: a mesh, a mass kind and a size ``k`` in 1..n_vertices - 1.
 _BASIS = dict(
-    mesh=_MESH,
+    mesh=MESH,
     mass_kind=MASS_KIND,
     k=Integer(1, lambda mesh, **_: mesh.n_vertices - 1, what="an integer between 1 and n_vertices - 1 = {high}"),
 )
@@ -97,7 +96,7 @@ def lbo_basis(mesh: Mesh, k: int, *, mass_kind: MassKind = "voronoi") -> NDArray
     return np.array(eigenbasis(mesh, k, mass_kind=mass_kind).vectors)
 
 
-@validated(mesh=_MESH, k=Integer(0), width=Number(0, open_low=True, what="a positive fraction of sqrt(area)"))
+@validated(mesh=MESH, k=Integer(0), width=Number(0, open_low=True, what="a positive fraction of sqrt(area)"))
 def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float = 0.15) -> NDArray[np.float64]:
     """Random smooth functions: white noise smoothed twice by an implicit heat step.
 
@@ -122,7 +121,7 @@ def random_smooth_functions(mesh: Mesh, k: int, *, seed: int = 0, width: float =
     return lu.solve(np.asarray(A @ lu.solve(np.asarray(A @ g)))) if k else g
 
 
-@validated(mesh=_MESH, heat_time=Number(0, open_low=True, what="a positive fraction of the area"))
+@validated(mesh=MESH, heat_time=Number(0, open_low=True, what="a positive fraction of the area"))
 def sample_functions(mesh: Mesh, *, seed: int = 0, heat_time: float = 0.005) -> tuple[NDArray[np.float64], list[str]]:
     """Eight functions to test the representation bound on: smooth, kinked and random.
 

@@ -12,14 +12,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from .._support.validation import Integer, Relation, Satisfies, validated
+from .._support.validation import Integer, Relation, validated
+from ..operators._cotangent import MESH
 from ._geodesics import farthest_point_sampling
 from ..geometry._mesh import Mesh
 
 __all__ = ["pose_distortion", "vertex_strain"]
 
-_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh),
-                  message="{name} must be an lbo_notebooks.Mesh object, got {type}.")
 #: ``rest`` and ``posed`` are two poses of one triangulation (on ``posed``, named last).
 _SAME_FACES = Relation(
     lambda rest, posed, **_: rest.n_vertices == posed.n_vertices and np.array_equal(rest.faces, posed.faces),
@@ -68,7 +67,7 @@ def pose_distortion(rest: Mesh, posed: Mesh, n_samples: int = 50) -> dict[str, f
     }
 
 
-@validated(rest=_MESH, posed=(_MESH, _SAME_FACES))
+@validated(rest=MESH, posed=(MESH, _SAME_FACES))
 def vertex_strain(rest: Mesh, posed: Mesh) -> NDArray[np.float64]:
     """Per vertex, the largest relative length change ``|l1 / l0 - 1|`` of the edges at it.
 

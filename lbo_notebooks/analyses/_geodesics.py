@@ -26,9 +26,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.progress import PROGRESS, progress_bar
-from .._support.validation import Indices, Integer, Number, Options, Satisfies, validated
+from .._support.validation import Indices, Integer, Number, Options, validated
 from ._heat_method import HeatMethod
 from ..geometry._mesh import Mesh, MeshError, per_mesh
+from ..operators._cotangent import MESH
 
 __all__ = [
     "GeodesicSolver",
@@ -47,11 +48,9 @@ METHODS: tuple[str, ...] = ("heat", "exact", "fmm")
 # Show a progress bar by default once a request has at least this many sources.
 PROGRESS_THRESHOLD = 500
 
-#: Table entries (:func:`~lbo_notebooks._support.validation.validated`) of a geodesic method and of
-#: a mesh whose size later entries read; whether the mesh is connected is :func:`check_connected`'s.
+#: Table entry (:func:`~lbo_notebooks._support.validation.validated`) of a geodesic method; a mesh's
+#: is the operators' ``MESH``, and whether the mesh is connected is :func:`check_connected`'s.
 METHOD = Options(*METHODS)
-_NOT_A_MESH = "expected a Mesh, got {type}; build one with lbo_notebooks.Mesh(vertices, faces)."
-A_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message=_NOT_A_MESH)
 
 
 def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
@@ -61,7 +60,7 @@ def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
     built from them exist. The message says how to keep the largest component.
     """
     if not isinstance(mesh, Mesh):
-        raise ValueError(_NOT_A_MESH.format(type=type(mesh).__name__))
+        MESH.check(mesh, "mesh", {})
     k = mesh.n_components
     if k > 1:
         sizes = np.bincount(mesh.component_labels)
@@ -263,7 +262,7 @@ def check_memory(need: int, budget: float | None, what: str, hint: str = "use fe
 
 
 @validated(method=METHOD,
-           mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), message="expected a Mesh, got {type}."))
+           mesh=MESH)
 def geodesic_solver(mesh: Mesh, method: str) -> GeodesicSolver:
     """The solver of ``mesh`` for ``method``, built once and cached on the mesh."""
     return _solver(mesh, method)
@@ -358,7 +357,7 @@ SampleSelection = Literal["geodesic", "graph"]
 
 @validated(
     method=METHOD,
-    mesh=A_MESH,
+    mesh=MESH,
     k=Integer(1, lambda mesh, **_: mesh.n_vertices, what="an integer between 1 and the number of vertices ({high})",
               hint="you cannot pick more samples than the mesh has vertices"),
     select=Options("geodesic", "graph", message="select must be 'geodesic' or 'graph' (the distance samples are "

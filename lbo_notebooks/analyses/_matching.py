@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.validation import Indices, Integer, Number, Relation, Satisfies, validated
+from ..operators._cotangent import MESH
 from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
 from ..spectral._solvers import one_blas_thread
 from ._functional_maps import COMMUTATIVITY_WEIGHT, LAPLACIAN_WEIGHT, ORIENTATION_WEIGHT
@@ -33,8 +34,6 @@ from ..spectral._spectrum import eigenbasis
 __all__ = ["match", "matching_error", "error_curve"]
 
 
-_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh),
-                  message="{name} must be a Mesh, got {type}; build one with lbo_notebooks.Mesh(vertices, faces).")
 _WEIGHT = Number(0)
 
 
@@ -60,8 +59,8 @@ def _count(minimum: Any, hint: Any = None, none: bool = False) -> Integer:
 
 # Every argument is checked before anything is computed.
 @validated(
-    source=_MESH,
-    target=_MESH,
+    source=MESH,
+    target=MESH,
     k=_count(2),
     k_final=(
         _count(2),
@@ -201,7 +200,7 @@ _P2P = _source_vertices("a 1-D integer array of source vertex indices")
 
 
 @validated(
-    source=_MESH,
+    source=MESH,
     p2p=_P2P,
     true_p2p=(_P2P, Relation(lambda p2p, true_p2p, **_: p2p.shape == true_p2p.shape,
                              "p2p {p2p.shape} and true_p2p {true_p2p.shape} must have the same length "

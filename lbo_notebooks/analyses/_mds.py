@@ -36,9 +36,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._support.validation import Indices, Integer, Number, Options, Relation, Satisfies, validated
 from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
+from ..operators._cotangent import MESH
 from ..spectral._solvers import one_blas_thread
 from ._geodesics import (
-    A_MESH,
     METHOD,
     GeodesicMethod,
     check_connected,
@@ -393,7 +393,7 @@ def _spectrum_misfit(mesh: Mesh, k: int | None, spectrum: Spectrum, **_: Any) ->
 
 
 @validated(
-    mesh=A_MESH,
+    mesh=MESH,
     method=METHOD,
     k=Integer(2, lambda mesh, **_: mesh.n_vertices, none=True,
               what="an integer between 2 and the number of vertices ({high})"),

@@ -7,23 +7,26 @@ The eigenproblem is ``W phi = lam A phi``.
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._support.validation import Options, validated
+from .._support.validation import Options, Satisfies, validated
 from ..geometry._mesh import Mesh, per_mesh
 
 __all__ = [
-    "stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "MASS_KIND",
+    "stiffness_matrix", "mass_matrix", "face_cotangents", "corner_angles", "MassKind", "MASS_KINDS", "MASS_KIND", "MESH",
 ]
 
 MassKind = Literal["voronoi", "barycentric", "consistent"]
 MASS_KINDS: tuple[str, ...] = ("voronoi", "barycentric", "consistent")
 #: The ``mass_kind`` constraint of every table that takes one (:func:`~lbo_notebooks._support.validation.validated`).
 MASS_KIND = Options(*MASS_KINDS)
+#: The rule for a mesh argument (every operator's, and the analyses' that take a mesh).
+MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message=(
+    "{name} must be an lbo_notebooks.Mesh, got {type}; build one with lbo_notebooks.Mesh(vertices, faces)."))
 
 
 @per_mesh
@@ -41,6 +44,7 @@ def _face_cotangents(m: Mesh) -> NDArray[np.float64]:
     return cot
 
 
+@validated(mesh=MESH)
 def face_cotangents(mesh: Mesh) -> NDArray[np.float64]:
     """Cotangent of each corner angle, shape (m, 3): column k is the angle at ``faces[:, k]``.
 
@@ -54,6 +58,7 @@ def face_cotangents(mesh: Mesh) -> NDArray[np.float64]:
     return _face_cotangents(mesh)
 
 
+@validated(mesh=MESH)
 def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
     """Interior angle (radians) at each corner, shape (m, 3): column k is the angle at ``faces[:, k]``.
 
@@ -84,6 +89,7 @@ def _stiffness(m: Mesh) -> sp.csr_matrix:
     return W
 
 
+@validated(mesh=MESH)
 def stiffness_matrix(mesh: Mesh) -> sp.csr_matrix:
     """Cotangent stiffness matrix ``W`` (n x n, CSR), positive semidefinite.
 
@@ -141,7 +147,7 @@ def _mass(m: Mesh, mass_kind: str) -> sp.csr_matrix:
     return sp.diags(diag).tocsr()
 
 
-@validated(mass_kind=MASS_KIND)
+@validated(mesh=MESH, mass_kind=MASS_KIND)
 def mass_matrix(mesh: Mesh, mass_kind: MassKind = "voronoi") -> sp.csr_matrix:
     """Mass matrix ``A`` (n x n, CSR) of the given kind (``mass_kind``).
 

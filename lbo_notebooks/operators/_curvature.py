@@ -47,9 +47,9 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from .._support.validation import Number, Options, Satisfies, validated
+from .._support.validation import Number, Options, validated
 from ..geometry._mesh import Mesh, per_mesh
-from ._cotangent import MASS_KIND, MassKind, corner_angles, mass_matrix
+from ._cotangent import MASS_KIND, MESH, MassKind, corner_angles, mass_matrix
 
 __all__ = [
     "DEFAULT_FLOOR",
@@ -69,8 +69,6 @@ _FLOOR = Number(
     0, open_low=True, what="a positive finite number (a fraction of 4 pi / area, e.g. 1e-3)",
     hint="a zero floor would give flat regions zero mass and a singular mass matrix",
 )
-_MESH = Satisfies(lambda mesh: isinstance(mesh, Mesh), message=lambda name, value: (
-    f"expected a lbo_notebooks.Mesh, got {type(value).__name__}; build one with Mesh(vertices, faces)."))
 
 
 @per_mesh
@@ -109,7 +107,7 @@ def _angle_defects(m: Mesh) -> NDArray[np.float64]:
     return out
 
 
-@validated(mesh=_MESH)
+@validated(mesh=MESH)
 def angle_defects(mesh: Mesh) -> NDArray[np.float64]:
     """Angle defect at each vertex: ``2 pi - sum of angles`` (``pi - sum`` on the boundary).
 
@@ -133,7 +131,7 @@ def _gaussian_curvature(m: Mesh) -> NDArray[np.float64]:
     return out
 
 
-@validated(mesh=_MESH)
+@validated(mesh=MESH)
 def gaussian_curvature(mesh: Mesh) -> NDArray[np.float64]:
     """Gaussian curvature per vertex: angle defect divided by the mixed Voronoi vertex area.
 
@@ -186,7 +184,7 @@ def _rho(m: Mesh, floor: float) -> NDArray[np.float64]:
     return out
 
 
-@validated(mesh=_MESH, floor=_FLOOR)
+@validated(mesh=MESH, floor=_FLOOR)
 def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.float64]:
     """The regularised ``|K|`` per vertex that defines the metric, ``rho`` (see the module notes).
 
@@ -217,7 +215,7 @@ def metric_curvature(mesh: Mesh, *, floor: float = DEFAULT_FLOOR) -> NDArray[np.
 
 
 @validated(
-    alpha=_ALPHA, mesh=_MESH, floor=_FLOOR,
+    alpha=_ALPHA, mesh=MESH, floor=_FLOOR,
     where=Options("vertex", "face", message="where must be 'vertex' or 'face', got {value!r}."),
 )
 def conformal_factor(
@@ -256,7 +254,7 @@ def conformal_factor(
     return rho[mesh.faces].mean(axis=1) ** alpha
 
 
-@validated(mesh=_MESH, alpha=_ALPHA, floor=_FLOOR, mass_kind=MASS_KIND)
+@validated(mesh=MESH, alpha=_ALPHA, floor=_FLOOR, mass_kind=MASS_KIND)
 def metric_mass_matrix(
     mesh: Mesh,
     alpha: float,

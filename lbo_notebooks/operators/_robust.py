@@ -37,6 +37,7 @@ from .._support.validation import Integer, Number, Satisfies, is_integer, valida
 from ..geometry._mesh import Mesh, MeshError
 from ..geometry._pointcloud import PointCloud
 from ..geometry._rescaling import length_exponent
+from ._cotangent import MESH
 
 __all__ = [
     "LAPLACIANS",
@@ -74,6 +75,7 @@ class LaplacianWarning(UserWarning):
     """Issued by :func:`~lbo_notebooks.eigenbasis` when it chose the robust Laplacian; says why."""
 
 
+@validated(mesh=MESH)
 def non_manifold_vertices(mesh: Mesh) -> NDArray[np.int64]:
     """Sorted indices of vertices whose faces do not form one edge-connected fan (bowties).
 
@@ -119,6 +121,7 @@ def non_manifold_vertices(mesh: Mesh) -> NDArray[np.int64]:
     return mesh.cached("non_manifold_vertices", compute)
 
 
+@validated(mesh=MESH)
 def cotan_defects(mesh: Mesh) -> list[str]:
     """Why the cotangent Laplacian cannot serve ``mesh``: one phrase per defect, [] if it can.
 
