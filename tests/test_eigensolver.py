@@ -6,9 +6,9 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral import slice_eigsh
+from lbo_notebooks.spectral import count_below, slice_eigsh
 from lbo_notebooks.spectral._engine.slicing import Pencil, plan_sets
-from lbo_notebooks.spectral._engine.factor import SliceFactor, count_below
+from lbo_notebooks.spectral._engine.factor import SliceFactor
 
 
 def operators(mesh):
@@ -416,7 +416,7 @@ _FAR_FLOOR_SCRIPT = r"""
 import json, sys, time
 import numpy as np, scipy.linalg
 from lbo_notebooks import mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral import slice_eigsh
+from lbo_notebooks.spectral import count_below, slice_eigsh
 m = shapes.icosphere(3)
 W, A = stiffness_matrix(m), mass_matrix(m)
 exact = scipy.linalg.eigh(W.toarray(), A.toarray(), eigvals_only=True)
@@ -454,3 +454,12 @@ def test_a_floor_far_below_the_spectrum_neither_hangs_nor_drops_a_copy(timed):
         assert run["error"] <= 1e-9 and run["gram"] <= 1e-10 and run["n_below"] >= run["k"], run
         if timed:  # a wall time: opt-in (LBO_TIMING_TESTS=1, tests/conftest.py)
             assert run["seconds"] < 15, run
+
+
+def test_count_below_refuses_a_value_that_is_not_a_number():
+    W, A = operators(shapes.icosphere(2))
+    for bad in ("4", float("nan"), float("inf"), True, None):
+        with pytest.raises(ValueError, match=r"^value must be a finite number"):
+            count_below(W, A, bad)
+    with pytest.raises(ValueError, match="same size"):
+        count_below(W, A[:10, :10], 1.0)

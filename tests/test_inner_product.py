@@ -140,3 +140,14 @@ def test_fix_signs_in_place_is_fix_signs_without_the_copy(bumpy):
     for bad in (np.ones(5), np.ones((5, 2), dtype=int)):
         with pytest.raises(ValueError, match="2-D float64"):
             fix_signs_in_place(bad)
+
+
+def test_a_norms_names_a_wrong_shape(bumpy):
+    from lbo_notebooks.spectral import a_norms
+
+    mesh, A = bumpy
+    n = mesh.n_vertices
+    assert a_norms(np.ones((n, 2)), A).shape == (2,)
+    for bad in (np.ones(n), np.ones((2, n)), np.ones((n - 1, 2))):
+        with pytest.raises(ValueError, match=rf"^X must have shape \({n}, c\): one column per function; got"):
+            a_norms(bad, A)

@@ -220,3 +220,12 @@ def test_a_point_cloud_drops_its_operators_too():
     values = lbo.eigenbasis(cloud, 4).values
     cloud.clear_cache()
     np.testing.assert_array_equal(values, lbo.eigenbasis(cloud, 4).values)
+
+
+def test_clean_mesh_takes_keep_largest_component_as_a_boolean_only():
+    from lbo_notebooks.geometry import clean_mesh
+
+    sphere = shapes.icosphere(1)
+    for bad in (1, "yes", None):
+        with pytest.raises(ValueError, match=r"^keep_largest_component must be True or False, got"):
+            clean_mesh(sphere, keep_largest_component=bad)

@@ -15,6 +15,7 @@ from typing import Any, Sequence, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._support.validation import Boolean, validated
 from ._mesh import Mesh, MeshError, degenerate_faces, plural, real_coordinates, unique_rows
 
 __all__ = ["clean_mesh", "clean_arrays", "CleanReport", "triangulate_polygons"]
@@ -146,6 +147,7 @@ class CleanReport:
 MeshLike = Union[Mesh, tuple[ArrayLike, Any]]
 
 
+@validated(keep_largest_component=Boolean())
 def clean_mesh(mesh: MeshLike, keep_largest_component: bool = False) -> tuple[Mesh, CleanReport]:
     """Repair a mesh or raw ``(vertices, faces)`` arrays; return the clean mesh and a report.
 

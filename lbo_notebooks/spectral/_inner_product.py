@@ -115,6 +115,7 @@ def check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[n
 
 
 # --- norms and orthonormal bases ---------------------------------------------------------------
+@validated(X=Array(2, rows=_rows, meaning="one column per function"))
 def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """A-norm ``sqrt(x @ A @ x)`` of each column of ``X`` (shape (c,)).
 
@@ -124,7 +125,10 @@ def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     >>> a_norms(np.ones((4, 2)), sp.identity(4)).tolist()
     [2.0, 2.0]
     """
-    X = np.asarray(X, dtype=np.float64)
+    return _a_norms(X, mass)
+
+
+def _a_norms(X: NDArray[np.float64], mass: sp.spmatrix) -> NDArray[np.float64]:
     return np.sqrt(np.maximum(np.einsum("ij,ij->j", X, mass @ X), 0.0))
 
 
@@ -135,7 +139,7 @@ def _project_out(
     norm ("twice is enough", with a guard for nearly dependent columns). Returns the new norms."""
     for _ in range(4):
         X -= Q @ (Q.T @ (mass @ X))
-        new = a_norms(X, mass)
+        new = _a_norms(X, mass)
         if np.all((new > 0.5 * norms) | (new == 0.0)):
             return new
         norms = new
@@ -217,13 +221,13 @@ def a_orthonormalize(
         # Block Gram-Schmidt against the columns accepted so far (BLAS-3), then column by column
         # inside the block.
         X = cols[:, lo : lo + _BLOCK].copy()
-        norm0 = a_norms(X, mass)
+        norm0 = _a_norms(X, mass)
         if r:
             _project_out(Q[:, :r], X, mass, norm0)
         r_block = r
         for j in range(X.shape[1]):
             v = X[:, j : j + 1]
-            before = float(a_norms(v, mass)[0])
+            before = float(_a_norms(v, mass)[0])
             norm = float(_project_out(Q[:, r_block:r], v, mass, np.array([before]))[0]) if r > r_block else before
             if r and 0.0 < norm < 1e-3 * before:
                 # Heavy cancellation: refresh orthogonality against everything accepted so far.

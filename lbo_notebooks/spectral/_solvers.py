@@ -33,7 +33,10 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ._engine.eigensolver import slice_eigsh
-from ._engine.factor import NESTED_DISSECTION_MIN, SymmetricFactor, count_below, fill_reducing_order, symmetric_lu
+from .._support.validation import Number, validated
+from ._engine.factor import NESTED_DISSECTION_MIN, SymmetricFactor, fill_reducing_order, symmetric_lu
+from ._engine.factor import count_below as _inertia_below
+from ._inner_product import check_operators
 from ._engine.policy import default_shift, start_vector, use_dense
 from ._engine.threads import blas_threads_for, default_workers, one_blas_thread
 from ..geometry._mesh import Mesh, per_mesh
@@ -42,6 +45,25 @@ __all__ = [
     "SymmetricFactor", "blas_threads_for", "count_below", "default_shift", "default_workers", "mesh_order",
     "mesh_order_where_it_pays", "one_blas_thread", "slice_eigsh", "start_vector", "symmetric_lu", "use_dense",
 ]
+
+
+@validated(value=Number(what="a finite number (where to count up to)"))
+def count_below(stiffness: sp.spmatrix, mass: sp.spmatrix, value: float) -> int:
+    """Number of eigenvalues of ``stiffness phi = lam mass phi`` below ``value`` (Sylvester inertia).
+
+    ``W - value A`` is factorised once (LDL^T-like, by sparse LU) and its negative pivots counted:
+    by Sylvester's law of inertia they are the eigenvalues below ``value``. The pair is checked as
+    in :func:`~lbo_notebooks.spectral._inner_product.check_operators`.
+
+    Examples
+    --------
+    >>> from lbo_notebooks import shapes, stiffness_matrix, mass_matrix
+    >>> m = shapes.icosphere(3)
+    >>> count_below(stiffness_matrix(m), mass_matrix(m), 4.0)  # l = 0, 1: 1 + 3 eigenvalues below 4
+    4
+    """
+    W, A = check_operators(stiffness, mass)
+    return _inertia_below(W, A, value)
 
 
 @per_mesh
