@@ -436,3 +436,14 @@ def test_a_slider_starts_on_a_function_worth_looking_at(sphere):
     assert moving.slider.value == 1.0
     flat = plotting.mesh_slider(sphere, lambda i: np.full(sphere.n_vertices, float(i)), range(5), "c")
     assert flat.slider.value == 0                      # nothing better among the first values
+
+
+def test_max_faces_must_leave_something_to_draw():
+    """max_faces=0 used to give an empty picture without a word (issue 42, item 7: every call checks)."""
+    mesh = shapes.icosphere(2)
+    for call in (lambda bad: plotting.display_mesh(mesh, bad), lambda bad: plotting.plot_mesh(mesh, max_faces=bad),
+                 lambda bad: plotting.plot_meshes([mesh], max_faces=bad)):
+        for bad in (0, -1, 2.5, None):
+            with pytest.raises(ValueError, match=r"^max_faces must be a positive integer"):
+                call(bad)
+    assert plotting.display_mesh(mesh, 10)[1].shape == (10, 3)

@@ -9,15 +9,17 @@ import re
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Array
+from .._support.validation import Array, Integer, validated
 from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 
-__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "SCALARS", "check_scalars",
+__all__ = ["DEFAULT_MAX_FACES", "POINT_SIZE", "positions", "Display", "display_mesh", "SCALARS", "MAX_FACES", "check_scalars",
            "colour_range", "tidy_label", "default_colorscale", "DIVERGING", "SEQUENTIAL"]
 
 
 DEFAULT_MAX_FACES = 40_000
+#: The rule for ``max_faces``: at least one triangle (or point) to draw.
+MAX_FACES = Integer(1, what="a positive integer (the most triangles, or points, drawn)")
 POINT_SIZE = 3                # px, the markers of a point cloud
 
 
@@ -68,6 +70,7 @@ class Display:
         return per_vertex if self.index is None else per_vertex[self.index]
 
 
+@validated(max_faces=MAX_FACES)
 def display_mesh(mesh: Mesh | PointCloud, max_faces: int = DEFAULT_MAX_FACES
                  ) -> tuple[NDArray[np.float64], NDArray[np.int64] | None, NDArray[np.int64] | None]:
     """Vertices and faces to draw for ``mesh`` and, if decimated, the original vertex behind each.

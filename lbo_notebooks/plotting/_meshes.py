@@ -21,6 +21,7 @@ from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 from ._display import (
     DEFAULT_MAX_FACES,
+    MAX_FACES,
     SCALARS,
     Display,
     check_scalars,
@@ -75,7 +76,7 @@ _HEIGHT = Satisfies(lambda height: int(height) == height and height >= 50, "a nu
                     none=True)
 
 
-@validated(scalars=SCALARS, up=UP)
+@validated(scalars=SCALARS, up=UP, max_faces=MAX_FACES)
 def plot_mesh(
     mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
@@ -155,7 +156,7 @@ def plot_mesh(
 
 
 @validated(meshes=_MESHES, scalars=_SCALARS_PER_MESH, titles=_TITLES, cols=_COLS, height=_HEIGHT,
-           shared_colour_range=_SHARED, up=UP)
+           shared_colour_range=_SHARED, up=UP, max_faces=MAX_FACES)
 def plot_meshes(
     meshes: Sequence[Mesh | PointCloud],
     scalars: Sequence[ArrayLike | None] | None = None,
@@ -316,7 +317,7 @@ def _view_rotation(view: View) -> NDArray[np.float64]:
 _MATPLOTLIB = {"RdBu_r": "RdBu_r", "Viridis": "viridis"}
 
 
-@validated(scalars=SCALARS, up=UP)
+@validated(scalars=SCALARS, up=UP, max_faces=MAX_FACES)
 def plot_mesh_static(
     mesh: Mesh | PointCloud,
     scalars: ArrayLike | None = None,
