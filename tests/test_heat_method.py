@@ -217,3 +217,10 @@ def test_spectral_mds_defaults_equal_an_explicit_graph_sampling():
     mesh = shapes.bumpy_sphere(2)
     sampling = farthest_point_sampling(mesh, 60, select="graph", return_distances=True)
     assert np.array_equal(spectral_mds(mesh, n_samples=60, k=30), spectral_mds(mesh, n_samples=60, k=30, sampling=sampling))
+
+
+def test_no_sources_give_the_empty_answer(bumpy):
+    """An empty request used to fail with the thread pool's "max_workers must be greater than 0"."""
+    solver = HeatMethod(bumpy)
+    assert solver.distances(np.array([], dtype=np.int64)).shape == (0, bumpy.n_vertices)
+    assert solver.distances([], targets=[0, 5]).shape == (0, 2)

@@ -4,7 +4,7 @@ import scipy.sparse as sp
 import scipy.linalg
 
 from lbo_notebooks import Mesh, eigenbasis, mass_matrix, shapes, stiffness_matrix
-from lbo_notebooks.spectral import fix_signs
+from lbo_notebooks.spectral import Spectrum, fix_signs
 
 # l(l+1) with multiplicity 2l+1: the first 36 eigenvalues of the unit sphere (l = 0..5).
 L = np.repeat(np.arange(6), 2 * np.arange(6) + 1)
@@ -337,3 +337,21 @@ def test_an_uncertified_arpack_set_is_never_returned(monkeypatch):
     monkeypatch.setattr(eigensolver, "slice_eigsh", fails)
     with pytest.raises(RuntimeError, match="certif"):
         eigenbasis(shapes.icosphere(3), 10)
+
+
+def test_a_spectrum_built_by_hand_is_checked_and_leaves_the_callers_arrays_writable():
+    mesh = shapes.icosphere(1)
+    s = eigenbasis(mesh, 5)
+    values, vectors = np.array(s.values), np.array(s.vectors)
+    built = Spectrum(values, vectors, s.stiffness, s.mass)
+    assert values.flags.writeable and vectors.flags.writeable  # ours to keep writing
+    assert not built.values.flags.writeable and not built.vectors.flags.writeable
+    assert np.shares_memory(built.vectors, vectors)  # a view, not a copy
+    with pytest.raises(ValueError, match=r"^vectors must have shape \(n, 3\): one column per eigenvalue"):
+        Spectrum(values[:3], vectors, s.stiffness, s.mass)
+    with pytest.raises(ValueError, match=r"^values must be finite"):
+        Spectrum(values * np.nan, vectors, s.stiffness, s.mass)
+    with pytest.raises(ValueError, match=r"^stiffness must be a scipy\.sparse \(10, 10\) matrix"):
+        Spectrum(values, vectors[:10], s.stiffness, s.mass)
+    with pytest.raises(ValueError, match=r"^mass must be a scipy\.sparse \(42, 42\) matrix"):
+        Spectrum(values, vectors, s.stiffness, s.mass.toarray())

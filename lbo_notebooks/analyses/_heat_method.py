@@ -257,7 +257,8 @@ class HeatMethod:
             fields = self._block(sources[rows])
             out[rows] = fields if columns is None else fields[:, columns]
 
-        _in_blocks(work, sources.size, self.block_size)
+        if sources.size:  # no sources: the empty (0, n) answer, not a pool of no workers
+            _in_blocks(work, sources.size, self.block_size)
         return out
 
     def _indices(self, indices: Any, name: str) -> NDArray[np.int64]:

@@ -69,6 +69,11 @@ def _is_long(n: int, k: int) -> bool:
     return n >= LARGE_MESH and (n >= 4 * LARGE_MESH or n * k >= 3_000_000)
 
 
+_VALUES = Array(1, meaning="one eigenvalue per eigenpair")
+_VECTORS = Array(2, cols=lambda values, **_: values.size, cols_name="k",
+                 meaning="one column per eigenvalue, one row per vertex")
+
+
 @dataclass(frozen=True, eq=False)
 class Spectrum:
     """The first ``k`` eigenpairs of ``W phi = lam A phi``.
@@ -97,8 +102,20 @@ class Spectrum:
     mass: sp.csr_matrix
 
     def __post_init__(self) -> None:
-        self.values.setflags(write=False)
-        self.vectors.setflags(write=False)
+        # Checked like a table's arguments (a Spectrum built by hand, e.g. from saved arrays), then
+        # kept as read-only views: the arrays are not copied, and the caller's stay writable.
+        values = _VALUES.check(self.values, "values", {})
+        vectors = _VECTORS.check(self.vectors, "vectors", {"values": values})
+        n = vectors.shape[0]
+        for name in ("stiffness", "mass"):
+            M = getattr(self, name)
+            if not (sp.issparse(M) and M.shape == (n, n)):
+                raise ValueError(f"{name} must be a scipy.sparse ({n}, {n}) matrix, one row per row of vectors; "
+                                 f"got {type(M).__name__} of shape {getattr(M, 'shape', None)}.")
+        for name, array in (("values", values), ("vectors", vectors)):
+            view = array.view()
+            view.setflags(write=False)
+            object.__setattr__(self, name, view)
 
     @property
     def k(self) -> int:
