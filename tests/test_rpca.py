@@ -274,3 +274,12 @@ def test_clear_errors(setup):
     with pytest.raises(ValueError, match="method"):
         regularized_pca(X, W, A, 5, 1.0, method="lanczos")
     assert np.all(np.isfinite(X))  # inputs untouched
+
+
+def test_a_result_built_by_hand_leaves_the_callers_arrays_writable():
+    from lbo_notebooks.analyses import RPCAResult
+
+    basis, values = np.ones((3, 2)), np.ones(2)
+    result = RPCAResult(basis, values, mu=1.0, n_data=1)
+    assert basis.flags.writeable and values.flags.writeable
+    assert not result.basis.flags.writeable and np.shares_memory(result.basis, basis)

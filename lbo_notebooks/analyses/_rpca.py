@@ -180,8 +180,10 @@ class RPCAResult:
     n_data: int
 
     def __post_init__(self) -> None:
-        self.basis.setflags(write=False)
-        self.values.setflags(write=False)
+        for name in ("basis", "values"):  # read-only views: a caller's own arrays stay writable
+            view = np.asarray(getattr(self, name)).view()
+            view.setflags(write=False)
+            object.__setattr__(self, name, view)
 
     @property
     def k(self) -> int:
