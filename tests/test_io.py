@@ -1187,3 +1187,9 @@ def test_obj_errors_say_how_faces_and_vertices_are_counted_and_show_the_file_lin
     assert "1 degenerate (zero-area) face " in str(info.value) and "counted from 0" in str(info.value)
     _, message = _load_clean(path)
     assert "1 degenerate face removed" in message and "1 unreferenced vertex removed" in message, message
+
+
+def test_save_mesh_names_a_non_mesh_before_looking_at_the_path(tmp_path):
+    for path in (tmp_path / "x.xyz", None, tmp_path / "x.off"):
+        with pytest.raises(TypeError, match=r"^save_mesh needs a Mesh, got ndarray"):
+            save_mesh(np.eye(3), path)

@@ -152,7 +152,7 @@ def test_array_shape_messages_name_the_expected_and_the_actual_shape():
         _field(2, [[1, 2], [3]])  # ragged
     with pytest.raises(ValueError, match=r"^f must .*; got a value that is not an array of numbers\.$"):
         _field(2, ["a", "b"])
-    with pytest.raises(ValueError, match=r"^Y must have shape \(3,\) or \(3, c\), not empty; got \(3, 0\)\.$"):
+    with pytest.raises(ValueError, match=r"^Y is empty \(shape \(3, 0\)\); pass at least one value\.$"):
         _field(3, np.zeros(3), Y=np.zeros((3, 0)))
 
 
@@ -176,8 +176,12 @@ def test_indices_refuse_booleans_fractions_and_out_of_range():
         _field(3, np.zeros(3), sources=[1.5])
     with pytest.raises(ValueError, match=r"^sources must be .*; got dtype float64 and shape \(1,\)\.$"):
         _field(3, np.zeros(3), sources=[np.nan])
-    with pytest.raises(ValueError, match=r"^sources must be .*; got dtype int64 and shape \(0,\)\.$"):
-        _field(3, np.zeros(3), sources=np.array([], dtype=np.int64))
+    for single in (2.5, True, np.nan):  # one value is shown as itself, not as "shape (1,)"
+        with pytest.raises(ValueError, match=rf"^sources must be .*; got {single!r}\.$"):
+            _field(3, np.zeros(3), sources=single)
+    for empty in (np.array([], dtype=np.int64), []):
+        with pytest.raises(ValueError, match=r"^sources is empty; pass at least one vertex index\.$"):
+            _field(3, np.zeros(3), sources=empty)
     with pytest.raises(ValueError, match=r"^sources must be .*shape \(1, 1\)\.$"):
         _field(3, np.zeros(3), sources=[[1]])
     for bad in (3, -1):
@@ -215,3 +219,11 @@ def test_out_of_range_message_as_the_caller_words_it():
     rule = Indices(lambda n, **_: n - 1, out_of_range="{name} vertex {index} is out of range: {count} vertices")
     with pytest.raises(ValueError, match=r"^target vertex 7 is out of range: 3 vertices$"):
         rule.check([0, 7], "target", {"n": 3})
+
+
+def test_a_rule_may_raise_the_error_callers_already_expect():
+    rule = Satisfies(lambda mesh: isinstance(mesh, lbo.Mesh), error=TypeError, message="needs a Mesh, got {type}.")
+    with pytest.raises(TypeError, match=r"^needs a Mesh, got ndarray\.$"):
+        rule.check(np.eye(3), "mesh", {})
+    with pytest.raises(TypeError, match=r"^k must be a positive integer, got 0\.$"):
+        Integer(1, error=TypeError).check(0, "k", {})

@@ -190,14 +190,16 @@ class Constraint:
     (appended after the value) may be strings, formatted with the resolved ``{low}`` and ``{high}``,
     or callables of the function's arguments. ``message`` replaces the whole message; it is
     formatted with ``{name}``, ``{value!r}``, ``{type}`` (the value's type name), ``{low}``, ``{high}``,
-    or is a callable ``message(name, value)``.
+    or is a callable ``message(name, value)``. ``error`` is the exception raised (``ValueError``;
+    ``TypeError`` where an object of the wrong kind is passed and callers already expect that).
     """
 
     low: Bound = None
     high: Bound = None
 
-    def __init__(self, *, what: Any = None, hint: Any = None, message: Any = None, none: bool = False) -> None:
-        self.what, self.hint, self.message, self.none = what, hint, message, none
+    def __init__(self, *, what: Any = None, hint: Any = None, message: Any = None, none: bool = False,
+                 error: type[Exception] = ValueError) -> None:
+        self.what, self.hint, self.message, self.none, self.error = what, hint, message, none, error
 
     def accepts(self, value: Any, low: Any, high: Any) -> bool:  # pragma: no cover - each kind has its own
         raise NotImplementedError
@@ -216,12 +218,12 @@ class Constraint:
             return self.normalize(value)
         parts = {"low": low, "high": high}
         if callable(self.message):
-            raise ValueError(self.message(name, value))
+            raise self.error(self.message(name, value))
         if self.message is not None:
-            raise ValueError(self.message.format(name=name, value=value, type=type(value).__name__, **parts))
+            raise self.error(self.message.format(name=name, value=value, type=type(value).__name__, **parts))
         what = self.default_what(low, high) if self.what is None else self._text(self.what, arguments, parts)
         hint = None if self.hint is None else self._text(self.hint, arguments, parts)
-        raise _fail(name, what, value, hint)
+        raise self.error(str(_fail(name, what, value, hint)))
 
     @staticmethod
     def _text(text: Any, arguments: dict[str, Any], parts: dict[str, Any]) -> str:
@@ -353,6 +355,7 @@ class Array(Constraint):
     ``finite=True`` refuses NaN and infinity, ``nonempty=True`` a size-0 array. The messages:
 
         {name} must have shape {shapes}[: {meaning}]; got {shape}.
+        {name} is empty (shape {shape}); pass at least one value.
         {name} must be finite, got NaN or inf[; {hint}].
 
     Examples
@@ -391,14 +394,15 @@ class Array(Constraint):
         got = "a value that is not an array of numbers" if arr is None else str(arr.shape)
         fits = arr is not None and arr.ndim in self.ndim and (
             arr.ndim == 0 or rows is None or arr.shape[0] == rows) and (
-            arr.ndim < 2 or cols is None or arr.shape[1] == cols) and not (self.nonempty and arr.size == 0)
+            arr.ndim < 2 or cols is None or arr.shape[1] == cols)
+        if fits and self.nonempty and arr.size == 0:
+            raise ValueError(f"{name} is empty (shape {arr.shape}); pass at least one value.")
         if not fits:
             if self.message is not None:
                 raise ValueError(self.message(name, value) if callable(self.message)
                                  else self.message.format(name=name, shape=got, shapes=shapes, **parts))
             what = self._text(self.what, arguments, parts) if self.what is not None else (
-                f"have shape {shapes}" + (f": {self.meaning}" if self.meaning else "")
-                + (", not empty" if self.nonempty else ""))
+                f"have shape {shapes}" + (f": {self.meaning}" if self.meaning else ""))
             raise ValueError(f"{name} must {what}; got {got}.")
         if self.finite and not np.all(np.isfinite(arr)):
             hint = None if self.hint is None else self._text(self.hint, arguments, parts)
@@ -414,7 +418,8 @@ class Indices(Constraint):
     ``length`` fixes the number of indices; ``nonempty=True`` refuses none. The body gets an
     ``int64`` array. The messages:
 
-        {name} must be {what}; got dtype {dtype} and shape {shape}.
+        {name} is empty; pass at least one vertex index.
+        {name} must be {what}; got dtype {dtype} and shape {shape}.   (a single value: got {value!r}.)
         {name} holds vertex index {index} outside 0..{high}[; {hint}].
 
     ``out_of_range`` replaces the second, formatted with ``{name}``, ``{index}``, ``{high}`` and
@@ -459,17 +464,20 @@ class Indices(Constraint):
             arr = np.asarray(value)
         except (TypeError, ValueError):
             arr = np.asarray(None)
-        if self.scalar and arr.ndim == 0:
+        one = arr.ndim == 0
+        if self.scalar and one:
             arr = arr.reshape(1)
-        fits = arr.ndim == self.ndim and self._integers(arr) and not (self.nonempty and arr.size == 0) and (
-            length is None or arr.shape[0] == length)
+        if self.nonempty and arr.ndim == self.ndim and arr.size == 0:
+            raise ValueError(f"{name} is empty; pass at least one vertex index.")
+        fits = arr.ndim == self.ndim and self._integers(arr) and (length is None or arr.shape[0] == length)
         if not fits:
             if self.message is not None:
                 raise ValueError(self.message(name, value) if callable(self.message) else self.message.format(
                     name=name, dtype=arr.dtype, shape=arr.shape, **parts))
             what = self._text(self.what, arguments, parts) if self.what is not None else (
                 f"an integer array of shape ({length},)" if length is not None else "an array of vertex indices")
-            raise ValueError(f"{name} must be {what}; got dtype {arr.dtype} and shape {arr.shape}.")
+            got = repr(value) if one else f"dtype {arr.dtype} and shape {arr.shape}"
+            raise ValueError(f"{name} must be {what}; got {got}.")
         arr = arr.astype(np.int64)
         bad = (arr < 0) | (arr > high) if high is not None else arr < 0
         if bad.any():

@@ -16,7 +16,7 @@ from .._support.validation import Array, Relation, validated
 __all__ = ["gram_error", "procrustes_error"]
 
 #: Each embedding: n points of any dimension, finite.
-_EMBEDDING = Array(2, message="{name} must be an (n, dim) array of embedded points, got shape {shape}.")
+_EMBEDDING = Array(2, message="{name} must be an (n, dim) array of embedded points; got {shape}.")
 _SAME_VERTICES = Relation(
     lambda Z, X, **_: Z.shape[0] == X.shape[0],
     lambda Z, X, **_: f"Z has {Z.shape[0]} points but X has {X.shape[0]}; compare embeddings of the same vertices.",

@@ -225,6 +225,8 @@ def _in_the_file(raw: RawMesh, message: str, p: Path) -> str:
 
 
 @validated(
+    mesh=Satisfies(lambda mesh: isinstance(mesh, Mesh), error=TypeError, message=(
+        "save_mesh needs a Mesh, got {type}; build one with Mesh(vertices, faces).")),
     path=_MESH_PATH,
     binary=Relation(lambda path, binary, **_: not binary or Path(os.fspath(path)).suffix.lower() in BINARY_FORMATS,
                     lambda path, **_: f"{Path(os.fspath(path)).suffix.lower()} files are text only; pass binary=False "
@@ -266,8 +268,6 @@ def save_mesh(mesh: Mesh, path: PathLike, *, binary: bool | None = None) -> Path
     >>> path.read_text().splitlines()[1]
     '42 80 0'
     """
-    if not isinstance(mesh, Mesh):
-        raise TypeError(f"save_mesh needs a Mesh, got {type(mesh).__name__}; build one with Mesh(vertices, faces).")
     p = Path(os.fspath(path))
     ext = p.suffix.lower()
     if binary is None:

@@ -28,7 +28,7 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from .._support.validation import Array, Number, Satisfies, validated
-from ._mass_products import ROW_BLOCK, cholesky_qr, mass_operator
+from ._mass_products import ROW_BLOCK, DiagonalMass, cholesky_qr, mass_operator
 
 __all__ = [
     "check_operators",
@@ -46,6 +46,22 @@ _BLOCK = 32
 
 
 # --- checks ------------------------------------------------------------------------------------
+def _is_square_sparse(mass: Any) -> bool:
+    return (sp.issparse(mass) or isinstance(mass, DiagonalMass)) and len(mass.shape) == 2 and (
+        mass.shape[0] == mass.shape[1])
+
+
+def _is_square(mass: Any) -> bool:
+    return _is_square_sparse(mass) or (np.ndim(mass) == 2 and len(set(np.shape(mass))) == 1)
+
+
+#: The rules for ``mass``, first in every table whose other rules read its size: sparse (for the
+#: orthonormaliser), or any square matrix (where the body converts it, as ``sp.csr_matrix(mass)``).
+_MASS = Satisfies(_is_square_sparse, message="mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
+_SQUARE_MASS = Satisfies(_is_square, message=(
+    "mass must be a square matrix (usually scipy.sparse: see operators.mass_matrix), got {type}."))
+
+
 def _rows(mass: Any, **_: Any) -> int:
     """The number of vertices, from the mass matrix: the row count every function argument must have."""
     return int(np.shape(mass)[0])
@@ -115,7 +131,7 @@ def check_functions(f: ArrayLike, n_vertices: int, name: str = "f") -> NDArray[n
 
 
 # --- norms and orthonormal bases ---------------------------------------------------------------
-@validated(X=Array(2, rows=_rows, meaning="one column per function"))
+@validated(mass=_SQUARE_MASS, X=Array(2, rows=_rows, meaning="one column per function"))
 def a_norms(X: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """A-norm ``sqrt(x @ A @ x)`` of each column of ``X`` (shape (c,)).
 
@@ -147,8 +163,7 @@ def _project_out(
 
 
 @validated(
-    mass=Satisfies(lambda mass: sp.issparse(mass) and len(mass.shape) == 2 and mass.shape[0] == mass.shape[1],
-                   message="mass must be a square scipy.sparse matrix (see operators.mass_matrix)."),
+    mass=_MASS,
     prepend=Array((1, 2), rows=_rows, cols_name="p", column=True, none=True, meaning="the columns placed first"),
     vectors=Array((1, 2), rows=_rows, cols_name="m", column=True, meaning="one column per function"),
     rtol=Number(0, 1, open_low=True, open_high=True),
@@ -330,7 +345,7 @@ def _centred(Y: NDArray[np.float64], A: sp.csr_matrix) -> tuple[NDArray[np.float
     return Y - centroid, centroid
 
 
-@validated(basis=_BASIS, target=_TARGET)
+@validated(mass=_SQUARE_MASS, basis=_BASIS, target=_TARGET)
 def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArray[np.float64]:
     """Best A-norm reconstruction of ``target`` (n, d) from an A-orthonormal basis, centroid kept.
 
@@ -353,7 +368,7 @@ def reconstruct(basis: ArrayLike, mass: sp.spmatrix, target: ArrayLike) -> NDArr
     return out[:, 0] if target.ndim == 1 else out
 
 
-@validated(basis=_BASIS)
+@validated(mass=_SQUARE_MASS, basis=_BASIS)
 def reconstruction_error(
     basis: ArrayLike, mass: sp.spmatrix, targets: ArrayLike | Sequence[ArrayLike]
 ) -> float | NDArray[np.float64]:
@@ -398,7 +413,7 @@ def reconstruction_error(
     return np.array(errors) if many else errors[0]
 
 
-@validated(P=_SUBSPACE, Q=_SUBSPACE)
+@validated(mass=_SQUARE_MASS, P=_SUBSPACE, Q=_SUBSPACE)
 def principal_angles(P: ArrayLike, Q: ArrayLike, mass: sp.spmatrix) -> NDArray[np.float64]:
     """Principal angles (radians, ascending) between ``span P`` and ``span Q`` in the A inner product.
 
