@@ -87,3 +87,14 @@ def test_spline_interpolation_equals_the_direct_biharmonic_solve():
         S = sp.csr_matrix((np.ones(25), (np.arange(25), samples)), shape=(25, mesh.n_vertices))
         direct = spla.spsolve((S.T @ S + mu_abs * W @ sp.diags(1 / a) @ W).tocsc(), S.T.toarray())
         assert np.abs(M - direct).max() < 1e-8 * np.abs(direct).max()
+
+
+def test_a_given_sampling_must_hold_vertex_indices():
+    """Fractional sample indices used to be truncated without a word."""
+    mesh = shapes.icosphere(2)
+    n = mesh.n_vertices
+    for samples in (np.arange(10) + 0.5, np.arange(10) + n, -np.arange(1, 11)):
+        with pytest.raises(ValueError, match=r"^sampling must be .*integer vertex indices in 0\.\.161"):
+            fast_classical_scaling(mesh, n_samples=10, sampling=(samples, np.ones((10, n))))
+    with pytest.raises(ValueError, match=r"got something that is not a pair of arrays\.$"):
+        fast_classical_scaling(mesh, n_samples=10, sampling=5)

@@ -79,22 +79,33 @@ def sampling_pair(count: Callable[..., int], letter: str = "count") -> Relation:
     the count in the message.
     """
 
-    def shapes(sampling: Any) -> tuple[tuple[int, ...], tuple[int, ...]]:
-        samples, fields = (np.asarray(a) for a in sampling)
-        return samples.shape, fields.shape
+    def parts(sampling: Any) -> tuple[Any, Any] | None:
+        try:
+            samples, fields = (np.asarray(a) for a in sampling)
+        except (TypeError, ValueError):  # not a pair of arrays
+            return None
+        return samples, fields
 
     def holds(mesh: Any, sampling: Any, **arguments: Any) -> bool:
         if sampling is None:
             return True
-        samples, fields = shapes(sampling)
-        return len(samples) == 1 and fields == (samples[0], mesh.n_vertices) and (
-            samples[0] >= count(mesh=mesh, sampling=sampling, **arguments))
+        pair, n = parts(sampling), mesh.n_vertices
+        if pair is None:
+            return False
+        samples, fields = pair
+        indices = samples.dtype != bool and np.issubdtype(samples.dtype, np.integer) and (
+            samples.size == 0 or (samples.min() >= 0 and samples.max() < n))
+        return samples.ndim == 1 and bool(indices) and fields.shape == (samples.size, n) and (
+            samples.size >= count(mesh=mesh, sampling=sampling, **arguments))
 
     def message(mesh: Any, sampling: Any, **arguments: Any) -> str:
         q, n = count(mesh=mesh, sampling=sampling, **arguments), mesh.n_vertices
-        samples, fields = shapes(sampling)
+        pair = parts(sampling)
+        got = ("something that is not a pair of arrays" if pair is None else
+               f"dtype {pair[0].dtype} and shape {pair[0].shape}, and shape {pair[1].shape}")
         return (f"sampling must be (samples, distances) from farthest_point_sampling(mesh, {letter} >= {q}, "
-                f"return_distances=True): shapes ({letter},) and ({letter}, {n}); got {samples} and {fields}.")
+                f"return_distances=True): integer vertex indices in 0..{n - 1} of shape ({letter},), and "
+                f"distances of shape ({letter}, {n}); got {got}.")
 
     return Relation(holds, message)
 

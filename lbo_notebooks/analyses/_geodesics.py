@@ -39,6 +39,7 @@ __all__ = [
     "check_connected",
     "distance_matrix_bytes",
     "check_memory",
+    "MEMORY_BUDGET",
     "geodesic_solver",
 ]
 
@@ -51,6 +52,9 @@ PROGRESS_THRESHOLD = 500
 #: Table entry (:func:`~lbo_notebooks._support.validation.validated`) of a geodesic method; a mesh's
 #: is the operators' ``MESH``, and whether the mesh is connected is :func:`check_connected`'s.
 METHOD = Options(*METHODS)
+#: The rule for ``memory_budget``: None (half of the memory available) or a positive number of bytes.
+MEMORY_BUDGET = Number(0, open_low=True, infinite=True, none=True,
+                       message="memory_budget must be a positive number of bytes, got {value!r}.")
 
 
 def check_connected(mesh: Mesh, what: str = "geodesic distances") -> None:
@@ -185,8 +189,7 @@ class GeodesicSolver:
     @validated(sources=_vertex_indices("source", _OF_SOLVER),
                targets=_vertex_indices("target", _OF_SOLVER, none=True),
                progress=PROGRESS,
-               memory_budget=Number(0, open_low=True, infinite=True, none=True,
-                                    message="memory_budget must be a positive number of bytes, got {value!r}."))
+               memory_budget=MEMORY_BUDGET)
     def distances(
         self,
         sources: ArrayLike,
@@ -245,14 +248,13 @@ def available_memory() -> int:
 def check_memory(need: int, budget: float | None, what: str, hint: str = "use fewer sources") -> None:
     """Raise ``MemoryError`` naming ``what`` and ``hint`` when ``need`` bytes exceed ``budget``.
 
-    ``budget=None`` means half of the memory available now.
+    ``budget=None`` means half of the memory available now; a budget a user gives is checked by
+    :data:`MEMORY_BUDGET` in the caller's table.
     """
     if budget is None:
         budget = 0.5 * available_memory()
         where = "half of the memory available now"
     else:
-        if not (np.isscalar(budget) and not np.isnan(budget) and budget > 0):
-            raise ValueError(f"memory_budget must be a positive number of bytes, got {budget!r}.")
         where = "memory_budget"
     if need > budget:
         raise MemoryError(

@@ -39,6 +39,7 @@ from .._support.progress import LARGE_MESH, PROGRESS, progress_bar
 from ..operators._cotangent import MESH
 from ..spectral._solvers import one_blas_thread
 from ._geodesics import (
+    MEMORY_BUDGET,
     METHOD,
     GeodesicMethod,
     check_connected,
@@ -131,6 +132,7 @@ def _too_large(distances: Any, dim: int, **_: Any) -> str:
     distances=Satisfies(_mesh_or_square,
                         message=lambda name, value: f"distances must be a square (n, n) matrix, got {_got(value)}."),
     dim=(DIM, Relation(lambda distances, dim, **_: dim < _points(distances), _too_large)),
+    memory_budget=MEMORY_BUDGET,
     progress=PROGRESS,
 )
 def classical_mds(
