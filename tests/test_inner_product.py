@@ -151,3 +151,13 @@ def test_a_norms_names_a_wrong_shape(bumpy):
     for bad in (np.ones(n), np.ones((2, n)), np.ones((n - 1, 2))):
         with pytest.raises(ValueError, match=rf"^X must have shape \({n}, c\): one column per function; got"):
             a_norms(bad, A)
+
+
+def test_fix_signs_names_a_wrong_shape_and_keeps_nan_columns(bumpy):
+    mesh, A = bumpy
+    n = mesh.n_vertices
+    with pytest.raises(ValueError, match=rf"^vectors must have shape \({n},\) or \({n}, k\)"):
+        fix_signs(np.ones((5, 2)), A)
+    with pytest.raises(ValueError, match=r"^mass must be None or a square matrix"):
+        fix_signs(np.ones(n), "lumped")
+    assert np.isnan(fix_signs(np.full((n, 1), np.nan), A)).all()  # unchanged behaviour: no check on values

@@ -260,6 +260,13 @@ def a_orthonormalize(
 
 
 # --- the sign rule -----------------------------------------------------------------------------
+@validated(
+    mass=Satisfies(_is_square, none=True, message=(
+        "mass must be None or a square matrix (usually scipy.sparse: see operators.mass_matrix), got {type}.")),
+    # Shapes only: NaN columns keep their NaN, as they always did.
+    vectors=Array((1, 2), rows=lambda mass, **_: None if mass is None else _rows(mass), cols_name="k",
+                  finite=False, meaning="one row per vertex of the mass matrix"),
+)
 def fix_signs(vectors: ArrayLike, mass: sp.spmatrix | None = None) -> NDArray[np.float64]:
     """Flip columns so that their signs are deterministic (a fresh array; 1-D input allowed).
 
