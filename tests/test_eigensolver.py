@@ -463,3 +463,13 @@ def test_count_below_refuses_a_value_that_is_not_a_number():
             count_below(W, A, bad)
     with pytest.raises(ValueError, match="same size"):
         count_below(W, A[:10, :10], 1.0)
+
+
+def test_slice_eigsh_names_bad_operators():
+    W, A = operators(shapes.icosphere(2))
+    v0 = np.ones(W.shape[0])
+    with pytest.raises(ValueError, match=r"^stiffness must be a square \(n, n\) matrix"):
+        slice_eigsh(None, A, 5, v0=v0, shift=0.1)
+    with pytest.raises(ValueError, match=r"^mass must be a square matrix of the size of stiffness \(162, 162\), "
+                                         r"got csr_matrix of shape \(5, 5\)"):
+        slice_eigsh(W, A[:5, :5], 5, v0=v0, shift=0.1)
