@@ -48,7 +48,7 @@ from ._geodesics import (
     farthest_point_sampling,
     geodesic_solver,
 )
-from ..spectral._inner_product import fix_signs
+from ..spectral._inner_product import fix_signs, is_square_matrix
 from ..spectral._mass_products import DiagonalMass, mass_operator
 from ..geometry._mesh import Mesh
 from ._classical_scaling import (
@@ -115,7 +115,7 @@ def _got(value: Any) -> str:
 
 # --- classical MDS ----------------------------------------------------------------------------
 def _mesh_or_square(distances: Any) -> bool:
-    return isinstance(distances, Mesh) or (np.ndim(distances) == 2 and len(set(np.shape(distances))) == 1)
+    return isinstance(distances, Mesh) or is_square_matrix(distances)
 
 
 def _points(distances: Any) -> int:

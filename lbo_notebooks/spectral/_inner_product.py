@@ -31,6 +31,7 @@ from .._support.validation import Array, Number, Satisfies, validated
 from ._mass_products import ROW_BLOCK, DiagonalMass, cholesky_qr, mass_operator
 
 __all__ = [
+    "is_square_matrix",
     "check_operators",
     "check_functions",
     "a_norms",
@@ -51,14 +52,15 @@ def _is_square_sparse(mass: Any) -> bool:
         mass.shape[0] == mass.shape[1])
 
 
-def _is_square(mass: Any) -> bool:
+def is_square_matrix(mass: Any) -> bool:
+    """True for a square sparse matrix, a :class:`DiagonalMass` or a square 2-D array-like."""
     return _is_square_sparse(mass) or (np.ndim(mass) == 2 and len(set(np.shape(mass))) == 1)
 
 
 #: The rules for ``mass``, first in every table whose other rules read its size: sparse (for the
 #: orthonormaliser), or any square matrix (where the body converts it, as ``sp.csr_matrix(mass)``).
 _MASS = Satisfies(_is_square_sparse, message="mass must be a square scipy.sparse matrix (see operators.mass_matrix).")
-_SQUARE_MASS = Satisfies(_is_square, message=(
+_SQUARE_MASS = Satisfies(is_square_matrix, message=(
     "mass must be a square matrix (usually scipy.sparse: see operators.mass_matrix), got {type}."))
 
 
@@ -261,7 +263,7 @@ def a_orthonormalize(
 
 # --- the sign rule -----------------------------------------------------------------------------
 @validated(
-    mass=Satisfies(_is_square, none=True, message=(
+    mass=Satisfies(is_square_matrix, none=True, message=(
         "mass must be None or a square matrix (usually scipy.sparse: see operators.mass_matrix), got {type}.")),
     # Shapes only: NaN columns keep their NaN, as they always did.
     vectors=Array((1, 2), rows=lambda mass, **_: None if mass is None else _rows(mass), cols_name="k",

@@ -139,22 +139,29 @@ class Spectrum:
 
         ``f`` is (n_vertices,) or (n_vertices, c); the result is (k,) or (k, c).
         """
-        k = self.k if k is None else k
-        return self.vectors[:, :k].T @ (self.mass @ f)
+        return self._coefficients(f, k)
 
     @validated(k=_N_FUNCTIONS, f=_F)
     def reconstruct(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64]:
         """The A-orthogonal projection of ``f`` onto the span of the first ``k`` eigenfunctions."""
-        k = self.k if k is None else k
-        return self.vectors[:, :k] @ self.project(f, k)
+        return self._projection(f, k)
 
     @validated(k=_N_FUNCTIONS, f=_F)
     def error(self, f: ArrayLike, k: int | None = None) -> NDArray[np.float64] | float:
         """A-norm of ``f - reconstruct(f, k)``: a float for 1-D ``f``, an array per column for 2-D."""
-        r = f - self.reconstruct(f, k)
+        r = f - self._projection(f, k)
         sq = np.einsum("i...,i...->...", r, self.mass @ r)
         out = np.sqrt(np.maximum(sq, 0.0))
         return float(out) if f.ndim == 1 else out
+
+    # The bodies, on f and k the tables above have checked (so each public call checks once).
+    def _coefficients(self, f: NDArray[np.float64], k: int | None) -> NDArray[np.float64]:
+        k = self.k if k is None else k
+        return self.vectors[:, :k].T @ (self.mass @ f)
+
+    def _projection(self, f: NDArray[np.float64], k: int | None) -> NDArray[np.float64]:
+        k = self.k if k is None else k
+        return self.vectors[:, :k] @ self._coefficients(f, k)
 
 
 @validated(

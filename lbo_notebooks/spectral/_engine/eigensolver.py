@@ -26,6 +26,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from ..._support.validation import Array, Integer, Number, Relation, Satisfies, validated
+from .._inner_product import is_square_matrix
 from .._mass_products import cholesky_qr
 from .factor import NESTED_DISSECTION_MIN, SliceFactor, fill_reducing_order, return_freed_memory, symmetric_lu
 from .krylov import BLOCK_SIZE, nearest_eigenpairs
@@ -89,14 +90,10 @@ def _n(stiffness: sp.spmatrix, **_: object) -> int:
     return int(np.shape(stiffness)[0])
 
 
-def _square(matrix: object) -> bool:
-    return np.ndim(matrix) == 2 and len(set(np.shape(matrix))) == 1
-
-
 @validated(
-    stiffness=Satisfies(_square, message="stiffness must be a square (n, n) matrix (see operators.stiffness_matrix), "
+    stiffness=Satisfies(is_square_matrix, message="stiffness must be a square (n, n) matrix (see operators.stiffness_matrix), "
                                          "got {type}."),
-    mass=Relation(lambda stiffness, mass, **_: _square(mass) and np.shape(mass) == np.shape(stiffness),
+    mass=Relation(lambda stiffness, mass, **_: is_square_matrix(mass) and np.shape(mass) == np.shape(stiffness),
                   lambda stiffness, mass, **_: f"mass must be a square matrix of the size of stiffness "
                                                f"{np.shape(stiffness)}, got {type(mass).__name__} of shape {np.shape(mass)}"),
     k=Integer(1, lambda stiffness, **_: _n(stiffness) - 1, what="an integer between 1 and n - 1 = {high}"),
