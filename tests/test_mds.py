@@ -372,6 +372,11 @@ def test_shape_distribution_distances_and_errors():
             shape_distribution(bad)
     with pytest.raises(ValueError, match="bins must be"):
         shape_distribution(sets[0], bins=0)
+    # a generator of point sets is a list of them; nothing, a number or a string is not
+    assert np.array_equal(shape_distribution_distances(iter(sets), bins=20), D)
+    for bad in ([], 5, "points"):
+        with pytest.raises(ValueError, match="point_sets must be a list of one or more"):
+            shape_distribution_distances(bad)
 
 
 def test_growth_exponent_and_cost():
@@ -385,6 +390,8 @@ def test_growth_exponent_and_cost():
     D = cdist(*(2 * [np.random.default_rng(0).normal(size=(300, 3))]))
     cost = measure_cost(classical_mds, D)
     assert cost["peak_bytes"] >= 2 * 8 * 300**2 and cost["result"].shape == (300, 3) and cost["cpu_seconds"] >= 0
+    with pytest.raises(ValueError, match="function must be the function to measure"):
+        measure_cost(D)  # the arguments without the function
 
 
 @pytest.mark.parametrize("timed", [False, pytest.param(True, marks=pytest.mark.timing)], ids=["result", "cpu-seconds"])

@@ -227,6 +227,9 @@ def test_a_constant_function_gets_the_middle_colour_not_an_extreme(sphere):
 def test_no_negative_zero_in_titles(sphere):
     assert plotting.tidy_label(f"λ = {-3e-16:.2f}, μ = {-0.004:.3f}, t = {-1e-9:.1e}") == "λ = 0.00, μ = -0.004, t = -1.0e-09"
     assert plotting.tidy_label("-0.0 and x-0.0 and -0.05 and 10-0") == "0.0 and x-0.0 and -0.05 and 10-0"
+    assert plotting.tidy_label(None) is None
+    with pytest.raises(ValueError, match="text must be a string"):
+        plotting.tidy_label(0.5)
     basis = eigenbasis(sphere, 4)
     assert abs(basis.values[0]) < 1e-10 * basis.values[-1]                         # the constant's eigenvalue: zero up to round-off
     w = plotting.mesh_slider(sphere, lambda i: basis.vectors[:, i], range(4), "i", symmetric=True, start=0,

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._support.validation import Array, Integer, Relation, validated
+from .._support.validation import Array, Integer, Relation, Satisfies, validated
 
 __all__ = ["growth_exponent", "measure_cost", "least_cost", "recorded_benchmark", "RESULTS"]
 
@@ -60,6 +60,8 @@ def growth_exponent(sizes: ArrayLike, costs: ArrayLike) -> float:
     return float(round(np.polyfit(np.log(sizes), np.log(costs), 1)[0], 12))
 
 
+@validated(function=Satisfies(
+    callable, message=lambda name, value: f"{name} must be the function to measure (a callable), got {value!r:.60}."))
 def measure_cost(function: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
     """Run ``function(*args, **kwargs)``; return its ``result``, ``cpu_seconds`` and ``peak_bytes``.
 

@@ -66,6 +66,14 @@ def shape_distribution(points: ArrayLike, *, bins: int = 30, max_ratio: float = 
     return counts / (d.size * float(max_ratio) / int(bins))
 
 
+_POINT_SETS = "{name} must be a list of one or more (n, d) point arrays, got {value!r:.60}."
+
+
+@validated(point_sets=(
+    Satisfies(lambda sets: not isinstance(sets, (str, bytes)) and iter(sets) is not None, convert=list,
+              message=_POINT_SETS),
+    Satisfies(lambda sets: len(sets) >= 1, message=_POINT_SETS),
+))
 def shape_distribution_distances(point_sets: list[ArrayLike], **kwargs: Any) -> NDArray[np.float64]:
     """The L1 distances between the :func:`shape_distribution` of every pair of point sets.
 

@@ -9,7 +9,7 @@ import re
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._support.validation import Array, Integer, validated
+from .._support.validation import Array, Integer, Satisfies, validated
 from ..geometry._mesh import Mesh
 from ..geometry._pointcloud import PointCloud
 
@@ -154,6 +154,8 @@ def _subscript(match: re.Match[str]) -> str:
     return _GREEK.get(letter, letter) + "".join(_SUBSCRIPT[ch] for ch in index)
 
 
+@validated(text=Satisfies(lambda text: isinstance(text, str), none=True,
+                          message="text must be a string (or None), got {value!r} of type {type}."))
 def tidy_label(text: str | None) -> str | None:
     """``text`` as a figure shows it: Greek letters with subscripts in Unicode, and every number
     that was rounded to a negative zero ("-0.00") written as zero.
