@@ -13,7 +13,7 @@ With ``--baseline REV`` the same calls also run from ``git archive REV`` (a copy
 a temporary directory), interleaved with this tree, so the quiet times of the two are compared in
 the same run (new / old) and both slowdowns are shown.
 
-Run (2 cores; other helpers were running too, so read the ratios)::
+Run::
 
     python benchmarks/busy.py [--calls rpca smds match eigenbasis distances] [--repeats 2] [--baseline HEAD]
 
@@ -26,40 +26,8 @@ Calls and sizes (``--n`` scales the meshes):
 * ``eigenbasis``: ``eigenbasis(mesh, 100)`` on the 25k dog;
 * ``distances``: ``geodesic_distances`` from every vertex of a 4k dog (a 4k x 4k matrix).
 
-Recorded in ``lbo_notebooks/recorded/busy.json`` (2 cores, other helpers' jobs running too, load
-about 2 at the end; old = ad1a75d, before issue 30 item 4; medians of 2 interleaved rounds)::
-
-    python benchmarks/busy.py --repeats 2 --baseline ad1a75d --record
-
-    call       code  quiet s   busy s busy/quiet quiet cpu busy cpu  quiet new/old
-    rpca       old      8.62    16.35       1.90     10.78    13.99
-    rpca       new      5.17     8.03       1.55      6.55     5.13           0.75
-    smds       old      4.22     7.22       1.71      5.47     6.13
-    smds       new      3.59     4.19       1.17      4.86     4.92           0.87
-    match      old      2.70     6.25       2.31      5.09     8.17
-    match      new      2.68     2.81       1.05      2.86     2.83           0.99
-    eigenbasis old      1.12     1.53       1.37      1.75     1.85
-    eigenbasis new      1.16     1.58       1.36      1.82     1.85           1.04
-    distances  old      1.28     1.91       1.49      2.11     1.85
-    distances  new      1.32     1.93       1.46      2.16     1.88           1.02
-
-The cause was OpenBLAS's threads, which spin while they wait for a core: beside another program
-a call filling both cores with them burnt 1.5-4x the CPU time it needs. Earlier the same day, on
-a machine loaded by other jobs (load 5-8, so "quiet" is not quiet), one round each:
-
-    rpca  old 42.6-59.9 s (22.3-22.5 s CPU)   new 9.2-9.9 s (5.1-5.8 s CPU)
-    match old 29.7 s (19.2 s CPU)              new 11.5 s (3.7 s CPU)
-    smds  old 11.0-16.9 s (6.0-8.6 s CPU)      new 7.1-7.5 s (5.0-6.6 s CPU)
-    SMDS's embedding step alone: 3.9-7.3 s with OpenBLAS's threads, 0.2-0.5 s on one.
-
-The fix, by call: ``spectral_mds``, ``fast_classical_scaling`` and ``match`` run BLAS on one
-thread (:func:`~lbo_notebooks.spectral._engine.threads.one_blas_thread`), ``match``'s nearest-neighbour search
-shares its blocks among its own worker threads; the eigensolver and the heat method did so
-already. Regularized PCA does gain from BLAS threads on an idle machine (25k vertices, 2 rounds
-on a quiet machine: 4.06 s with them, 4.86 s on one thread, ratio 1.00 busy/quiet on one thread
-and 1.81 with them), so it keeps them on large meshes when the rest of the machine is idle
-(:func:`~lbo_notebooks.spectral._engine.threads.machine_is_idle`) and takes one thread otherwise; with that
-rule, 2 rounds: quiet new/old 1.00, busy/quiet 1.15 against the old code's 1.89.
+The recorded run (also in ``lbo_notebooks/recorded/busy.json``) and the fix it led to:
+``benchmarks/results/busy-history.md``.
 """
 
 from __future__ import annotations

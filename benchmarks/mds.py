@@ -31,86 +31,9 @@ q = 300, mu = 0.05, biharmonic) were chosen on the tuning shapes of :func:`tunin
 sitting horse of 4,500 vertices, a dog with its head turned of 3,600, a walking dog with legs x1.35
 and tail x1.4 of 5,000, a bumpy sphere (seed 3) and a thin torus of about 4,000) and nothing else.
 They were then checked on the validation family :data:`VALIDATION`, none of whose shapes was looked
-at while choosing. ``--validation``, 2026-11-26 06:02 UTC, 2 cores, load average 11.7 (shared)::
+at while choosing.
 
-    shape                                 n topology                        Gram err  previous    gap  verdict
-    horse galloping                    8795 closed, genus 0, thin legs        0.0063    0.0085   1.39  PASS (<= 0.01)
-    dog tail raised                    3067 closed, genus 0, thin tail        0.0047    0.0068   1.55  PASS (<= 0.01)
-    dog sitting, long ears+tail        6932 closed, genus 0, thin parts       0.0061    0.0090   1.29  PASS (<= 0.01)
-    horse standing, long neck+legs     5477 closed, genus 0, thin legs        0.0059    0.0083   1.34  PASS (<= 0.01)
-    dog walking, 12k                  11896 closed, genus 0                   0.0069    0.0094   1.51  PASS (<= 0.01)
-    horse with 3 holes                 6005 3 boundary loops, thin legs       0.0062    0.0083   1.36  PASS (<= 0.01)
-    deformed torus                     4995 closed, genus 1                   0.0046    0.0062   1.75  PASS (<= 0.01)
-    double torus                       4872 closed, genus 2                   0.0040    0.0056   1.22  PASS (<= 0.01)
-    wavy sheet                         4005 1 boundary loop                   0.0038    0.0058   1.20  PASS (<= 0.01)
-    saddle disk                        4681 1 boundary loop                   0.0054    0.0085   1.05  PASS (<= 0.01)
-    ellipsoid 1.6:1:0.6                3430 closed, genus 0, smooth           0.0009    0.0010   9.37  PASS (<= 0.01)
-    bumpy sphere, seed 0               3790 closed, genus 0                   0.0008    0.0008  10.38  PASS (<= 0.01)
-    largest Gram error: 0.0069 (previous defaults: 0.0094)
-
-("previous": projected rows, k = q = 300, the defaults of commit 5fb7d99.) These are procedural
-shapes; on real scans the previous defaults reached 0.68%, 0.93% and 1.22% (MATH.md section 7),
-i.e. up to 1.3x their worst here, and no real scan was available offline to repeat that.
-
-End to end at 51k vertices (``--speed 5fb7d99 --pairs 4``, 2026-11-26 06:02 UTC, load average
-11.7-13 on 2 cores: several other jobs were running, so each pair runs the old and the new code
-back to back in fresh processes, alternating which goes first, and only per-pair ratios are read;
-CPU seconds are far steadier than wall seconds under such load)::
-
-    spectral_mds defaults, deformed torus of 51200 vertices, 4 interleaved pairs (old = 5fb7d99, new = this tree)
-           median s   min s   CPU s   eig s  samp s   emb s
-    old      109.62   62.91   16.95   70.79   23.60    2.55
-    new       54.13   44.30   12.27   31.32   20.94    2.08
-    old/new per pair: wall median 1.96 (min 1.12), CPU median 1.38
-
-Repeated 50 minutes later (``--pairs 3``, load average 5-7)::
-
-           median s   min s   CPU s   eig s  samp s   emb s
-    old       48.96   47.88   17.03   38.16   15.06    0.80
-    new       31.74   18.82   12.20   19.83   11.06    0.85
-    old/new per pair: wall median 1.54 (min 1.42), CPU median 1.40
-
-The previous defaults took 10.5 s on a quiet machine (issue 30) for 16.8-17.5 s of CPU; at the same
-parallel efficiency the new defaults' 11.9-12.4 s of CPU are about 7.5 s (7.5 s from the CPU ratio,
-6.8 s from the wall-time ratio of the quieter run; not measured on a quiet machine).
-
-One shape at growing resolution (``--growth 3000 6000 12000 18000 24000``, 2026-11-26 06:31 UTC,
-load average 13.8): the error grows by about 0.11% per doubling of n, so some 0.9% at 50k (where
-no classical reference fits in memory)::
-
-         n  Gram err  previous
-      3067    0.0047    0.0067
-      6058    0.0060    0.0079
-     11896    0.0069    0.0094
-     17747    0.0076    0.0103
-     23197    0.0079    0.0108
-
-At 47,781 vertices two float64 matrices of classical MDS (36 GB) do not fit; the reference is
-``lean_classical_mds`` (squared distances in float32, 9 GB; 2.1e-7 Gram error against
-``classical_mds`` at 3,067 vertices). ``--growth 48000``, 2026-11-26 11:40 UTC, beside other jobs::
-
-         n  Gram err  previous  reference
-     47781    0.0084    0.0115  lean (float32 D2)
-
-So the defaults stay under 1% at 48k vertices (the previous ones did not), and the end-to-end
-time at that size, on a quiet machine (``--speed 5fb7d99 --pairs 3``, 2026-11-26 11:38 UTC, load
-1.3-1.4 from nothing else), is::
-
-    spectral_mds defaults, deformed torus of 51200 vertices, 3 interleaved pairs (old = 5fb7d99, new = this tree)
-           median s   min s   CPU s   eig s  samp s   emb s
-    old        9.88    9.81   17.09    6.86    2.62    0.40
-    new        7.10    6.96   11.43    4.23    2.54    0.32
-    old/new per pair: wall median 1.38 (min 1.38), CPU median 1.48
-
-Paper section 5, higher resolution at the same cost (``--resolution``, 2026-11-26 06:15 UTC; CPU
-seconds under load average ~13, read them as rough): reference classical MDS on 11,896 vertices of
-the walking dog; every embedding interpolated to its vertices::
-
-    SMDS (defaults) on 6058 vertices: 1.3 s CPU, 3.0 M floats, Gram error 0.0144
-    classical MDS on  1170 vertices:    0.3 s CPU,    2.7 M floats, Gram error 0.0490
-    classical MDS on  1753 vertices:    0.6 s CPU,    6.1 M floats, Gram error 0.0389
-    classical MDS on  2319 vertices:    1.0 s CPU,   10.8 M floats, Gram error 0.0321
-    classical MDS on  3982 vertices:    2.9 s CPU,   31.7 M floats, Gram error 0.0211
+The recorded runs of the tuning, the validation and the speed-ups: ``benchmarks/results/mds-history.md``.
 """
 
 from __future__ import annotations

@@ -15,22 +15,9 @@ nearly as long as one after the other. This measures why, with the scan proxy's 
    calls into SciPy's OpenBLAS. A C program (no Python) makes such calls from one thread and
    from two: the small ones do not run side by side at all.
 
-Run: ``python benchmarks/superlu_threads.py``. One run, 2026-11-26, 2-core machine, SciPy 1.17.1::
+Run: ``python benchmarks/superlu_threads.py``.
 
-    1. solves: one thread 0.174 s, two threads 0.148 s (1.17x)
-    2. beside numpy's BLAS: 0.197 s (alone 0.174 s); the stream 0.108 s (alone 0.099 s)
-    3. beside pure Python: 0.241 s; the Python loop 0.079 s (alone 0.078 s)
-    4. dtrsm + dgemm in two threads (speed-up over one): 4x4 / 10x4x4: 0.74x; 8x4 / 20x8x4: 0.78x; 32x4 / 100x32x4: 1.48x
-
-The calls are that small: read from the structure of this factorisation's ``L`` (columns whose
-rows below agree form one supernode), its 10.9k columns make 6.7k supernodes, 1.6 columns on
-average, and 80% of the columns lie in supernodes of at most 8.
-
-So "SuperLU's solve holds the GIL", as ``benchmarks/eigen.py`` once said, is not the cause: its
-small BLAS calls are. This is also why a solve that calls no BLAS (a numba prototype;
-SciPy's private ``_superlu.gstrs`` on a column-compressed ``L``) lets the two sets overlap
-(``benchmarks/eigen.py``), and why serialising the solves with a lock does not help either
-(0.99-1.06x of the time of ``eigenbasis`` on the six shapes of ``eigen.py --family``).
+One recorded run and what it showed: ``benchmarks/results/superlu-threads-history.md``.
 """
 
 from __future__ import annotations
